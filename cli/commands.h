@@ -1,0 +1,19 @@
+#pragma once
+// Each subcommand registers itself on the top-level app. The callbacks throw
+// phyir::Error for user-facing failures; main() prints them and exits with 1.
+#include <CLI/CLI.hpp>
+
+namespace phyir::cli {
+
+void add_scenes_command(CLI::App& app);
+void add_render_command(CLI::App& app);
+void add_dataset_command(CLI::App& app);
+void add_train_command(CLI::App& app);
+void add_infer_command(CLI::App& app);
+void add_eval_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
+
+// For commands whose issue has not landed: exits with status 3 and says so.
+[[noreturn]] void not_yet_available(const std::string& command, int issue);
+
+}  // namespace phyir::cli

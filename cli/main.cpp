@@ -1,0 +1,51 @@
+// phyir: the toolkit's single command-line entry point.
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+
+#include "commands.h"
+#include "phyir/core/error.h"
+#include "phyir/core/log.h"
+
+namespace phyir::cli {
+
+void not_yet_available(const std::string& command, int issue) {
+  std::fprintf(stderr, "phyir %s: not yet available (arrives with issue %d)\n", command.c_str(), issue);
+  std::exit(3);
+}
+
+}  // namespace phyir::cli
+
+int main(int argc, char** argv) {
+  phyir::init_logging();
+  CLI::App app{"phyir: physically based inverse rendering of indoor panoramas.\n"
+               "Scenes in (glTF 2.0), HDR panoramas, AOVs and light probes out, the PhyIR "
+               "network trained and evaluated on them."};
+  app.set_version_flag("--version", std::string("phyir ") + PHYIR_VERSION);
+  std::string log_level = "info";
+  app.add_option("--log-level", log_level, "trace, debug, info, warn, error or off")
+      ->capture_default_str();
+  app.require_subcommand(1);
+  app.parse_complete_callback([&] { phyir::set_log_level(log_level); });
+
+  phyir::cli::add_scenes_command(app);
+  phyir::cli::add_render_command(app);
+  phyir::cli::add_dataset_command(app);
+  phyir::cli::add_train_command(app);
+  phyir::cli::add_infer_command(app);
+  phyir::cli::add_eval_command(app);
+  phyir::cli::add_bench_command(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e, std::cout, std::cerr);
+  } catch (const phyir::Error& e) {
+    std::fprintf(stderr, "phyir: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "phyir: internal error: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,40 @@
+#pragma once
+// Progress display for long work: a single updating line on a terminal, a log line every
+// few seconds otherwise (CI logs, Slurm). Thread-safe: workers call advance().
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+#include <string>
+
+namespace phyir {
+
+class Progress {
+ public:
+  Progress(std::string label, uint64_t total, std::string unit = "items");
+  ~Progress();
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+
+  void advance(uint64_t n = 1);
+  void finish();  // prints the final line; called by the destructor if not before
+  double elapsed_seconds() const;
+
+  // Disable all output (tests, nested work).
+  static void set_enabled(bool enabled);
+
+ private:
+  void print(bool final_line);
+
+  std::string label_;
+  std::string unit_;
+  uint64_t total_;
+  std::atomic<uint64_t> done_{0};
+  std::chrono::steady_clock::time_point start_;
+  std::chrono::steady_clock::time_point last_print_;
+  std::mutex mutex_;
+  bool tty_;
+  bool finished_ = false;
+};
+
+}  // namespace phyir

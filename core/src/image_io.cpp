@@ -1,0 +1,100 @@
+#include "phyir/core/image_io.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+
+#include "phyir/core/atomic_file.h"
+#include "phyir/core/error.h"
+
+namespace phyir {
+
+namespace fs = std::filesystem;
+using OIIO::ImageInput;
+using OIIO::ImageOutput;
+using OIIO::ImageSpec;
+using OIIO::TypeDesc;
+
+namespace {
+
+Image read_all(ImageInput& in, const std::string& what) {
+  const ImageSpec& spec = in.spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
+    fail("{}: image has no pixels ({}x{}, {} channels)", what, spec.width, spec.height,
+         spec.nchannels);
+  }
+  Image image(spec.width, spec.height, spec.nchannels);
+  if (!in.read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, image.pixels.data())) {
+    fail("{}: cannot decode pixels: {}", what, in.geterror());
+  }
+  return image;
+}
+
+std::vector<std::string> default_channel_names(int channels) {
+  switch (channels) {
+    case 1: return {"Y"};
+    case 2: return {"Y", "A"};
+    case 3: return {"R", "G", "B"};
+    case 4: return {"R", "G", "B", "A"};
+    default: {
+      std::vector<std::string> names;
+      for (int c = 0; c < channels; ++c) names.push_back("C" + std::to_string(c));
+      return names;
+    }
+  }
+}
+
+}  // namespace
+
+Image read_image(const fs::path& path) {
+  if (!fs::exists(path)) fail("{}: image file not found", path.string());
+  auto in = ImageInput::open(path.string());
+  if (!in) fail("{}: cannot open image: {}", path.string(), OIIO::geterror());
+  return read_all(*in, path.string());
+}
+
+Image read_image_from_memory(const std::vector<unsigned char>& bytes, const std::string& what) {
+  if (bytes.empty()) fail("{}: image data is empty", what);
+  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
+  // OIIO needs a format hint: sniff the magic numbers of the formats glTF allows.
+  std::string ext = "png";
+  if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8) ext = "jpg";
+  ImageSpec config;
+  config.attribute("oiio:ioproxy", TypeDesc::PTR, &reader);
+  auto in = ImageInput::open("in-memory." + ext, &config);
+  if (!in) fail("{}: cannot decode image: {}", what, OIIO::geterror());
+  return read_all(*in, what);
+}
+
+void write_image(const fs::path& path, const Image& image,
+                 const std::vector<std::string>& channel_names) {
+  if (image.empty()) fail("{}: refusing to write an empty image", path.string());
+  if (!path.parent_path().empty()) fs::create_directories(path.parent_path());
+  const std::string ext = path.extension().string();
+  const bool hdr = ext == ".exr" || ext == ".hdr";
+  const fs::path tmp = temporary_sibling(path);
+  auto out = ImageOutput::create(tmp.string());
+  if (!out) fail("{}: no image writer for this extension: {}", path.string(), OIIO::geterror());
+  ImageSpec spec(image.width, image.height, image.channels, hdr ? TypeDesc::FLOAT : TypeDesc::UINT8);
+  spec.channelnames = channel_names.empty() ? default_channel_names(image.channels) : channel_names;
+  if (ext == ".exr") spec.attribute("compression", "zip");
+  if (!out->open(tmp.string(), spec)) fail("{}: cannot open for writing: {}", path.string(), out->geterror());
+  bool ok;
+  if (hdr) {
+    ok = out->write_image(TypeDesc::FLOAT, image.pixels.data());
+  } else {
+    std::vector<float> clamped(image.pixels.size());
+    std::transform(image.pixels.begin(), image.pixels.end(), clamped.begin(),
+                   [](float v) { return std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f; });
+    ok = out->write_image(TypeDesc::FLOAT, clamped.data());
+  }
+  if (!ok || !out->close()) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    fail("{}: write failed: {}", path.string(), out->geterror());
+  }
+  commit_file(tmp, path);
+}
+
+}  // namespace phyir
