@@ -1,12 +1,13 @@
-// phyir scenes (being built).
+// phyir scenes: inspect glTF files and generate procedural rooms.
 #include "commands.h"
 
 namespace phyir::cli {
 
 void add_scenes_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("scenes", "scenes");
-  cmd->allow_extras();
-  cmd->callback([] { not_yet_available("scenes", 2); });
+  auto* cmd = app.add_subcommand("scenes", "Inspect glTF scenes and generate procedural indoor rooms");
+  cmd->require_subcommand(1);
+  add_scenes_info_command(*cmd);
+  add_scenes_generate_command(*cmd);
 }
 
 }  // namespace phyir::cli

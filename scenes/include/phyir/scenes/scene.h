@@ -105,8 +105,27 @@ struct Bounds {
   }
 };
 
+// What the source file declared, for `phyir scenes info` and loader tests. Counts are the
+// lengths of the file's top-level arrays, before any baking.
+struct SourceInfo {
+  int nodes = 0;
+  int meshes = 0;
+  int primitives = 0;       // summed over meshes
+  int mesh_instances = 0;   // mesh nodes reached from the default scene
+  int materials = 0;
+  int textures = 0;
+  int images = 0;
+  int samplers = 0;
+  int cameras = 0;
+  int default_scene = 0;
+  std::vector<std::string> extensions_used;
+  std::vector<std::string> extensions_required;
+  std::string generator;    // asset.generator
+};
+
 struct Scene {
   std::string source;  // the file it came from
+  SourceInfo info;
   std::vector<Mesh> meshes;
   std::vector<Material> materials;
   std::vector<Texture> textures;
