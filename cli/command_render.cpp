@@ -1,12 +1,73 @@
-// phyir render (being built).
+// phyir render: one view of a glTF scene to HDR colour, AOVs and render.json.
+#include <memory>
+#include <sstream>
+
 #include "commands.h"
+#include "phyir/core/error.h"
+#include "phyir/render/render_job.h"
 
 namespace phyir::cli {
 
+namespace {
+
+struct RenderFlags {
+  render::RenderJob job;
+  std::string scene;
+  std::string out;
+  std::string camera;
+  std::string projection = "equirect";
+  std::string environment;
+  bool no_aovs = false;
+  bool quiet = false;
+};
+
+glm::vec3 parse_position(const std::string& text) {
+  std::istringstream in(text);
+  glm::vec3 p;
+  char c1 = 0, c2 = 0;
+  if (!(in >> p.x >> c1 >> p.y >> c2 >> p.z) || c1 != ',' || c2 != ',' || !in.eof())
+    fail("--camera '{}' is not X,Y,Z (three comma-separated numbers, metres)", text);
+  return p;
+}
+
+}  // namespace
+
 void add_render_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("render", "render");
-  cmd->allow_extras();
-  cmd->callback([] { not_yet_available("render", 2); });
+  auto flags = std::make_shared<RenderFlags>();
+  auto* cmd = app.add_subcommand(
+      "render", "Render one view of a glTF scene: color.exr/png, AOVs (depth, normal, base colour, "
+                "roughness, metalness, masks) and render.json");
+  render::RenderJob& job = flags->job;
+  cmd->add_option("scene", flags->scene, "glTF 2.0 scene (.gltf or .glb)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--out", flags->out, "output folder")->required();
+  cmd->add_option("--width", job.width, "image width in pixels")->capture_default_str();
+  cmd->add_option("--height", job.height, "image height in pixels")->capture_default_str();
+  cmd->add_option("--spp", job.settings.spp, "paths per pixel")->capture_default_str();
+  cmd->add_option("--camera", flags->camera, "camera position X,Y,Z in metres (default: the scene's camera)");
+  cmd->add_option("--camera-index", job.camera_index, "which scene camera to use")->capture_default_str();
+  cmd->add_option("--projection", flags->projection, "equirect (360x180 panorama) or perspective")->capture_default_str();
+  cmd->add_option("--max-bounces", job.settings.path.max_bounces, "scattering events after the first hit")->capture_default_str();
+  cmd->add_option("--seed", job.settings.seed, "random seed (same seed, same output)")->capture_default_str();
+  cmd->add_option("--threads", job.threads, "worker threads (0 = all cores)")->capture_default_str();
+  cmd->add_option("--environment", flags->environment, "HDR equirectangular environment map (EXR/HDR)");
+  cmd->add_option("--environment-scale", job.environment_scale, "multiplier on the environment")->capture_default_str();
+  cmd->add_option("--exposure", job.exposure, "exposure in stops for color.png")->capture_default_str();
+  cmd->add_option("--view", job.view, "OpenColorIO view for color.png: Standard or Raw")->capture_default_str();
+  cmd->add_flag("--no-aovs", flags->no_aovs, "write color only");
+  cmd->add_flag("--force-all-effects", job.settings.force_all_effects,
+                "run every integrator feature even if the scene lacks it (benchmarking; same output)");
+  cmd->add_flag("--quiet", flags->quiet, "no progress display");
+  cmd->callback([flags] {
+    render::RenderJob& job = flags->job;
+    job.scene_path = flags->scene;
+    job.out_dir = flags->out;
+    job.projection = render::parse_projection(flags->projection);
+    if (!flags->camera.empty()) job.camera_position = parse_position(flags->camera);
+    job.environment_path = flags->environment;
+    job.settings.aovs = !flags->no_aovs;
+    job.settings.progress = !flags->quiet;
+    render::run_render_job(job);
+  });
 }
 
 }  // namespace phyir::cli

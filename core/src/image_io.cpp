@@ -60,9 +60,7 @@ Image read_image_from_memory(const std::vector<unsigned char>& bytes, const std:
   // OIIO needs a format hint: sniff the magic numbers of the formats glTF allows.
   std::string ext = "png";
   if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8) ext = "jpg";
-  ImageSpec config;
-  config.attribute("oiio:ioproxy", TypeDesc::PTR, &reader);
-  auto in = ImageInput::open("in-memory." + ext, &config);
+  auto in = ImageInput::open("in-memory." + ext, nullptr, &reader);
   if (!in) fail("{}: cannot decode image: {}", what, OIIO::geterror());
   return read_all(*in, what);
 }

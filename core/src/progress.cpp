@@ -23,10 +23,10 @@ std::string format_seconds(double s) {
 
 void Progress::set_enabled(bool enabled) { g_enabled = enabled; }
 
-Progress::Progress(std::string label, uint64_t total, std::string unit)
+Progress::Progress(std::string label, uint64_t total, std::string unit, bool enabled)
     : label_(std::move(label)), unit_(std::move(unit)), total_(total),
       start_(std::chrono::steady_clock::now()), last_print_(start_),
-      tty_(::isatty(STDERR_FILENO) != 0) {}
+      tty_(::isatty(STDERR_FILENO) != 0), enabled_(enabled) {}
 
 Progress::~Progress() { finish(); }
 
@@ -36,7 +36,7 @@ double Progress::elapsed_seconds() const {
 
 void Progress::advance(uint64_t n) {
   done_ += n;
-  if (!g_enabled) return;
+  if (!g_enabled || !enabled_) return;
   const auto now = std::chrono::steady_clock::now();
   // Terminals redraw 5 times a second; logs get a line every 10 s.
   const double interval = tty_ ? 0.2 : 10.0;
@@ -51,7 +51,7 @@ void Progress::finish() {
   std::lock_guard<std::mutex> lock(mutex_);
   if (finished_) return;
   finished_ = true;
-  if (g_enabled) print(true);
+  if (g_enabled && enabled_) print(true);
 }
 
 void Progress::print(bool final_line) {

@@ -11,7 +11,8 @@ namespace phyir {
 
 class Progress {
  public:
-  Progress(std::string label, uint64_t total, std::string unit = "items");
+  // `enabled` = false makes it silent (tests, nested work).
+  Progress(std::string label, uint64_t total, std::string unit = "items", bool enabled = true);
   ~Progress();
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
@@ -20,7 +21,7 @@ class Progress {
   void finish();  // prints the final line; called by the destructor if not before
   double elapsed_seconds() const;
 
-  // Disable all output (tests, nested work).
+  // Silences every Progress of the process (test binaries call this once).
   static void set_enabled(bool enabled);
 
  private:
@@ -35,6 +36,7 @@ class Progress {
   std::mutex mutex_;
   bool tty_;
   bool finished_ = false;
+  bool enabled_ = true;
 };
 
 }  // namespace phyir

@@ -1,0 +1,28 @@
+#pragma once
+// "Simulate only the effects a scene calls for": the renderer inspects the scene before
+// rendering and picks an integrator kernel without the code paths for absent effects.
+// render.json lists what ran.
+#include <nlohmann/json.hpp>
+
+#include "phyir/scenes/scene.h"
+
+namespace phyir::render {
+
+struct Effects {
+  bool emitters = false;      // next-event estimation on emissive triangles
+  bool environment = false;   // environment lookups and sampling
+  bool transmission = false;  // the dielectric (glass) lobe
+  bool textures = false;      // any texture fetch
+  bool mirrors = false;       // delta specular lobes (roughness below kMirrorRoughness)
+  bool alpha = false;         // alpha masking / blending
+
+  nlohmann::json to_json() const;
+};
+
+// What `scene` (plus an environment, if any) needs.
+Effects analyse_effects(const scenes::Scene& scene, bool has_environment);
+
+// Every effect on: the reference the specialised kernels are benchmarked against.
+Effects all_effects();
+
+}  // namespace phyir::render

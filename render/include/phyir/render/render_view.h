@@ -1,0 +1,44 @@
+#pragma once
+// Renders one view: the colour estimate (spp paths per pixel, box-filtered over the pixel)
+// and, separately, the G-buffer from one ray through each pixel centre. The two never
+// share random numbers, so turning AOVs off cannot change color.exr. Work is split into
+// 16x16 tiles run by oneTBB; every pixel's samples are summed in a fixed order from
+// streams keyed by (seed, pixel, sample), so output is bit-identical for any thread count.
+#include <cstdint>
+
+#include <nlohmann/json.hpp>
+
+#include "phyir/render/camera.h"
+#include "phyir/render/effects.h"
+#include "phyir/render/film.h"
+#include "phyir/render/path_tracer.h"
+#include "phyir/render/render_scene.h"
+
+namespace phyir::render {
+
+struct RenderSettings {
+  int spp = 64;
+  uint64_t seed = 0;
+  PathSettings path;
+  bool aovs = true;
+  bool force_all_effects = false;  // run every kernel feature (benchmarks; same output)
+  bool progress = true;
+};
+
+struct RenderStats {
+  double color_seconds = 0.0;
+  double aov_seconds = 0.0;
+  PathCounters counters;
+  uint64_t aov_rays = 0;
+  nlohmann::json to_json() const;
+};
+
+struct RenderOutput {
+  Film film;
+  Effects effects;
+  RenderStats stats;
+};
+
+RenderOutput render_view(const RenderScene& scene, const CameraModel& camera, const RenderSettings& settings);
+
+}  // namespace phyir::render

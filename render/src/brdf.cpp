@@ -1,0 +1,215 @@
+#include "phyir/render/brdf.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "phyir/core/safe_math.h"
+#include "phyir/render/sampling.h"
+
+namespace phyir::render {
+
+namespace {
+
+// The smallest alpha D_GGX is ever evaluated with. The BRDF never gets here (roughness
+// below kMirrorRoughness takes the mirror branch, and kMirrorRoughness^2 is exactly this
+// floor); it only keeps a direct call D_GGX(NoH, 0) finite (1 / (pi alpha^2) ~ 7.8e7)
+// instead of 0/0 at NoH = 1.
+constexpr float kMinAlpha = kMirrorRoughness * kMirrorRoughness;
+
+// Eq. 15 in terms of cos^2 and sin^2 of theta_h:
+//   D = alpha^2 / (pi (cos^2 (alpha^2 - 1) + 1)^2) = alpha^2 / (pi (cos^2 alpha^2 + sin^2)^2).
+// Taking sin^2 separately avoids the cancellation in 1 - cos^2 that makes a float NoH
+// useless for narrow lobes (NoH = 1 - 6e-8 is one ulp, i.e. a 3.5e-4 rad step).
+float ggx_ndf(float cos2, float sin2, float alpha) {
+  const float a2 = std::max(alpha, kMinAlpha) * std::max(alpha, kMinAlpha);
+  const float d = cos2 * a2 + sin2;
+  return a2 / (kPi * d * d);
+}
+
+// k = (R + 1)^2 / 8 of eq. 17 (UE4's remapping for analytic lights).
+float schlick_k(float roughness) {
+  const float r1 = roughness + 1.0f;
+  return r1 * r1 / 8.0f;
+}
+
+// The parameters as the BRDF uses them: clamped to their documented ranges.
+struct Clamped {
+  glm::vec3 base_color;
+  float roughness;
+  float metalness;
+};
+
+Clamped clamp_params(const BrdfParams& p) {
+  return {glm::clamp(p.base_color, glm::vec3(0.0f), glm::vec3(1.0f)), clamp01(p.roughness),
+          clamp01(p.metalness)};
+}
+
+// Everything eval and pdf need about one (wo, wi) pair, computed once so that
+// sample()'s weight is exactly eval * cos / pdf.
+struct Pair {
+  bool valid = false;
+  float NoV = 0.0f, NoL = 0.0f;
+  float cos2_h = 0.0f, sin2_h = 0.0f;  // of the half vector
+  float NoH = 0.0f, VoH = 0.0f;
+};
+
+Pair make_pair(const glm::vec3& wo, const glm::vec3& wi) {
+  Pair q;
+  q.NoV = wo.z;
+  q.NoL = wi.z;
+  // Directions below (or within kMinCosine of) the horizon contribute nothing.
+  if (!(q.NoV >= kMinCosine) || !(q.NoL >= kMinCosine)) return q;
+  // h = (wo + wi) / |wo + wi|. wo + wi == wi + wo exactly in floating point, so every
+  // quantity below is symmetric in (wo, wi) and eval is reciprocal bit for bit.
+  const glm::vec3 s = wo + wi;
+  const float len2 = glm::dot(s, s);
+  if (!(len2 > 0.0f)) return q;  // unreachable with both z >= kMinCosine
+  const float len = std::sqrt(len2);
+  q.cos2_h = s.z * s.z / len2;
+  q.sin2_h = (s.x * s.x + s.y * s.y) / len2;
+  q.NoH = s.z / len;
+  // VoH = wo.(wo+wi)/|wo+wi| = (1 + wo.wi)/|wo+wi| = |wo+wi| / 2 for unit vectors.
+  // Both z >= kMinCosine gives |wo+wi| >= 2 kMinCosine, so VoH >= kMinCosine.
+  q.VoH = std::min(0.5f * len, 1.0f);
+  q.valid = true;
+  return q;
+}
+
+glm::vec3 eval_pair(const Clamped& c, const Pair& q) {
+  if (!q.valid) return glm::vec3(0.0f);
+  glm::vec3 f = Fd_Lambert(c.base_color, c.metalness);
+  if (is_mirror(c.roughness)) return f;  // the delta lobe is reached only via sample()
+  const float alpha = c.roughness * c.roughness;                          // eq. 15
+  const float D = ggx_ndf(q.cos2_h, q.sin2_h, alpha);                     // eq. 15
+  const glm::vec3 F = F_SchlickSG(specular_F0(c.base_color, c.metalness), q.VoH);  // eq. 16
+  const float G = G_SmithSchlick(q.NoV, q.NoL, c.roughness);              // eq. 17
+  f += D * F * G / (4.0f * (q.NoV * q.NoL));                              // eq. 14
+  return f;
+}
+
+float pdf_pair(const Clamped& c, float ps, const Pair& q) {
+  if (!q.valid) return 0.0f;
+  // Eq. 18, mixed with the lobe-choice probability.
+  float pdf = (1.0f - ps) * cosine_hemisphere_pdf(q.NoL);
+  if (!is_mirror(c.roughness)) {
+    const float alpha = c.roughness * c.roughness;
+    // pdf_h = D NoH; dwh/dwi = 1 / (4 VoH) for reflection (Walter et al. 2007, eq. 14).
+    pdf += ps * ggx_ndf(q.cos2_h, q.sin2_h, alpha) * q.NoH / (4.0f * q.VoH);
+  }
+  return pdf;
+}
+
+float specular_probability_clamped(const Clamped& c, float NoV) {
+  const glm::vec3 diffuse_albedo = c.base_color * (1.0f - c.metalness);
+  const float ed = luminance(diffuse_albedo);
+  // No diffuse lobe (a metal, or black base colour): always sample the specular lobe, so
+  // no sample is wasted on a lobe that returns zero.
+  if (!(ed > 0.0f)) return 1.0f;
+  // A cheap estimate of the specular albedo: the Fresnel term at normal-to-view.
+  const float es = luminance(F_SchlickSG(specular_F0(c.base_color, c.metalness), clamp01(NoV)));
+  // Keep both lobes at least 5% likely so neither's tail is starved of samples.
+  return std::clamp(es / (es + ed), 0.05f, 0.95f);
+}
+
+}  // namespace
+
+// --- Named terms (appendix A.3) ---------------------------------------------------------
+
+float D_GGX(float NoH, float alpha) {
+  if (!(NoH > 0.0f)) return 0.0f;  // microfacet normals face up (the chi+ of Walter 2007)
+  NoH = std::min(NoH, 1.0f);
+  // (1 - NoH)(1 + NoH) is exact for the given NoH, unlike 1 - NoH^2.
+  return ggx_ndf(NoH * NoH, (1.0f - NoH) * (1.0f + NoH), alpha);
+}
+
+glm::vec3 F_SchlickSG(const glm::vec3& F0, float VoH) {
+  // Eq. 16: Schlick's Fresnel with the spherical-Gaussian fit of (1 - VoH)^5 (Karis 2013).
+  // Note the fit is not exact at the ends: 2^(-12.538) = 1.68e-4 remains at VoH = 1.
+  VoH = clamp01(VoH);
+  const float fc = std::exp2((-5.55473f * VoH - 6.98316f) * VoH);
+  return F0 + (glm::vec3(1.0f) - F0) * fc;
+}
+
+glm::vec3 specular_F0(const glm::vec3& base_color, float metalness) {
+  // Eq. 16: 4% reflectance for dielectrics (n = 1.5), the base colour for metals.
+  return 0.04f * (1.0f - metalness) + metalness * base_color;
+}
+
+float G1_SmithSchlick(float NoX, float k) {
+  // Eq. 17, one direction. The denominator is >= k >= 1/8, so this never divides by ~0.
+  NoX = clamp01(NoX);
+  return NoX / (NoX * (1.0f - k) + k);
+}
+
+float G_SmithSchlick(float NoV, float NoL, float roughness) {
+  const float k = schlick_k(clamp01(roughness));  // eq. 17
+  return G1_SmithSchlick(NoV, k) * G1_SmithSchlick(NoL, k);
+}
+
+glm::vec3 Fd_Lambert(const glm::vec3& base_color, float metalness) {
+  return base_color * (1.0f - metalness) * kInvPi;  // eq. 13
+}
+
+bool is_mirror(float roughness) { return roughness < kMirrorRoughness; }
+
+// --- BRDF ---------------------------------------------------------------------------------
+
+glm::vec3 brdf_eval(const BrdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {
+  return eval_pair(clamp_params(p), make_pair(wo, wi));
+}
+
+float brdf_pdf(const BrdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {
+  const Clamped c = clamp_params(p);
+  const Pair q = make_pair(wo, wi);
+  if (!q.valid) return 0.0f;
+  return pdf_pair(c, specular_probability_clamped(c, q.NoV), q);
+}
+
+float specular_probability(const BrdfParams& p, float NoV) {
+  return specular_probability_clamped(clamp_params(p), NoV);
+}
+
+bool brdf_sample(const BrdfParams& p, const glm::vec3& wo, float u_lobe, const glm::vec2& u,
+                 BrdfSample* out) {
+  *out = BrdfSample{};
+  const float NoV = wo.z;
+  if (!(NoV >= kMinCosine)) return false;
+  const Clamped c = clamp_params(p);
+  const float ps = specular_probability_clamped(c, NoV);
+  const bool mirror = is_mirror(c.roughness);
+
+  glm::vec3 wi;
+  if (u_lobe < ps) {
+    if (mirror) {
+      // The alpha -> 0 limit of eq. 14-17: h = n, VoH = NoL = NoV, and the lobe's
+      // integral of f_s cos collapses to F(NoV) G1(NoV)^2 (k keeps its (R+1)^2/8 value).
+      const float G1 = G1_SmithSchlick(NoV, schlick_k(c.roughness));
+      out->wi = glm::vec3(-wo.x, -wo.y, wo.z);
+      out->weight = F_SchlickSG(specular_F0(c.base_color, c.metalness), NoV) * (G1 * G1) / ps;
+      out->pdf = ps;
+      out->delta = true;
+      return true;
+    }
+    const glm::vec3 h = sample_ggx_half_vector(u, c.roughness * c.roughness);
+    wi = 2.0f * glm::dot(wo, h) * h - wo;  // reflect wo about h
+    // Renormalise: reflect() of unit vectors is unit only up to rounding.
+    wi = safe_normalize(wi, glm::vec3(0.0f, 0.0f, -1.0f));
+  } else {
+    wi = sample_cosine_hemisphere(u);
+  }
+
+  // Half vectors with wo.h < 0 reflect wo below the horizon: those samples (and the
+  // kMinCosine band) are lost; brdf_pdf integrates to 1 minus their probability.
+  const Pair q = make_pair(wo, wi);
+  if (!q.valid) return false;
+  const float pdf = pdf_pair(c, ps, q);
+  if (!(pdf > kTinyDenominator)) return false;
+  const glm::vec3 f = eval_pair(c, q);
+  out->wi = wi;
+  out->pdf = pdf;
+  out->weight = f * (q.NoL / pdf);
+  out->delta = false;
+  return true;
+}
+
+}  // namespace phyir::render

@@ -1,0 +1,40 @@
+#include "phyir/render/effects.h"
+
+#include "phyir/render/brdf.h"
+
+namespace phyir::render {
+
+nlohmann::json Effects::to_json() const {
+  return {{"emitter_sampling", emitters}, {"environment", environment},
+          {"transmission", transmission}, {"textures", textures},
+          {"mirrors", mirrors},           {"alpha", alpha}};
+}
+
+Effects analyse_effects(const scenes::Scene& scene, bool has_environment) {
+  std::vector<bool> used(scene.materials.size(), false);
+  for (const scenes::Mesh& mesh : scene.meshes)
+    if (!mesh.triangles.empty() && mesh.material >= 0 && size_t(mesh.material) < used.size())
+      used[mesh.material] = true;
+  Effects e;
+  e.environment = has_environment;
+  for (size_t i = 0; i < scene.materials.size(); ++i) {
+    if (!used[i]) continue;
+    const scenes::Material& m = scene.materials[i];
+    e.emitters |= m.is_emissive();
+    e.transmission |= m.is_transmissive();
+    e.textures |= m.is_textured();
+    // A metallic-roughness texture can reach roughness 0 anywhere its factor allows.
+    e.mirrors |= is_mirror(m.roughness_factor) ||
+                 (m.metallic_roughness_texture.present() && m.roughness_factor > 0.0f);
+    e.alpha |= m.alpha_mode != scenes::AlphaMode::Opaque;
+  }
+  return e;
+}
+
+Effects all_effects() {
+  Effects e;
+  e.emitters = e.environment = e.transmission = e.textures = e.mirrors = e.alpha = true;
+  return e;
+}
+
+}  // namespace phyir::render

@@ -1,0 +1,124 @@
+#include "phyir/render/emitter_sampler.h"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+
+#include "phyir/core/safe_math.h"
+#include "phyir/render/material_eval.h"
+
+namespace phyir::render {
+
+namespace {
+
+struct Geometry {
+  glm::vec3 wi{0.0f};
+  float distance = 0.0f;
+  float pdf = 0.0f;
+  float cos_light = 0.0f;  // signed: > 0 when the reference sees the front face
+};
+
+// The solid-angle density at `reference` of picking `point` uniformly on a triangle chosen
+// with probability `pmf`: pmf / area * d^2 / |cos_light|. Shared by sample() and pdf() so
+// the two agree bit for bit. Grazing (|cos| < kMinCosine) and coincident points get
+// density 0 in both, so multiple importance sampling stays consistent.
+Geometry solid_angle_pdf(float pmf, float area, const glm::vec3& normal, const glm::vec3& reference,
+                         const glm::vec3& point) {
+  Geometry g;
+  const glm::vec3 d = point - reference;
+  const float dist2 = glm::dot(d, d);
+  if (!(dist2 > 0.0f) || !std::isfinite(dist2)) return g;
+  g.distance = std::sqrt(dist2);
+  g.wi = d / g.distance;
+  g.cos_light = -glm::dot(normal, g.wi);
+  const float abs_cos = std::abs(g.cos_light);
+  if (abs_cos < kMinCosine) return g;
+  g.pdf = pmf * dist2 / (area * abs_cos);
+  if (!std::isfinite(g.pdf)) g.pdf = 0.0f;
+  return g;
+}
+
+}  // namespace
+
+EmitterSampler::EmitterSampler(const scenes::Scene& scene) : scene_(&scene) {
+  first_of_mesh_.assign(scene.meshes.size(), -1);
+  std::vector<float> weights;
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const scenes::Mesh& mesh = scene.meshes[m];
+    if (mesh.material < 0 || static_cast<size_t>(mesh.material) >= scene.materials.size()) continue;
+    const scenes::Material& material = scene.materials[mesh.material];
+    if (!material.is_emissive() || mesh.triangles.empty()) continue;
+
+    // Power per unit area: luminance of the emission, times the texture's mean.
+    float power_density = luminance(material.emission());
+    const scenes::TextureSlot& slot = material.emissive_texture;
+    if (slot.present() && static_cast<size_t>(slot.texture) < scene.textures.size())
+      power_density *= mean_luminance(scene.textures[slot.texture]);
+    if (!(power_density > 0.0f) || !std::isfinite(power_density)) continue;
+
+    first_of_mesh_[m] = static_cast<int>(lookup_.size());
+    const size_t n = mesh.positions.size();
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const glm::uvec3 tri = mesh.triangles[t];
+      lookup_.push_back(-1);
+      if (tri.x >= n || tri.y >= n || tri.z >= n) continue;
+      EmissiveTriangle e{static_cast<int>(m), static_cast<int>(t), mesh.positions[tri.x],
+                         mesh.positions[tri.y], mesh.positions[tri.z], glm::vec3(0.0f), 0.0f};
+      const glm::vec3 c = glm::cross(e.p1 - e.p0, e.p2 - e.p0);
+      const float len = glm::length(c);
+      // Zero-area (or non-finite) triangles emit nothing and cannot be sampled uniformly.
+      if (!(len > 0.0f) || !std::isfinite(len) || !is_finite(e.p0) || !is_finite(e.p1) || !is_finite(e.p2))
+        continue;
+      e.normal = c / len;
+      e.area = 0.5f * len;
+      const float weight = e.area * power_density;
+      if (!(weight > 0.0f) || !std::isfinite(weight)) continue;
+      lookup_.back() = static_cast<int>(triangles_.size());
+      triangles_.push_back(e);
+      weights.push_back(weight);
+    }
+  }
+  distribution_ = Distribution1D(std::move(weights));
+  if (!triangles_.empty())
+    spdlog::debug("emitter sampler: {} emissive triangles, total power {}", triangles_.size(), total_power());
+}
+
+bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const glm::vec2& u_point,
+                            EmitterSample* out) const {
+  float pmf = 0.0f;
+  const int index = distribution_.sample(u_select, &pmf);
+  if (index < 0) return false;
+  const EmissiveTriangle& e = triangles_[index];
+  const glm::vec2 b12 = sample_uniform_triangle(u_point);
+  const glm::vec3 bary = barycentrics(b12);
+  const glm::vec3 point = e.p0 * bary.x + e.p1 * bary.y + e.p2 * bary.z;
+  const Geometry g = solid_angle_pdf(pmf, e.area, e.normal, reference, point);
+  if (!(g.pdf > 0.0f)) return false;
+
+  const scenes::Mesh& mesh = scene_->meshes[e.mesh];
+  const scenes::Material& material = scene_->materials[mesh.material];
+  out->position = point;
+  out->normal = e.normal;
+  out->wi = g.wi;
+  out->distance = g.distance;
+  out->pdf = g.pdf;
+  out->mesh = e.mesh;
+  out->triangle = e.triangle;
+  // A one-sided emitter seen from behind sends nothing toward the reference.
+  const bool sees_emitting_side = g.cos_light > 0.0f || material.double_sided;
+  out->radiance = sees_emitting_side
+                      ? emitted_radiance(*scene_, mesh, material, mesh.triangles[e.triangle], bary)
+                      : glm::vec3(0.0f);
+  return true;
+}
+
+float EmitterSampler::pdf(const glm::vec3& reference, int mesh, int triangle, const glm::vec3& point) const {
+  if (mesh < 0 || static_cast<size_t>(mesh) >= first_of_mesh_.size() || first_of_mesh_[mesh] < 0) return 0.0f;
+  if (triangle < 0 || static_cast<size_t>(triangle) >= scene_->meshes[mesh].triangles.size()) return 0.0f;
+  const int index = lookup_[first_of_mesh_[mesh] + triangle];
+  if (index < 0) return 0.0f;
+  const EmissiveTriangle& e = triangles_[index];
+  return solid_angle_pdf(distribution_.pmf(index), e.area, e.normal, reference, point).pdf;
+}
+
+}  // namespace phyir::render

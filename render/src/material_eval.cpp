@@ -1,0 +1,129 @@
+#include "phyir/render/material_eval.h"
+
+#include <cmath>
+
+#include "phyir/core/safe_math.h"
+
+namespace phyir::render {
+
+namespace {
+
+template <typename T>
+bool has_attribute(const std::vector<T>& attribute, const scenes::Mesh& mesh) {
+  return !attribute.empty() && attribute.size() == mesh.positions.size();
+}
+
+template <typename T>
+T interpolate(const std::vector<T>& a, const glm::uvec3& tri, const glm::vec3& b) {
+  return a[tri.x] * b.x + a[tri.y] * b.y + a[tri.z] * b.z;
+}
+
+bool slot_valid(const scenes::Scene& scene, const scenes::TextureSlot& slot) {
+  return slot.present() && static_cast<size_t>(slot.texture) < scene.textures.size();
+}
+
+// Non-finite channels become `fallback`; the texture loader should never produce them,
+// but one bad texel must not turn a whole render into NaN.
+glm::vec4 finite_or(const glm::vec4& v, float fallback) {
+  glm::vec4 r = v;
+  for (int i = 0; i < 4; ++i)
+    if (!std::isfinite(r[i])) r[i] = fallback;
+  return r;
+}
+
+}  // namespace
+
+glm::vec2 slot_uv(const scenes::Mesh& mesh, const glm::uvec3& tri, const glm::vec3& bary,
+                  const scenes::TextureSlot& slot) {
+  glm::vec2 uv(0.0f);
+  if (slot.texcoord == 1 && has_attribute(mesh.texcoords1, mesh)) {
+    uv = interpolate(mesh.texcoords1, tri, bary);
+  } else if (has_attribute(mesh.texcoords0, mesh)) {
+    uv = interpolate(mesh.texcoords0, tri, bary);
+  }
+  return slot.transform.is_identity() ? uv : slot.transform.apply(uv);
+}
+
+glm::vec4 sample_slot(const scenes::Scene& scene, const scenes::Mesh& mesh, const glm::uvec3& tri,
+                      const glm::vec3& bary, const scenes::TextureSlot& slot, const glm::vec4& absent) {
+  if (!slot_valid(scene, slot)) return absent;
+  return finite_or(scene.textures[slot.texture].sample(slot_uv(mesh, tri, bary, slot)), 0.0f);
+}
+
+float material_alpha(const scenes::Scene& scene, const scenes::Mesh& mesh, const scenes::Material& material,
+                     const glm::uvec3& tri, const glm::vec3& bary) {
+  float alpha = material.base_color_factor.a;
+  if (slot_valid(scene, material.base_color_texture))
+    alpha *= sample_slot(scene, mesh, tri, bary, material.base_color_texture, glm::vec4(1.0f)).a;
+  if (has_attribute(mesh.colors, mesh)) alpha *= interpolate(mesh.colors, tri, bary).a;
+  return std::isfinite(alpha) ? alpha : 1.0f;
+}
+
+glm::vec3 emitted_radiance(const scenes::Scene& scene, const scenes::Mesh& mesh,
+                           const scenes::Material& material, const glm::uvec3& tri, const glm::vec3& bary) {
+  glm::vec3 e = material.emission();
+  if (!material.is_emissive()) return glm::vec3(0.0f);
+  if (slot_valid(scene, material.emissive_texture))
+    e *= glm::vec3(sample_slot(scene, mesh, tri, bary, material.emissive_texture, glm::vec4(1.0f)));
+  e = glm::max(e, glm::vec3(0.0f));
+  return is_finite(e) ? e : glm::vec3(0.0f);
+}
+
+MaterialPoint evaluate_material(const scenes::Scene& scene, const scenes::Mesh& mesh,
+                                const scenes::Material& material, const glm::uvec3& tri, const glm::vec3& bary) {
+  MaterialPoint m;
+
+  // Base colour: factor x texture x COLOR_0 (glTF 2.0, 3.9.2).
+  glm::vec4 base = finite_or(material.base_color_factor, 1.0f);
+  if (slot_valid(scene, material.base_color_texture))
+    base *= sample_slot(scene, mesh, tri, bary, material.base_color_texture, glm::vec4(1.0f));
+  if (has_attribute(mesh.colors, mesh)) base *= finite_or(interpolate(mesh.colors, tri, bary), 1.0f);
+  m.brdf.base_color = glm::clamp(glm::vec3(base), glm::vec3(0.0f), glm::vec3(1.0f));
+
+  // Metallic-roughness: G = roughness, B = metalness.
+  float roughness = material.roughness_factor, metalness = material.metallic_factor;
+  if (slot_valid(scene, material.metallic_roughness_texture)) {
+    const glm::vec4 mr =
+        sample_slot(scene, mesh, tri, bary, material.metallic_roughness_texture, glm::vec4(1.0f));
+    roughness *= mr.g;
+    metalness *= mr.b;
+  }
+  m.brdf.roughness = std::isfinite(roughness) ? clamp01(roughness) : 1.0f;
+  m.brdf.metalness = std::isfinite(metalness) ? clamp01(metalness) : 0.0f;
+
+  m.emission = emitted_radiance(scene, mesh, material, tri, bary);
+
+  float transmission = material.transmission_factor;
+  if (slot_valid(scene, material.transmission_texture))
+    transmission *= sample_slot(scene, mesh, tri, bary, material.transmission_texture, glm::vec4(1.0f)).r;
+  m.transmission = std::isfinite(transmission) ? clamp01(transmission) : 0.0f;
+  m.ior = (std::isfinite(material.ior) && material.ior >= 1.0f) ? material.ior : 1.5f;
+
+  const float alpha = std::isfinite(base.a) ? base.a : 1.0f;
+  switch (material.alpha_mode) {
+    case scenes::AlphaMode::Opaque: m.opacity = 1.0f; break;
+    case scenes::AlphaMode::Mask: m.opacity = alpha >= material.alpha_cutoff ? 1.0f : 0.0f; break;
+    case scenes::AlphaMode::Blend: m.opacity = clamp01(alpha); break;
+  }
+
+  // Tangent-space normal: (texel * 2 - 1) * (scale, scale, 1) (glTF 2.0, 3.9.3).
+  if (slot_valid(scene, material.normal_texture)) {
+    const glm::vec4 t = sample_slot(scene, mesh, tri, bary, material.normal_texture, glm::vec4(0.5f, 0.5f, 1.0f, 1.0f));
+    const float scale = std::isfinite(material.normal_scale) ? material.normal_scale : 1.0f;
+    m.normal_ts = (glm::vec3(t) * 2.0f - glm::vec3(1.0f)) * glm::vec3(scale, scale, 1.0f);
+    m.has_normal_map = true;
+  }
+  return m;
+}
+
+float mean_luminance(const scenes::Texture& texture) {
+  if (texture.texels.empty()) return 1.0f;  // Texture::sample returns 1 for an empty texture
+  double sum = 0.0;
+  for (const glm::vec4& t : texture.texels) {
+    const float l = luminance(glm::max(glm::vec3(t), glm::vec3(0.0f)));
+    if (std::isfinite(l)) sum += l;
+  }
+  return static_cast<float>(sum / static_cast<double>(texture.texels.size()));
+}
+
+}  // namespace phyir::render

@@ -1,0 +1,179 @@
+#include "phyir/render/render_job.h"
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include <chrono>
+
+#include "phyir/core/atomic_file.h"
+#include "phyir/core/colour.h"
+#include "phyir/core/error.h"
+#include "phyir/core/image_io.h"
+#include "phyir/core/log.h"
+#include "phyir/core/safe_math.h"
+#include "phyir/render/equirect.h"
+#include "phyir/scenes/gltf_loader.h"
+
+namespace phyir::render {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+nlohmann::json vec_json(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+
+void validate(const RenderJob& job) {
+  if (job.width <= 0 || job.height <= 0 || job.width > 65536 || job.height > 65536)
+    fail("--width/--height {}x{} must be between 1 and 65536", job.width, job.height);
+  if (job.projection == Projection::Equirectangular && job.width != 2 * job.height)
+    spdlog::warn("equirectangular image {}x{} is not 2:1; pixels will not be square in angle",
+                 job.width, job.height);
+  if (job.settings.spp <= 0) fail("--spp {} must be positive", job.settings.spp);
+  if (job.settings.path.max_bounces < 0) fail("--max-bounces {} must be >= 0", job.settings.path.max_bounces);
+  if (job.threads < 0) fail("--threads {} must be >= 0 (0 = all cores)", job.threads);
+  if (job.camera_position && !is_finite(*job.camera_position)) fail("--camera must be three finite numbers");
+  if (!std::isfinite(job.exposure)) fail("--exposure must be finite");
+}
+
+std::unique_ptr<EnvironmentLight> load_environment(const RenderJob& job) {
+  if (job.environment_path.empty()) return nullptr;
+  Image image = read_image(job.environment_path);
+  if (image.channels < 3) fail("{}: environment map needs RGB, found {} channel(s)", job.environment_path.string(), image.channels);
+  for (float v : image.pixels)
+    if (!std::isfinite(v) || v < 0.0f)
+      fail("{}: environment map holds a negative or non-finite value", job.environment_path.string());
+  return std::make_unique<EnvironmentLight>(image, job.environment_scale);
+}
+
+}  // namespace
+
+nlohmann::json output_conventions() {
+  return {
+      {"world", "metres, right-handed, +Y up (glTF)"},
+      {"equirect_mapping",
+       "row 0 looks up (+Y), centre column looks along -Z; u = 0.5 + atan2(d.x, -d.z)/(2 pi), "
+       "v = acos(d.y)/pi, pixel centres at (i + 0.5)/W (Blender's convention); panoramas are world-aligned"},
+      {"color", "linear Rec.709 radiance (HDR), box-filtered over each pixel"},
+      {"color_png", "color.exr through OpenColorIO config/phyir.ocio: exposure then the sRGB display view"},
+      {"depth", "Euclidean distance from the camera centre to the first surface through the pixel centre, metres; 0 where mask_geometry is 0"},
+      {"normal", "world-space unit shading normal facing the camera (X,Y,Z channels); 0 where no geometry"},
+      {"basecolor", "linear Rec.709 base colour (textures sRGB-decoded), first surface"},
+      {"roughness", "perceptual roughness R (GGX alpha = R^2)"},
+      {"metalness", "metalness M"},
+      {"mask_emissive", "1 where the first surface emits towards the camera"},
+      {"mask_transparent", "1 where the first surface transmits (glass) or is not opaque"},
+      {"mask_geometry", "1 where the pixel centre sees a surface, 0 where it sees nothing (AOVs are 0 there)"},
+  };
+}
+
+CameraModel job_camera(const RenderJob& job, const scenes::Scene& scene, std::string* description) {
+  CameraModel camera;
+  camera.projection = job.projection;
+  camera.width = job.width;
+  camera.height = job.height;
+  if (job.camera_position) {
+    camera.position = *job.camera_position;
+    if (description) *description = "--camera";
+    if (job.projection == Projection::Perspective && !scene.cameras.empty()) {
+      camera.forward = scene.cameras[0].forward;
+      camera.up = scene.cameras[0].up;
+      camera.yfov = scene.cameras[0].yfov;
+    }
+    return camera;
+  }
+  if (scene.cameras.empty())
+    fail("{}: the scene has no camera node; pass --camera X,Y,Z", scene.source);
+  if (job.camera_index < 0 || size_t(job.camera_index) >= scene.cameras.size())
+    fail("{}: --camera-index {} is out of range (the scene has {} camera(s))", scene.source,
+         job.camera_index, scene.cameras.size());
+  const scenes::Camera& c = scene.cameras[job.camera_index];
+  camera.position = c.position;
+  camera.forward = c.forward;
+  camera.up = c.up;
+  camera.yfov = c.yfov;
+  if (description) *description = "scene camera " + std::to_string(job.camera_index) + " '" + c.name + "'";
+  return camera;
+}
+
+nlohmann::json run_render_job(const RenderJob& job) {
+  validate(job);
+  const auto total_start = Clock::now();
+  const int threads = job.threads > 0 ? job.threads : tbb::info::default_concurrency();
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+
+  auto start = Clock::now();
+  const scenes::Scene scene = scenes::load_gltf(job.scene_path);
+  const double load_seconds = seconds_since(start);
+
+  start = Clock::now();
+  const RenderScene render_scene(scene, load_environment(job));
+  const double build_seconds = seconds_since(start);
+
+  std::string camera_description;
+  const CameraModel camera = job_camera(job, scene, &camera_description);
+  spdlog::info("rendering {} ({} triangles) from {} at ({:.3f}, {:.3f}, {:.3f}), {}x{} {}, {} spp",
+               job.scene_path.string(), scene.triangle_count(), camera_description, camera.position.x,
+               camera.position.y, camera.position.z, camera.width, camera.height,
+               projection_name(camera.projection), job.settings.spp);
+
+  const RenderOutput out = render_view(render_scene, camera, job.settings);
+
+  start = Clock::now();
+  fs::create_directories(job.out_dir);
+  std::vector<std::string> files = out.film.write_exr(job.out_dir);
+  write_image(job.out_dir / "color.png", linear_to_display(out.film.color(), job.exposure, job.view));
+  files.push_back("color.png");
+  const double write_seconds = seconds_since(start);
+
+  nlohmann::json report;
+  report["phyir_version"] = PHYIR_VERSION;
+  report["scene"] = {{"path", job.scene_path.string()},
+                     {"meshes", scene.meshes.size()},
+                     {"triangles", scene.triangle_count()},
+                     {"materials", scene.materials.size()},
+                     {"emissive_triangles", render_scene.emitters().emissive_triangle_count()},
+                     {"warnings", scene.warnings}};
+  report["camera"] = {{"source", camera_description},
+                      {"projection", projection_name(camera.projection)},
+                      {"position", vec_json(camera.position)},
+                      {"forward", vec_json(camera.forward)},
+                      {"up", vec_json(camera.up)},
+                      {"yfov", camera.yfov},
+                      {"width", camera.width},
+                      {"height", camera.height}};
+  report["conventions"] = output_conventions();
+  report["settings"] = {{"spp", job.settings.spp},
+                        {"max_bounces", job.settings.path.max_bounces},
+                        {"roulette_start", job.settings.path.roulette_start},
+                        {"seed", job.settings.seed},
+                        {"threads", threads},
+                        {"aovs", job.settings.aovs},
+                        {"force_all_effects", job.settings.force_all_effects},
+                        {"environment", job.environment_path.string()},
+                        {"environment_scale", job.environment_scale},
+                        {"exposure", job.exposure},
+                        {"view", job.view}};
+  report["effects"] = out.effects.to_json();
+  report["counters"] = out.stats.to_json();
+  report["timings"] = {{"load_seconds", load_seconds},
+                       {"build_seconds", build_seconds},
+                       {"color_seconds", out.stats.color_seconds},
+                       {"aov_seconds", out.stats.aov_seconds},
+                       {"write_seconds", write_seconds},
+                       {"total_seconds", seconds_since(total_start)}};
+  report["files"] = files;
+  write_file_atomic(job.out_dir / "render.json", report.dump(2) + "\n");
+  if (out.stats.counters.nonfinite_samples > 0)
+    spdlog::warn("{} non-finite path samples were caught and zeroed", out.stats.counters.nonfinite_samples);
+  spdlog::info("wrote {} files to {} in {:.2f} s ({:.2f} Mrays/s)", files.size() + 1, job.out_dir.string(),
+               seconds_since(total_start), out.stats.color_seconds > 0 ? out.stats.counters.rays / out.stats.color_seconds / 1e6 : 0.0);
+  return report;
+}
+
+}  // namespace phyir::render

@@ -1,0 +1,97 @@
+#include "phyir/render/render_view.h"
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+
+#include "phyir/core/progress.h"
+#include "phyir/render/gbuffer.h"
+#include "phyir/render/rng.h"
+
+namespace phyir::render {
+
+namespace {
+
+constexpr int kTileSize = 16;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+size_t tile_count(int width, int height) {
+  return size_t((width + kTileSize - 1) / kTileSize) * size_t((height + kTileSize - 1) / kTileSize);
+}
+
+void render_color(const RenderScene& scene, const CameraModel& camera, const RenderSettings& settings,
+                  const PathTracer& tracer, Film* film, PathCounters* counters) {
+  tbb::enumerable_thread_specific<PathCounters> local;
+  Progress progress("render", tile_count(film->width(), film->height()), "tiles", settings.progress);
+  tbb::parallel_for(
+      tbb::blocked_range2d<int>(0, film->height(), kTileSize, 0, film->width(), kTileSize),
+      [&](const tbb::blocked_range2d<int>& tile) {
+        PathCounters& c = local.local();
+        for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
+          for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+            const uint64_t pixel = uint64_t(y) * film->width() + x;
+            glm::dvec3 sum(0.0);
+            for (int s = 0; s < settings.spp; ++s) {
+              const uint64_t key = PathTracer::path_key(settings.seed, pixel, s);
+              Rng jitter(key, 0);  // stream 0: the pixel-area sample
+              const glm::vec2 p = glm::vec2(x, y) + jitter.next_2d();
+              sum += glm::dvec3(tracer.radiance(camera.generate_ray(p), key, &c));
+            }
+            film->set_color(x, y, glm::vec3(sum / double(settings.spp)));
+          }
+        }
+        progress.advance();
+      },
+      tbb::simple_partitioner());
+  for (const PathCounters& c : local) *counters += c;
+}
+
+uint64_t render_gbuffer(const RenderScene& scene, const CameraModel& camera, Film* film) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, film->height()), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y) {
+      for (int x = 0; x < film->width(); ++x) {
+        const Ray ray = camera.generate_ray(glm::vec2(x + 0.5f, y + 0.5f));
+        SurfaceInteraction si;
+        film->set_gbuffer(x, y, scene.trace(ray, &si) ? GBufferSample::from_hit(si) : GBufferSample{});
+      }
+    }
+  });
+  return uint64_t(film->width()) * film->height();
+}
+
+}  // namespace
+
+nlohmann::json RenderStats::to_json() const {
+  return {{"color_seconds", color_seconds},
+          {"aov_seconds", aov_seconds},
+          {"rays_traced", counters.rays + aov_rays},
+          {"path_rays", counters.rays},
+          {"aov_rays", aov_rays},
+          {"paths", counters.paths},
+          {"rays_per_second", color_seconds > 0 ? counters.rays / color_seconds : 0.0},
+          {"nonfinite_samples_caught", counters.nonfinite_samples}};
+}
+
+RenderOutput render_view(const RenderScene& scene, const CameraModel& camera, const RenderSettings& settings) {
+  RenderOutput out{Film(camera.width, camera.height, settings.aovs),
+                   settings.force_all_effects ? all_effects()
+                                              : analyse_effects(scene.scene(), scene.environment() != nullptr),
+                   {}};
+  const PathTracer tracer(scene, out.effects, settings.path);
+  auto start = std::chrono::steady_clock::now();
+  render_color(scene, camera, settings, tracer, &out.film, &out.stats.counters);
+  out.stats.color_seconds = seconds_since(start);
+  if (settings.aovs) {
+    start = std::chrono::steady_clock::now();
+    out.stats.aov_rays = render_gbuffer(scene, camera, &out.film);
+    out.stats.aov_seconds = seconds_since(start);
+  }
+  return out;
+}
+
+}  // namespace phyir::render

@@ -1,0 +1,45 @@
+#include "gltf_extensions.h"
+
+#include <algorithm>
+#include <map>
+
+namespace phyir::scenes::gltf {
+
+const std::vector<std::string>& supported_extensions() {
+  static const std::vector<std::string> names = {
+      "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_transmission",
+      "KHR_texture_transform"};
+  return names;
+}
+
+bool is_supported_extension(const std::string& name) {
+  const auto& names = supported_extensions();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+std::string unsupported_extension_warning(const std::string& name) {
+  // The fallback is what the core glTF data gives; these say what that means here.
+  static const std::map<std::string, std::string> fallbacks = {
+      {"KHR_materials_volume", "glass treated as a solid refractive dielectric (no thickness, no absorption)"},
+      {"KHR_materials_clearcoat", "base layer only"},
+      {"KHR_materials_sheen", "base layer only, no sheen"},
+      {"KHR_materials_specular", "dielectric specular from the IOR only"},
+      {"KHR_materials_iridescence", "no thin-film interference"},
+      {"KHR_materials_anisotropy", "isotropic roughness"},
+      {"KHR_materials_dispersion", "one IOR for all wavelengths"},
+      {"KHR_materials_unlit", "shaded as a regular PBR material"},
+      {"KHR_materials_variants", "the default material mapping"},
+      {"KHR_materials_pbrSpecularGlossiness", "the pbrMetallicRoughness fallback values"},
+      {"KHR_lights_punctual", "punctual lights dropped; only emissive meshes emit"},
+      {"KHR_texture_basisu", "the texture's core image source, if any"},
+      {"EXT_texture_webp", "the texture's core image source, if any"},
+      {"KHR_mesh_quantization", "none: quantized attributes are rejected"},
+      {"KHR_draco_mesh_compression", "the uncompressed accessors, if present"},
+      {"EXT_meshopt_compression", "the uncompressed fallback buffers, if present"},
+      {"EXT_mesh_gpu_instancing", "one instance per node"},
+  };
+  const auto it = fallbacks.find(name);
+  return name + " ignored: " + (it != fallbacks.end() ? it->second : "not supported, core glTF data used");
+}
+
+}  // namespace phyir::scenes::gltf

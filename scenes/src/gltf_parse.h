@@ -1,0 +1,11 @@
+#pragma once
+// tinygltf's parse of a file that passed preflight_check. Images are not decoded here:
+// their encoded bytes are kept in tinygltf::Image::image (as_is = true).
+#include "gltf_context.h"
+#include "gltf_file.h"
+
+namespace phyir::scenes::gltf {
+
+tinygltf::Model parse_gltf(const GltfFile& file, const Diagnostics& diagnostics);
+
+}  // namespace phyir::scenes::gltf

@@ -1,0 +1,15 @@
+#pragma once
+// Checks made on the JSON before tinygltf reads the file. They give precise messages
+// where tinygltf's are vague (missing .bin, missing image file, unsupported required
+// extension) and guard its one unchecked read (an image's bufferView range).
+#include "gltf_context.h"
+#include "gltf_file.h"
+
+namespace phyir::scenes::gltf {
+
+void preflight_check(const GltfFile& file, const Diagnostics& diagnostics);
+
+// Percent-decodes a relative URI ("my%20tex.png") into a path below `base_dir`.
+std::filesystem::path resolve_uri(const std::filesystem::path& base_dir, const std::string& uri);
+
+}  // namespace phyir::scenes::gltf

@@ -1,0 +1,104 @@
+// Image files through OpenImageIO: lossless EXR round trip, atomic writes, clear errors.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "phyir/core/error.h"
+#include "phyir/core/image_io.h"
+
+namespace fs = std::filesystem;
+using phyir::Image;
+
+namespace {
+
+fs::path scratch_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("phyir_core_test_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+}  // namespace
+
+TEST(ImageIo, ExrRoundTripIsBitExact) {
+  const fs::path dir = scratch_dir("exr");
+  Image image(7, 5, 3);
+  for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = float(i) * 0.37f - 3.0f + 1e-7f * i;
+  image.pixels[4] = 65504.0f * 8.0f;  // beyond half range: must survive as float
+  phyir::write_image(dir / "a.exr", image);
+  const Image back = phyir::read_image(dir / "a.exr");
+  ASSERT_EQ(back.width, 7);
+  ASSERT_EQ(back.height, 5);
+  ASSERT_EQ(back.channels, 3);
+  EXPECT_EQ(back.pixels, image.pixels);
+}
+
+TEST(ImageIo, SingleChannelExrKeepsOneChannel) {
+  const fs::path dir = scratch_dir("mono");
+  Image image(4, 2, 1, 2.5f);
+  phyir::write_image(dir / "depth.exr", image);
+  const Image back = phyir::read_image(dir / "depth.exr");
+  EXPECT_EQ(back.channels, 1);
+  EXPECT_EQ(back.pixels, image.pixels);
+}
+
+TEST(ImageIo, PngQuantisesAndClamps) {
+  const fs::path dir = scratch_dir("png");
+  Image image(2, 1, 3);
+  image.pixels = {0.0f, 0.5f, 1.0f, 2.0f, -1.0f, 0.25f};
+  phyir::write_image(dir / "a.png", image);
+  const Image back = phyir::read_image(dir / "a.png");
+  ASSERT_EQ(back.pixels.size(), 6u);
+  EXPECT_NEAR(back.pixels[1], 0.5f, 1.0f / 255.0f);
+  EXPECT_FLOAT_EQ(back.pixels[3], 1.0f);  // clamped from 2
+  EXPECT_FLOAT_EQ(back.pixels[4], 0.0f);  // clamped from -1
+}
+
+TEST(ImageIo, WriteLeavesNoTemporaryFiles) {
+  const fs::path dir = scratch_dir("atomic");
+  phyir::write_image(dir / "x.exr", Image(3, 3, 3, 1.0f));
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    ++files;
+    EXPECT_EQ(entry.path().filename(), "x.exr");
+  }
+  EXPECT_EQ(files, 1);
+}
+
+TEST(ImageIo, MissingFileNamesThePath) {
+  try {
+    phyir::read_image("/nonexistent/dir/missing.exr");
+    FAIL() << "expected phyir::Error";
+  } catch (const phyir::Error& e) {
+    EXPECT_THAT(e.what(), testing::HasSubstr("missing.exr"));
+    EXPECT_THAT(e.what(), testing::HasSubstr("not found"));
+  }
+}
+
+TEST(ImageIo, CorruptFileIsAnErrorNotACrash) {
+  const fs::path dir = scratch_dir("corrupt");
+  {
+    std::ofstream out(dir / "bad.png", std::ios::binary);
+    out << "\x89PNG\r\n\x1a\n this is not a png";
+  }
+  EXPECT_THROW(phyir::read_image(dir / "bad.png"), phyir::Error);
+}
+
+TEST(ImageIo, DecodesFromMemory) {
+  const fs::path dir = scratch_dir("memory");
+  Image image(3, 2, 4, 0.0f);
+  image.at(1, 1, 0) = 1.0f;
+  image.at(1, 1, 3) = 1.0f;
+  phyir::write_image(dir / "m.png", image);
+  const std::string bytes = [&] {
+    std::ifstream in(dir / "m.png", std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  const Image back = phyir::read_image_from_memory(std::vector<unsigned char>(bytes.begin(), bytes.end()), "test");
+  ASSERT_EQ(back.width, 3);
+  EXPECT_FLOAT_EQ(back.at(1, 1, 0), 1.0f);
+  EXPECT_FLOAT_EQ(back.at(0, 0, 0), 0.0f);
+}
