@@ -52,10 +52,10 @@ glm::vec4 sample_slot(const scenes::Scene& scene, const scenes::Mesh& mesh, cons
 
 float material_alpha(const scenes::Scene& scene, const scenes::Mesh& mesh, const scenes::Material& material,
                      const glm::uvec3& tri, const glm::vec3& bary) {
-  float alpha = material.base_color_factor.a;
+  float alpha = material.base_color_factor.w;
   if (slot_valid(scene, material.base_color_texture))
-    alpha *= sample_slot(scene, mesh, tri, bary, material.base_color_texture, glm::vec4(1.0f)).a;
-  if (has_attribute(mesh.colors, mesh)) alpha *= interpolate(mesh.colors, tri, bary).a;
+    alpha *= sample_slot(scene, mesh, tri, bary, material.base_color_texture, glm::vec4(1.0f)).w;
+  if (has_attribute(mesh.colors, mesh)) alpha *= interpolate(mesh.colors, tri, bary).w;
   return std::isfinite(alpha) ? alpha : 1.0f;
 }
 
@@ -85,8 +85,8 @@ MaterialPoint evaluate_material(const scenes::Scene& scene, const scenes::Mesh& 
   if (slot_valid(scene, material.metallic_roughness_texture)) {
     const glm::vec4 mr =
         sample_slot(scene, mesh, tri, bary, material.metallic_roughness_texture, glm::vec4(1.0f));
-    roughness *= mr.g;
-    metalness *= mr.b;
+    roughness *= mr.y;  // G
+    metalness *= mr.z;  // B
   }
   m.brdf.roughness = std::isfinite(roughness) ? clamp01(roughness) : 1.0f;
   m.brdf.metalness = std::isfinite(metalness) ? clamp01(metalness) : 0.0f;
@@ -95,11 +95,11 @@ MaterialPoint evaluate_material(const scenes::Scene& scene, const scenes::Mesh& 
 
   float transmission = material.transmission_factor;
   if (slot_valid(scene, material.transmission_texture))
-    transmission *= sample_slot(scene, mesh, tri, bary, material.transmission_texture, glm::vec4(1.0f)).r;
+    transmission *= sample_slot(scene, mesh, tri, bary, material.transmission_texture, glm::vec4(1.0f)).x;  // R
   m.transmission = std::isfinite(transmission) ? clamp01(transmission) : 0.0f;
   m.ior = (std::isfinite(material.ior) && material.ior >= 1.0f) ? material.ior : 1.5f;
 
-  const float alpha = std::isfinite(base.a) ? base.a : 1.0f;
+  const float alpha = std::isfinite(base.w) ? base.w : 1.0f;
   switch (material.alpha_mode) {
     case scenes::AlphaMode::Opaque: m.opacity = 1.0f; break;
     case scenes::AlphaMode::Mask: m.opacity = alpha >= material.alpha_cutoff ? 1.0f : 0.0f; break;

@@ -180,26 +180,31 @@ class SphereGrid {
     return iy * nx_ + ix;
   }
 
-  // Integral of f over every cell by the midpoint rule on sub x sub points per cell.
-  std::vector<double> integrate_cells(const std::function<double(const glm::vec3&)>& f,
-                                      int sub) const {
-    std::vector<double> out(cells(), 0.0);
+  // Calls fn(cell, direction, quadrature weight) for the midpoint rule on sub x sub points
+  // per cell; the weights include the Jacobian, so they sum to 4 pi.
+  template <typename Fn>
+  void for_each_point(int sub, Fn&& fn) const {
     const double hx = 1.0 / (double(nx_) * sub), hy = 1.0 / (double(ny_) * sub);
     for (int iy = 0; iy < ny_; ++iy) {
       for (int ix = 0; ix < nx_; ++ix) {
-        double sum = 0.0;
         for (int sy = 0; sy < sub; ++sy) {
           for (int sx = 0; sx < sub; ++sx) {
             const double x = (ix * sub + sx + 0.5) * hx;
             const double y = (iy * sub + sy + 0.5) * hy;
             double jac = 0.0;
             const glm::vec3 w = direction(x, y, &jac);
-            sum += f(w) * jac;
+            fn(iy * nx_ + ix, w, jac * hx * hy);
           }
         }
-        out[iy * nx_ + ix] = sum * hx * hy;
       }
     }
+  }
+
+  // Integral of f over every cell by the midpoint rule on sub x sub points per cell.
+  std::vector<double> integrate_cells(const std::function<double(const glm::vec3&)>& f,
+                                      int sub) const {
+    std::vector<double> out(cells(), 0.0);
+    for_each_point(sub, [&](int c, const glm::vec3& w, double weight) { out[c] += f(w) * weight; });
     return out;
   }
 
@@ -216,27 +221,39 @@ class SphereGrid {
 };
 
 // Runs a chi-square test of a direction sampler against its pdf over `grid`.
-// `sample(i, &w)` draws sample i (from its own fixed-seed stream) and returns false when
-// the sampler rejects it; rejected samples form one extra cell whose expected count is
-// n (1 - integral of pdf), so a pdf that disagrees with the rejection rate fails too.
+// `sample(i, &w, &is_delta)` draws sample i (from its own fixed-seed stream) and returns
+// false when the sampler rejects it. Rejected samples are not histogrammed (the pdf
+// integrates to 1 minus their probability, as in Mitsuba where they carry weight 0); the
+// result reports how many there were and how many the pdf predicts, n (1 - integral), so
+// the caller can check the rejection rate separately with a quadrature tolerance (the
+// chi-square statistic cannot absorb quadrature error in a cell expecting ~0 samples).
 // `delta_probability` > 0 adds a cell for delta samples (`sample` sets *is_delta).
-inline ChiSquareResult chi_square_directions(
-    const SphereGrid& grid, int n,
-    const std::function<bool(int, glm::vec3*, bool*)>& sample,
+struct DirectionChiSquare : ChiSquareResult {
+  double rejected_observed = 0.0;
+  double rejected_expected = 0.0;
+};
+
+inline DirectionChiSquare chi_square_directions(
+    const SphereGrid& grid, int n, const std::function<bool(int, glm::vec3*, bool*)>& sample,
     const std::function<double(const glm::vec3&)>& pdf, int sub = 12,
     double delta_probability = 0.0) {
-  std::vector<double> observed(grid.cells() + 2, 0.0);
-  const int kRejected = grid.cells(), kDelta = grid.cells() + 1;
+  std::vector<double> observed(grid.cells() + 1, 0.0);
+  const int kDelta = grid.cells();
+  double rejected = 0.0;
   for (int i = 0; i < n; ++i) {
     glm::vec3 w(0.0f);
     bool is_delta = false;
     if (!sample(i, &w, &is_delta)) {
-      observed[kRejected] += 1.0;
+      rejected += 1.0;
     } else if (is_delta) {
       observed[kDelta] += 1.0;
     } else {
       const int c = grid.cell(w);
-      observed[c < 0 ? kRejected : c] += 1.0;
+      if (c < 0) {
+        rejected += 1.0;
+      } else {
+        observed[c] += 1.0;
+      }
     }
   }
   std::vector<double> expected = grid.integrate_cells(pdf, sub);
@@ -245,12 +262,14 @@ inline ChiSquareResult chi_square_directions(
     e *= n;
     total += e;
   }
-  expected.push_back(std::max(0.0, n * (1.0 - delta_probability) - total));  // rejected
-  expected.push_back(n * delta_probability);                                  // delta
-  ChiSquareResult r = chi_square_test(observed, expected);
+  expected.push_back(n * delta_probability);
+  DirectionChiSquare r;
+  static_cast<ChiSquareResult&>(r) = chi_square_test(observed, expected);
+  r.rejected_observed = rejected;
+  r.rejected_expected = n * (1.0 - delta_probability) - total;
   std::ostringstream os;
-  os << r.message << "; rejected: observed " << observed[kRejected] << ", expected "
-     << expected[kRejected];
+  os << r.message << "; rejected samples: observed " << r.rejected_observed
+     << ", expected " << r.rejected_expected;
   r.message = os.str();
   return r;
 }
