@@ -91,7 +91,7 @@ bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const gl
   const EmissiveTriangle& e = triangles_[index];
   const glm::vec2 b12 = sample_uniform_triangle(u_point);
   const glm::vec3 bary = barycentrics(b12);
-  const glm::vec3 point = e.p0 * bary.x + e.p1 * bary.y + e.p2 * bary.z;
+  const glm::vec3 point = e.p0 + (e.p1 - e.p0) * bary.y + (e.p2 - e.p0) * bary.z;
   const Geometry g = solid_angle_pdf(pmf, e.area, e.normal, reference, point);
   if (!(g.pdf > 0.0f)) return false;
 
@@ -104,11 +104,14 @@ bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const gl
   out->pdf = g.pdf;
   out->mesh = e.mesh;
   out->triangle = e.triangle;
-  // A one-sided emitter seen from behind sends nothing toward the reference.
+  // A one-sided emitter seen from behind sends nothing toward the reference, nor does a
+  // cut-out (alpha MASK) part, which the accelerator treats as empty space.
+  const glm::uvec3 tri = mesh.triangles[e.triangle];
   const bool sees_emitting_side = g.cos_light > 0.0f || material.double_sided;
-  out->radiance = sees_emitting_side
-                      ? emitted_radiance(*scene_, mesh, material, mesh.triangles[e.triangle], bary)
-                      : glm::vec3(0.0f);
+  const bool cut_out = material.alpha_mode == scenes::AlphaMode::Mask &&
+                       material_alpha(*scene_, mesh, material, tri, bary) < material.alpha_cutoff;
+  out->radiance = sees_emitting_side && !cut_out ? emitted_radiance(*scene_, mesh, material, tri, bary)
+                                                 : glm::vec3(0.0f);
   return true;
 }
 

@@ -68,9 +68,10 @@ SurfaceInteraction RenderScene::interact(const Ray& ray, const Hit& hit) const {
   const glm::vec3& p1 = mesh.positions[tri.y];
   const glm::vec3& p2 = mesh.positions[tri.z];
 
-  // Position from the vertices: exact to the triangle's plane, unlike origin + t * dir,
-  // whose error grows with the distance travelled.
-  si.position = p0 * bary.x + p1 * bary.y + p2 * bary.z;
+  // Position from the vertices, not origin + t * dir (whose error grows with the distance
+  // travelled). Written as p0 + b1 e1 + b2 e2 so a coordinate shared by all three vertices
+  // (axis-aligned walls) is reproduced exactly.
+  si.position = p0 + (p1 - p0) * bary.y + (p2 - p0) * bary.z;
   if (!is_finite(si.position)) si.position = is_finite(along_ray) ? along_ray : ray.origin;
 
   // Geometric normal as wound; degenerate triangles fall back to the interpolated

@@ -19,7 +19,9 @@ struct EmitterSample {
   glm::vec3 normal{0.0f};      // unit geometric normal of the emitter, as wound
   glm::vec3 wi{0.0f};          // unit direction from the reference point to the sample
   float distance = 0.0f;
-  glm::vec3 radiance{0.0f};    // emitted toward the reference point (0 if it sees the back of a one-sided emitter)
+  // Emitted toward the reference point: 0 if it sees the back of a one-sided emitter or
+  // the point is cut out by alpha MASK (the accelerator lets rays through there).
+  glm::vec3 radiance{0.0f};
   float pdf = 0.0f;            // solid angle, at the reference point
   int mesh = -1;
   int triangle = -1;
@@ -36,7 +38,10 @@ class EmitterSampler {
   bool sample(const glm::vec3& reference, float u_select, const glm::vec2& u_point,
               EmitterSample* out) const;
 
-  // Solid-angle pdf of having sampled `point` on (mesh, triangle) from `reference`.
+  // Solid-angle pdf of having sampled `point` on (mesh, triangle) from `reference`:
+  // pmf(triangle) / area * d^2 / |cos at the emitter|. Bit-identical to sample()'s pdf for
+  // the same point. Zero for non-emissive triangles, and for grazing points
+  // (|cos| < kMinCosine), which sample() rejects (returns false), keeping MIS consistent.
   float pdf(const glm::vec3& reference, int mesh, int triangle, const glm::vec3& point) const;
 
  private:

@@ -1,0 +1,167 @@
+// load_gltf: the stages in order. Each stage lives in its own gltf_*.cpp.
+#include "phyir/scenes/gltf_loader.h"
+
+#include <map>
+#include <optional>
+
+#include "gltf_cameras.h"
+#include "gltf_extensions.h"
+#include "gltf_file.h"
+#include "gltf_geometry.h"
+#include "gltf_materials.h"
+#include "gltf_nodes.h"
+#include "gltf_parse.h"
+#include "gltf_preflight.h"
+#include "gltf_primitives.h"
+#include "gltf_textures.h"
+#include "gltf_values.h"
+
+namespace phyir::scenes {
+
+namespace {
+
+using namespace gltf;
+
+void warn_about_unsupported(const GltfContext& ctx) {
+  for (const std::string& name : ctx.model.extensionsUsed)
+    if (!is_supported_extension(name)) ctx.warn("{}", unsupported_extension_warning(name));
+  if (!ctx.model.animations.empty())
+    ctx.warn("{} animations ignored: the static pose is used", ctx.model.animations.size());
+  if (!ctx.model.skins.empty()) ctx.warn("{} skins ignored: skinned meshes keep their bind pose", ctx.model.skins.size());
+}
+
+// scenes[scene].extras.phyir.candidate_viewpoints: [[x, y, z], ...], written by the room
+// generator. Absent is fine; malformed entries are skipped with a warning.
+std::vector<glm::vec3> read_candidate_viewpoints(const GltfContext& ctx, int scene) {
+  if (scene < 0) return {};
+  const tinygltf::Value* phyir = member(ctx.model.scenes[static_cast<size_t>(scene)].extras, "phyir");
+  const tinygltf::Value* list = phyir != nullptr ? member(*phyir, "candidate_viewpoints") : nullptr;
+  if (list == nullptr) return {};
+  const std::string where = fmt::format("scene {} extras.phyir.candidate_viewpoints", scene);
+  if (!list->IsArray()) {
+    ctx.warn("{} is not an array: ignored", where);
+    return {};
+  }
+  std::vector<glm::vec3> viewpoints;
+  for (size_t i = 0; i < list->ArrayLen(); ++i) {
+    const auto p = as_vec3(list->Get(static_cast<int>(i)));
+    if (p) viewpoints.push_back(*p);
+    else ctx.warn("{} entry {} is not [x, y, z]: skipped", where, i);
+  }
+  return viewpoints;
+}
+
+SourceInfo source_info(const tinygltf::Model& model, int default_scene, int mesh_instances) {
+  SourceInfo info;
+  info.nodes = static_cast<int>(model.nodes.size());
+  info.meshes = static_cast<int>(model.meshes.size());
+  for (const tinygltf::Mesh& mesh : model.meshes) info.primitives += static_cast<int>(mesh.primitives.size());
+  info.mesh_instances = mesh_instances;
+  info.materials = static_cast<int>(model.materials.size());
+  info.textures = static_cast<int>(model.textures.size());
+  info.images = static_cast<int>(model.images.size());
+  info.samplers = static_cast<int>(model.samplers.size());
+  info.cameras = static_cast<int>(model.cameras.size());
+  info.default_scene = default_scene;
+  info.extensions_used = model.extensionsUsed;
+  info.extensions_required = model.extensionsRequired;
+  info.generator = model.asset.generator;
+  return info;
+}
+
+// Adds the meshes and cameras of the flattened node tree to the scene. Each primitive is
+// read once however many nodes instance its mesh.
+class InstanceBaker {
+ public:
+  InstanceBaker(const GltfContext& ctx, Scene& scene) : ctx_(ctx), scene_(scene) {}
+
+  // Returns the number of mesh instances (nodes with a mesh).
+  int add(const std::vector<NodeInstance>& instances) {
+    int mesh_instances = 0;
+    for (const NodeInstance& instance : instances) {
+      const tinygltf::Node& node = ctx_.model.nodes[static_cast<size_t>(instance.node)];
+      if (node.mesh >= 0) {
+        add_mesh(node.mesh, instance);
+        ++mesh_instances;
+      }
+      if (node.camera >= 0) scene_.cameras.push_back(make_camera(ctx_, instance));
+    }
+    return mesh_instances;
+  }
+
+ private:
+  void add_mesh(int mesh_index, const NodeInstance& instance) {
+    if (!in_range(mesh_index, ctx_.model.meshes.size()))
+      ctx_.fail("{} refers to mesh {}, which does not exist ({} meshes)", label("node", instance.node, ctx_.model.nodes),
+                mesh_index, ctx_.model.meshes.size());
+    const tinygltf::Mesh& source = ctx_.model.meshes[static_cast<size_t>(mesh_index)];
+    for (size_t p = 0; p < source.primitives.size(); ++p) {
+      const std::optional<PrimitiveData>& data = primitive(mesh_index, static_cast<int>(p));
+      if (!data) continue;
+      Mesh mesh = bake_to_world(*data, instance.world);
+      mesh.name = fmt::format("{}/{}", source.name.empty() ? fmt::format("mesh{}", mesh_index) : source.name, p);
+      mesh.material = material_index(source.primitives[p].material, mesh_index, static_cast<int>(p));
+      add_tangents_for_normal_map(mesh, mesh_index, static_cast<int>(p));
+      scene_.meshes.push_back(std::move(mesh));
+    }
+  }
+
+  const std::optional<PrimitiveData>& primitive(int mesh, int primitive) {
+    const auto key = std::make_pair(mesh, primitive);
+    auto found = primitives_.find(key);
+    if (found == primitives_.end()) found = primitives_.emplace(key, read_primitive(ctx_, mesh, primitive)).first;
+    return found->second;
+  }
+
+  int material_index(int material, int mesh, int primitive) {
+    const int file_materials = static_cast<int>(ctx_.model.materials.size());
+    if (material >= file_materials)
+      ctx_.fail("{} refers to material {}, which does not exist ({} materials)", primitive_label(ctx_, mesh, primitive),
+                material, file_materials);
+    if (material >= 0) return material;
+    if (default_material_ < 0) {
+      default_material_ = static_cast<int>(scene_.materials.size());
+      scene_.materials.push_back(default_material());
+    }
+    return default_material_;
+  }
+
+  // glTF asks clients to compute tangents a normal map needs when the file has none.
+  void add_tangents_for_normal_map(Mesh& mesh, int mesh_index, int primitive) {
+    const Material& material = scene_.materials[static_cast<size_t>(mesh.material)];
+    if (!material.normal_texture.present() || !mesh.tangents.empty()) return;
+    if (!generate_tangents(mesh, material.normal_texture.texcoord))
+      ctx_.warn("{} has a normal map but no TEXCOORD_{}: the normal map has no effect",
+                primitive_label(ctx_, mesh_index, primitive), material.normal_texture.texcoord);
+  }
+
+  const GltfContext& ctx_;
+  Scene& scene_;
+  std::map<std::pair<int, int>, std::optional<PrimitiveData>> primitives_;
+  int default_material_ = -1;
+};
+
+}  // namespace
+
+Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
+  Scene scene;
+  scene.source = path.string();
+  const Diagnostics diagnostics(scene.source, scene.warnings);
+  const GltfFile file = read_gltf_file(path, diagnostics);
+  preflight_check(file, diagnostics);
+  const tinygltf::Model model = parse_gltf(file, diagnostics);
+  const GltfContext ctx(diagnostics, model);
+  warn_about_unsupported(ctx);
+
+  const int default_scene = default_scene_index(ctx);
+  const std::vector<NodeInstance> instances = flatten_nodes(ctx, scene_roots(ctx, default_scene));
+  TextureTable textures(ctx, scene.textures, options.load_textures);
+  scene.materials = convert_materials(ctx, textures);
+  const int mesh_instances = InstanceBaker(ctx, scene).add(instances);
+  scene.candidate_viewpoints = read_candidate_viewpoints(ctx, default_scene);
+  scene.info = source_info(model, default_scene, mesh_instances);
+  scene.bounds = scene.compute_bounds();
+  return scene;
+}
+
+}  // namespace phyir::scenes

@@ -1,0 +1,175 @@
+#include "gltf_materials.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "gltf_values.h"
+
+namespace phyir::scenes::gltf {
+
+namespace {
+
+constexpr const char* kTextureTransform = "KHR_texture_transform";
+constexpr const char* kEmissiveStrength = "KHR_materials_emissive_strength";
+constexpr const char* kTransmission = "KHR_materials_transmission";
+constexpr const char* kIor = "KHR_materials_ior";
+
+// A textureInfo, from tinygltf's parsed struct or from an extension's JSON.
+struct TextureRef {
+  int index = -1;
+  int texcoord = 0;
+  const tinygltf::Value* transform = nullptr;  // the KHR_texture_transform object
+};
+
+const tinygltf::Value* find_extension(const tinygltf::ExtensionMap& extensions, const std::string& name) {
+  const auto it = extensions.find(name);
+  return it != extensions.end() ? &it->second : nullptr;
+}
+
+template <typename Info>
+TextureRef ref_from_info(const Info& info) {
+  return {info.index, info.texCoord, find_extension(info.extensions, kTextureTransform)};
+}
+
+class MaterialConverter {
+ public:
+  MaterialConverter(const GltfContext& ctx, TextureTable& textures, int index)
+      : ctx_(ctx),
+        textures_(textures),
+        source_(ctx.model.materials[static_cast<size_t>(index)]),
+        where_(label("material", index, ctx.model.materials)) {}
+
+  Material convert() {
+    Material m;
+    m.name = source_.name;
+    convert_core(m);
+    convert_extensions(m);
+    for (const auto& [name, value] : source_.extensions) used_.insert(name);
+    m.extensions.assign(used_.begin(), used_.end());
+    return m;
+  }
+
+ private:
+  void convert_core(Material& m) {
+    const tinygltf::PbrMetallicRoughness& pbr = source_.pbrMetallicRoughness;
+    const std::vector<double> base = checked_numbers(pbr.baseColorFactor, 4, "baseColorFactor");
+    m.base_color_factor = glm::vec4(base[0], base[1], base[2], base[3]);
+    m.base_color_texture = slot(ref_from_info(pbr.baseColorTexture), TextureEncoding::SrgbColour, "baseColorTexture");
+    m.metallic_factor = std::clamp(checked_number(pbr.metallicFactor, "metallicFactor"), 0.0f, 1.0f);
+    m.roughness_factor = std::clamp(checked_number(pbr.roughnessFactor, "roughnessFactor"), 0.0f, 1.0f);
+    m.metallic_roughness_texture =
+        slot(ref_from_info(pbr.metallicRoughnessTexture), TextureEncoding::LinearData, "metallicRoughnessTexture");
+    m.normal_texture = slot(ref_from_info(source_.normalTexture), TextureEncoding::LinearData, "normalTexture");
+    m.normal_scale = checked_number(source_.normalTexture.scale, "normalTexture.scale");
+    const std::vector<double> emissive = checked_numbers(source_.emissiveFactor, 3, "emissiveFactor");
+    m.emissive_factor = glm::max(glm::vec3(emissive[0], emissive[1], emissive[2]), glm::vec3(0.0f));
+    m.emissive_texture = slot(ref_from_info(source_.emissiveTexture), TextureEncoding::SrgbColour, "emissiveTexture");
+    m.alpha_mode = alpha_mode(source_.alphaMode);
+    m.alpha_cutoff = checked_number(source_.alphaCutoff, "alphaCutoff");
+    m.double_sided = source_.doubleSided;
+  }
+
+  void convert_extensions(Material& m) {
+    if (const tinygltf::Value* e = find_extension(source_.extensions, kEmissiveStrength)) {
+      const std::string where = where_ + " " + kEmissiveStrength;
+      m.emissive_strength = number_member(ctx_, *e, "emissiveStrength", where).value_or(1.0f);
+      if (m.emissive_strength < 0.0f) ctx_.fail("{} emissiveStrength {} is negative", where, m.emissive_strength);
+    }
+    if (const tinygltf::Value* e = find_extension(source_.extensions, kTransmission)) {
+      const std::string where = where_ + " " + kTransmission;
+      m.transmission_factor = std::clamp(number_member(ctx_, *e, "transmissionFactor", where).value_or(0.0f), 0.0f, 1.0f);
+      if (const tinygltf::Value* info = member(*e, "transmissionTexture"))
+        m.transmission_texture = slot(ref_from_value(*info, where + " transmissionTexture"),
+                                      TextureEncoding::LinearData, "transmissionTexture");
+    }
+    if (const tinygltf::Value* e = find_extension(source_.extensions, kIor)) {
+      const std::string where = where_ + " " + kIor;
+      const float ior = number_member(ctx_, *e, "ior", where).value_or(1.5f);
+      if (ior >= 1.0f) {
+        m.ior = ior;
+      } else {
+        ctx_.warn("{} ior {} is below 1: the default 1.5 is used", where, ior);
+      }
+    }
+  }
+
+  TextureRef ref_from_value(const tinygltf::Value& info, const std::string& where) {
+    TextureRef ref;
+    const auto index = integer_member(ctx_, info, "index", where);
+    if (!index) ctx_.fail("{} has no index", where);
+    ref.index = *index;
+    ref.texcoord = integer_member(ctx_, info, "texCoord", where).value_or(0);
+    if (const tinygltf::Value* extensions = member(info, "extensions"))
+      ref.transform = member(*extensions, kTextureTransform);
+    return ref;
+  }
+
+  TextureSlot slot(const TextureRef& ref, TextureEncoding encoding, const std::string& property) {
+    TextureSlot slot;
+    if (ref.index < 0) return slot;
+    const std::string where = where_ + " " + property;
+    slot.texture = textures_.get(ref.index, encoding, where);
+    int texcoord = ref.texcoord;
+    if (ref.transform != nullptr) {
+      used_.insert(kTextureTransform);
+      const std::string transform_where = where + " " + kTextureTransform;
+      slot.transform.offset = vec2_member(ctx_, *ref.transform, "offset", transform_where).value_or(glm::vec2(0.0f));
+      slot.transform.scale = vec2_member(ctx_, *ref.transform, "scale", transform_where).value_or(glm::vec2(1.0f));
+      slot.transform.rotation = number_member(ctx_, *ref.transform, "rotation", transform_where).value_or(0.0f);
+      texcoord = integer_member(ctx_, *ref.transform, "texCoord", transform_where).value_or(texcoord);
+    }
+    if (texcoord < 0) ctx_.fail("{} texCoord {} is negative", where, texcoord);
+    if (texcoord > 1) {
+      ctx_.warn("{} uses TEXCOORD_{}: only TEXCOORD_0 and TEXCOORD_1 are kept, TEXCOORD_0 used", where, texcoord);
+      texcoord = 0;
+    }
+    slot.texcoord = texcoord;
+    return slot;
+  }
+
+  AlphaMode alpha_mode(const std::string& mode) {
+    if (mode == "OPAQUE" || mode.empty()) return AlphaMode::Opaque;
+    if (mode == "MASK") return AlphaMode::Mask;
+    if (mode == "BLEND") return AlphaMode::Blend;
+    ctx_.warn("{} alphaMode '{}' is unknown: OPAQUE used", where_, mode);
+    return AlphaMode::Opaque;
+  }
+
+  float checked_number(double value, const char* property) {
+    if (!std::isfinite(value)) ctx_.fail("{} {} is not a finite number", where_, property);
+    return static_cast<float>(value);
+  }
+
+  std::vector<double> checked_numbers(const std::vector<double>& values, size_t count, const char* property) {
+    if (values.size() != count) ctx_.fail("{} {} has {} numbers, expected {}", where_, property, values.size(), count);
+    for (double v : values) checked_number(v, property);
+    return values;
+  }
+
+  const GltfContext& ctx_;
+  TextureTable& textures_;
+  const tinygltf::Material& source_;
+  const std::string where_;
+  std::set<std::string> used_;  // extensions this material uses, for Material::extensions
+};
+
+}  // namespace
+
+std::vector<Material> convert_materials(const GltfContext& ctx, TextureTable& textures) {
+  std::vector<Material> materials;
+  for (size_t i = 0; i < ctx.model.materials.size(); ++i)
+    materials.push_back(MaterialConverter(ctx, textures, static_cast<int>(i)).convert());
+  return materials;
+}
+
+Material default_material() {
+  Material m;
+  m.name = "default";
+  m.base_color_factor = glm::vec4(1.0f);
+  m.metallic_factor = 1.0f;
+  m.roughness_factor = 1.0f;
+  return m;
+}
+
+}  // namespace phyir::scenes::gltf

@@ -1,0 +1,97 @@
+#include "gltf_textures.h"
+
+#include "phyir/core/colour.h"
+#include "phyir/core/image_io.h"
+
+namespace phyir::scenes::gltf {
+
+namespace {
+
+WrapMode wrap_mode(const GltfContext& ctx, int sampler, int gl_wrap) {
+  switch (gl_wrap) {
+    case TINYGLTF_TEXTURE_WRAP_REPEAT: return WrapMode::Repeat;
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return WrapMode::ClampToEdge;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return WrapMode::MirroredRepeat;
+    default:
+      ctx.warn("sampler {} has unknown wrap mode {}: REPEAT used", sampler, gl_wrap);
+      return WrapMode::Repeat;
+  }
+}
+
+// Expands 1-4 channels to RGBA: grey replicates, a missing alpha is opaque.
+std::vector<glm::vec4> to_rgba(const Image& image) {
+  std::vector<glm::vec4> texels(static_cast<size_t>(image.width) * image.height);
+  const int c = image.channels;
+  for (size_t i = 0; i < texels.size(); ++i) {
+    const float* p = &image.pixels[i * static_cast<size_t>(c)];
+    if (c >= 3) texels[i] = glm::vec4(p[0], p[1], p[2], c >= 4 ? p[3] : 1.0f);
+    else texels[i] = glm::vec4(p[0], p[0], p[0], c == 2 ? p[1] : 1.0f);
+  }
+  return texels;
+}
+
+// The image's name, else its file URI, else "image N" (data URIs are not names).
+std::string display_name(const tinygltf::Image& image, int index) {
+  if (!image.name.empty()) return image.name;
+  if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0) return image.uri;
+  return fmt::format("image {}", index);
+}
+
+}  // namespace
+
+TextureTable::TextureTable(const GltfContext& ctx, std::vector<Texture>& scene_textures, bool decode)
+    : ctx_(ctx), textures_(scene_textures), decode_(decode) {}
+
+int TextureTable::get(int texture, TextureEncoding encoding, const std::string& role) {
+  if (!in_range(texture, ctx_.model.textures.size()))
+    ctx_.fail("{} refers to texture {}, which does not exist ({} textures)", role, texture,
+              ctx_.model.textures.size());
+  const auto key = std::make_pair(texture, encoding);
+  const auto found = entries_.find(key);
+  if (found != entries_.end()) return found->second;
+  textures_.push_back(make_texture(texture, encoding, role));
+  const int index = static_cast<int>(textures_.size()) - 1;
+  entries_.emplace(key, index);
+  return index;
+}
+
+Texture TextureTable::make_texture(int texture_index, TextureEncoding encoding, const std::string& role) {
+  const tinygltf::Texture& source = ctx_.model.textures[static_cast<size_t>(texture_index)];
+  const std::string texture_name = label("texture", texture_index, ctx_.model.textures);
+  if (!in_range(source.source, ctx_.model.images.size()))
+    ctx_.fail("{} (used by {}) has no valid image source (source {}, {} images)", texture_name, role,
+              source.source, ctx_.model.images.size());
+  const tinygltf::Image& image = ctx_.model.images[static_cast<size_t>(source.source)];
+
+  Texture texture;
+  texture.name = display_name(image, source.source);
+  texture.encoding = encoding;
+  if (source.sampler >= 0) {
+    if (!in_range(source.sampler, ctx_.model.samplers.size()))
+      ctx_.fail("{} refers to sampler {}, which does not exist ({} samplers)", texture_name, source.sampler,
+                ctx_.model.samplers.size());
+    const tinygltf::Sampler& sampler = ctx_.model.samplers[static_cast<size_t>(source.sampler)];
+    texture.wrap_s = wrap_mode(ctx_, source.sampler, sampler.wrapS);
+    texture.wrap_t = wrap_mode(ctx_, source.sampler, sampler.wrapT);
+    texture.nearest = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+  }
+  if (!decode_) return texture;
+
+  Image pixels = decoded_image(source.source);  // a copy: the sRGB decode is per use
+  if (encoding == TextureEncoding::SrgbColour) srgb_to_linear(pixels);
+  texture.width = pixels.width;
+  texture.height = pixels.height;
+  texture.texels = to_rgba(pixels);
+  return texture;
+}
+
+const Image& TextureTable::decoded_image(int index) {
+  const auto found = images_.find(index);
+  if (found != images_.end()) return found->second;
+  const tinygltf::Image& image = ctx_.model.images[static_cast<size_t>(index)];
+  const std::string what = fmt::format("{}: {}", ctx_.file(), label("image", index, ctx_.model.images));
+  if (image.image.empty()) phyir::fail("{} has no data (uri '{}')", what, image.uri.substr(0, 200));
+  return images_.emplace(index, read_image_from_memory(image.image, what)).first->second;
+}
+
+}  // namespace phyir::scenes::gltf

@@ -1,0 +1,289 @@
+// Next-event estimation on emissive triangles: the solid-angle pdf against analytic solid
+// angles, its normalisation over the sphere, sample() == pdf(), power-proportional
+// selection, one-sided emission and textured emitters.
+#include "phyir/render/emitter_sampler.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "phyir/core/safe_math.h"
+#include "phyir/render/ray_offset.h"
+#include "phyir/render/render_scene.h"
+#include "phyir/render/rng.h"
+#include "test_scenes.h"
+
+namespace phyir::render {
+namespace {
+
+using test::add_material;
+using test::add_quad;
+using test::add_texture;
+using test::add_uv_sphere;
+using test::make_emitter;
+
+// Solid angle of triangle (a, b, c) seen from r (Van Oosterom & Strackee 1983).
+double triangle_solid_angle(const glm::dvec3& r, const glm::dvec3& pa, const glm::dvec3& pb, const glm::dvec3& pc) {
+  const glm::dvec3 a = pa - r, b = pb - r, c = pc - r;
+  const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+  const double num = std::abs(glm::dot(a, glm::cross(b, c)));
+  const double den = la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
+  return 2.0 * std::atan2(num, den);
+}
+
+double mesh_solid_angle(const scenes::Mesh& mesh, const glm::vec3& r) {
+  double sum = 0.0;
+  for (const glm::uvec3& t : mesh.triangles)
+    sum += triangle_solid_angle(glm::dvec3(r), glm::dvec3(mesh.positions[t.x]), glm::dvec3(mesh.positions[t.y]),
+                                glm::dvec3(mesh.positions[t.z]));
+  return sum;
+}
+
+struct MeanAndError {
+  double mean = 0.0, standard_error = 0.0;
+};
+
+template <typename F>
+MeanAndError monte_carlo(int n, F&& f) {
+  double sum = 0.0, sum2 = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double x = f(i);
+    sum += x;
+    sum2 += x * x;
+  }
+  MeanAndError r;
+  r.mean = sum / n;
+  r.standard_error = std::sqrt(std::max(0.0, sum2 / n - r.mean * r.mean) / n);
+  return r;
+}
+
+// A 1 m x 0.5 m ceiling light at y = 2 facing down (-Y).
+int add_ceiling_light(scenes::Scene& scene, int material) {
+  return add_quad(scene, {-0.5f, 2.0f, -0.25f}, {1.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.5f}, material, "ceiling light");
+}
+
+TEST(EmitterSampler, ExpectedInversePdfIsTheAnalyticSolidAngle) {
+  scenes::Scene scene;
+  const int light = add_ceiling_light(scene, add_material(scene, make_emitter(glm::vec3(5.0f))));
+  const EmitterSampler sampler(scene);
+  ASSERT_EQ(sampler.emissive_triangle_count(), 2u);
+  // Centred rectangle a x b at distance d: 4 asin(a b / sqrt((a^2 + 4 d^2)(b^2 + 4 d^2))).
+  const double centred = 4.0 * std::asin(0.5 / std::sqrt((1.0 + 16.0) * (0.25 + 16.0)));
+  EXPECT_NEAR(mesh_solid_angle(scene.meshes[light], {0, 0, 0}), centred, 1e-9);
+
+  const glm::vec3 references[] = {{0, 0, 0}, {1.5f, 0.3f, 0.7f}, {0.1f, 1.9f, 0.05f}, {-3.0f, 1.5f, 2.0f}};
+  for (const glm::vec3& ref : references) {
+    const double analytic = mesh_solid_angle(scene.meshes[light], ref);
+    Rng rng(17, 5);
+    const MeanAndError est = monte_carlo(200000, [&](int) {
+      EmitterSample s;
+      if (!sampler.sample(ref, rng.next_float(), rng.next_2d(), &s)) return 0.0;
+      return 1.0 / double(s.pdf);
+    });
+    EXPECT_NEAR(est.mean, analytic, 4.0 * est.standard_error + 1e-6 * analytic)
+        << "reference (" << ref.x << ", " << ref.y << ", " << ref.z << ")";
+    EXPECT_NEAR(est.mean / analytic, 1.0, 0.01);
+    std::cout << "solid angle from (" << ref.x << ", " << ref.y << ", " << ref.z << "): analytic " << analytic
+              << ", E[1/pdf] " << est.mean << " +- " << est.standard_error << "\n";
+  }
+}
+
+// Lights of several kinds: two quads, an emissive sphere and a textured quad.
+scenes::Scene mixed_lights() {
+  scenes::Scene scene;
+  add_ceiling_light(scene, add_material(scene, make_emitter(glm::vec3(5.0f))));
+  add_quad(scene, {2.0f, 0.5f, -1.0f}, {0.0f, 0.0f, 2.0f}, {0.0f, 1.0f, 0.0f}, add_material(scene, make_emitter({1, 2, 3})),
+           "wall light");  // faces -X
+  add_uv_sphere(scene, {-2.0f, 1.0f, 0.5f}, 0.3f, add_material(scene, make_emitter(glm::vec3(2.0f))), 24, 12);
+  scenes::Material textured = make_emitter(glm::vec3(4.0f), true);
+  textured.emissive_texture.texture = add_texture(scene, 2, 1, {{1, 0, 0, 1}, {0, 0, 1, 1}});
+  add_quad(scene, {-1.0f, 0.5f, -2.0f}, {2.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, add_material(scene, textured),
+           "textured light");  // faces +Z, double-sided
+  return scene;
+}
+
+TEST(EmitterSampler, SamplePdfEqualsPdfForTheSamePoint) {
+  const scenes::Scene scene = mixed_lights();
+  const EmitterSampler sampler(scene);
+  Rng rng(23, 1);
+  int mismatches = 0, samples = 0;
+  for (int i = 0; i < 100000; ++i) {
+    const glm::vec3 ref(3.0f * rng.next_float() - 1.5f, 1.8f * rng.next_float(), 3.0f * rng.next_float() - 1.5f);
+    EmitterSample s;
+    if (!sampler.sample(ref, rng.next_float(), rng.next_2d(), &s)) continue;
+    ++samples;
+    const float p = sampler.pdf(ref, s.mesh, s.triangle, s.position);
+    if (!(std::abs(p - s.pdf) <= 1e-6f * s.pdf)) ++mismatches;
+    // The sample's geometry is self-consistent.
+    if (std::abs(glm::length(s.position - ref) - s.distance) > 1e-5f * s.distance) ++mismatches;
+    if (glm::length(s.wi - (s.position - ref) / s.distance) > 1e-5f) ++mismatches;
+  }
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_GT(samples, 99000);
+  // Non-emissive or unknown triangles have pdf 0.
+  EXPECT_EQ(sampler.pdf({0, 0, 0}, 99, 0, {0, 2, 0}), 0.0f);
+  EXPECT_EQ(sampler.pdf({0, 0, 0}, 0, 7, {0, 2, 0}), 0.0f);
+}
+
+TEST(EmitterSampler, PdfIntegratesToOneOverTheSphere) {
+  // Uniform directions from a reference point; every emitter point along each ray (all
+  // surfaces, not just the first: the sampler also picks the far side of the sphere)
+  // contributes pdf / (1 / 4 pi). The mean must be 1.
+  const scenes::Scene scene = mixed_lights();
+  const RenderScene rs(scene);
+  const glm::vec3 ref(0.2f, 0.8f, -0.3f);
+  Rng rng(31, 7);
+  const MeanAndError est = monte_carlo(400000, [&](int) {
+    const glm::vec3 d = sample_uniform_sphere(rng.next_2d());
+    double sum = 0.0;
+    Ray ray{ref, d};
+    SurfaceInteraction si;
+    for (int bounce = 0; bounce < 8 && rs.trace(ray, &si); ++bounce) {
+      sum += rs.emitters().pdf(ref, si.mesh, si.triangle, si.position);
+      ray.origin = spawn_origin(si.position, si.geometric_normal, d);
+    }
+    return sum / double(uniform_sphere_pdf());
+  });
+  std::cout << "integral of the emitter pdf over the sphere: " << est.mean << " +- " << est.standard_error << "\n";
+  EXPECT_NEAR(est.mean, 1.0, 4.0 * est.standard_error);
+  EXPECT_NEAR(est.mean, 1.0, 0.02);
+}
+
+double fraction_picking_mesh(const EmitterSampler& sampler, int mesh, int n) {
+  Rng rng(3, 3);
+  int hits = 0;
+  for (int i = 0; i < n; ++i) {
+    EmitterSample s;
+    if (sampler.sample({0, 0, 0}, rng.next_float(), rng.next_2d(), &s) && s.mesh == mesh) ++hits;
+  }
+  return double(hits) / n;
+}
+
+TEST(EmitterSampler, LightsArePickedInProportionToPower) {
+  const int n = 200000;
+  const double sigma = std::sqrt(0.75 * 0.25 / n);
+  {  // Equal areas, radiance 3 : 1.
+    scenes::Scene scene;
+    const int bright = add_quad(scene, {-1, 2, -1}, {1, 0, 0}, {0, 0, 1}, add_material(scene, make_emitter(glm::vec3(3.0f))));
+    add_quad(scene, {0.5f, 2, -1}, {1, 0, 0}, {0, 0, 1}, add_material(scene, make_emitter(glm::vec3(1.0f))));
+    const EmitterSampler sampler(scene);
+    EXPECT_NEAR(sampler.total_power(), 3.0f + 1.0f, 1e-5f);
+    const double f = fraction_picking_mesh(sampler, bright, n);
+    std::cout << "radiance 3:1 -> picked " << f << " : " << 1 - f << "\n";
+    EXPECT_NEAR(f, 0.75, 4.0 * sigma);
+  }
+  {  // Equal radiance, areas 3 : 1.
+    scenes::Scene scene;
+    const int mat = add_material(scene, make_emitter(glm::vec3(1.0f)));
+    const int big = add_quad(scene, {-4, 2, -1}, {3, 0, 0}, {0, 0, 1}, mat);
+    add_quad(scene, {0.5f, 2, -1}, {1, 0, 0}, {0, 0, 1}, mat);
+    const EmitterSampler sampler(scene);
+    EXPECT_NEAR(fraction_picking_mesh(sampler, big, n), 0.75, 4.0 * sigma);
+  }
+  {  // Equal factors, emissive textures of mean luminance 1.5 : 0.5 (grey texels).
+    scenes::Scene scene;
+    scenes::Material a = make_emitter(glm::vec3(1.0f)), b = a;
+    a.emissive_texture.texture = add_texture(scene, 2, 1, {{1, 1, 1, 1}, {2, 2, 2, 1}});
+    b.emissive_texture.texture = add_texture(scene, 2, 1, {{0, 0, 0, 1}, {1, 1, 1, 1}});
+    const int brighter = add_quad(scene, {-1, 2, -1}, {1, 0, 0}, {0, 0, 1}, add_material(scene, a));
+    add_quad(scene, {0.5f, 2, -1}, {1, 0, 0}, {0, 0, 1}, add_material(scene, b));
+    const EmitterSampler sampler(scene);
+    EXPECT_NEAR(fraction_picking_mesh(sampler, brighter, n), 0.75, 4.0 * sigma);
+  }
+}
+
+TEST(EmitterSampler, OneSidedEmitterIsDarkFromBehind) {
+  for (const bool double_sided : {false, true}) {
+    scenes::Scene scene;
+    add_ceiling_light(scene, add_material(scene, make_emitter({1.0f, 2.0f, 3.0f}, double_sided)));
+    const EmitterSampler sampler(scene);
+    Rng rng(1, 1);
+    int wrong = 0;
+    for (int i = 0; i < 10000; ++i) {
+      EmitterSample below, above;
+      ASSERT_TRUE(sampler.sample({0.1f, 0.5f, 0.0f}, rng.next_float(), rng.next_2d(), &below));
+      ASSERT_TRUE(sampler.sample({0.1f, 3.5f, 0.0f}, rng.next_float(), rng.next_2d(), &above));
+      if (below.radiance != glm::vec3(1.0f, 2.0f, 3.0f)) ++wrong;
+      if (above.radiance != (double_sided ? glm::vec3(1.0f, 2.0f, 3.0f) : glm::vec3(0.0f))) ++wrong;
+      if (below.normal != glm::vec3(0, -1, 0)) ++wrong;
+      if (!(above.pdf > 0.0f)) ++wrong;  // the density does not depend on the side
+    }
+    EXPECT_EQ(wrong, 0) << "double_sided " << double_sided;
+  }
+}
+
+TEST(EmitterSampler, TexturedEmitterRadianceFollowsTheTexture) {
+  // Left half (u < 0.5) red, right half blue, nearest filtering, emission 4, strength 0.5.
+  scenes::Scene scene;
+  scenes::Material m = make_emitter(glm::vec3(4.0f));
+  m.emissive_strength = 0.5f;
+  m.emissive_texture.texture = add_texture(scene, 2, 1, {{1, 0, 0, 1}, {0, 0, 1, 1}});
+  add_ceiling_light(scene, add_material(scene, m));  // u = x + 0.5
+  const EmitterSampler sampler(scene);
+  Rng rng(4, 4);
+  int wrong = 0;
+  for (int i = 0; i < 10000; ++i) {
+    EmitterSample s;
+    ASSERT_TRUE(sampler.sample({0, 0, 0}, rng.next_float(), rng.next_2d(), &s));
+    const float u = s.position.x + 0.5f;
+    if (std::abs(u - 0.5f) < 1e-4f) continue;  // on the texel boundary
+    const glm::vec3 expected = u < 0.5f ? glm::vec3(2, 0, 0) : glm::vec3(0, 0, 2);
+    if (glm::length(s.radiance - expected) > 1e-6f) ++wrong;
+  }
+  EXPECT_EQ(wrong, 0);
+}
+
+TEST(EmitterSampler, CutOutPartsOfMaskedEmittersAreDark) {
+  // Alpha MASK with the left half (u < 0.5) transparent: rays pass there, so it must not
+  // send light either.
+  scenes::Scene scene;
+  scenes::Material m = make_emitter(glm::vec3(3.0f));
+  m.alpha_mode = scenes::AlphaMode::Mask;
+  m.base_color_texture.texture = add_texture(scene, 2, 1, {{1, 1, 1, 0}, {1, 1, 1, 1}});
+  add_ceiling_light(scene, add_material(scene, m));
+  const EmitterSampler sampler(scene);
+  Rng rng(6, 1);
+  int wrong = 0;
+  for (int i = 0; i < 10000; ++i) {
+    EmitterSample s;
+    ASSERT_TRUE(sampler.sample({0, 0, 0}, rng.next_float(), rng.next_2d(), &s));
+    const float u = s.position.x + 0.5f;
+    if (std::abs(u - 0.5f) < 1e-4f) continue;
+    if (s.radiance != (u < 0.5f ? glm::vec3(0.0f) : glm::vec3(3.0f))) ++wrong;
+  }
+  EXPECT_EQ(wrong, 0);
+}
+
+TEST(EmitterSampler, DegenerateTrianglesAndEmptyScenes) {
+  scenes::Scene scene;
+  const int emitter = add_material(scene, make_emitter(glm::vec3(1.0f)));
+  add_quad(scene, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, add_material(scene, test::make_material()));  // not emissive
+  const int mesh = add_quad(scene, {0, 2, 0}, {1, 0, 0}, {0, 0, 1}, emitter);
+  scene.meshes[mesh].positions.push_back({5, 5, 5});
+  scene.meshes[mesh].normals.push_back({0, 1, 0});
+  scene.meshes[mesh].tangents.push_back({1, 0, 0, 1});
+  scene.meshes[mesh].texcoords0.push_back({0, 0});
+  scene.meshes[mesh].triangles.push_back({4, 4, 4});  // zero area
+  scene.meshes[mesh].triangles.push_back({0, 1, 9});  // index out of range
+  const EmitterSampler sampler(scene);
+  EXPECT_EQ(sampler.emissive_triangle_count(), 2u);
+  EXPECT_EQ(sampler.pdf({0, 0, 0}, mesh, 2, {5, 5, 5}), 0.0f);
+  EXPECT_EQ(sampler.pdf({0, 0, 0}, mesh, 3, {0, 2, 0}), 0.0f);
+  EXPECT_GT(sampler.pdf({0.2f, 0, 0.2f}, mesh, 0, {0.5f, 2, 0.3f}), 0.0f);
+
+  const scenes::Scene dark;
+  const EmitterSampler none(dark);
+  EXPECT_TRUE(none.empty());
+  EmitterSample s;
+  EXPECT_FALSE(none.sample({0, 0, 0}, 0.5f, {0.5f, 0.5f}, &s));
+  EXPECT_EQ(none.pdf({0, 0, 0}, 0, 0, {0, 1, 0}), 0.0f);
+  // A reference on the emitter's plane sees it edge-on: no valid sample.
+  scenes::Scene flat;
+  add_ceiling_light(flat, add_material(flat, make_emitter(glm::vec3(1.0f))));
+  const EmitterSampler edge_on(flat);
+  EXPECT_FALSE(edge_on.sample({3.0f, 2.0f, 0.0f}, 0.3f, {0.3f, 0.6f}, &s));
+}
+
+}  // namespace
+}  // namespace phyir::render
