@@ -46,15 +46,15 @@ Clamped clamp_params(const BrdfParams& p) {
 
 // Everything eval and pdf need about one (wo, wi) pair, computed once so that
 // sample()'s weight is exactly eval * cos / pdf.
-struct Pair {
+struct PairGeometry {
   bool valid = false;
   float NoV = 0.0f, NoL = 0.0f;
   float cos2_h = 0.0f, sin2_h = 0.0f;  // of the half vector
   float NoH = 0.0f, VoH = 0.0f;
 };
 
-Pair make_pair(const glm::vec3& wo, const glm::vec3& wi) {
-  Pair q;
+PairGeometry pair_geometry(const glm::vec3& wo, const glm::vec3& wi) {
+  PairGeometry q;
   q.NoV = wo.z;
   q.NoL = wi.z;
   // Directions below (or within kMinCosine of) the horizon contribute nothing.
@@ -75,7 +75,7 @@ Pair make_pair(const glm::vec3& wo, const glm::vec3& wi) {
   return q;
 }
 
-glm::vec3 eval_pair(const Clamped& c, const Pair& q) {
+glm::vec3 eval_pair(const Clamped& c, const PairGeometry& q) {
   if (!q.valid) return glm::vec3(0.0f);
   glm::vec3 f = Fd_Lambert(c.base_color, c.metalness);
   if (is_mirror(c.roughness)) return f;  // the delta lobe is reached only via sample()
@@ -87,7 +87,7 @@ glm::vec3 eval_pair(const Clamped& c, const Pair& q) {
   return f;
 }
 
-float pdf_pair(const Clamped& c, float ps, const Pair& q) {
+float pdf_pair(const Clamped& c, float ps, const PairGeometry& q) {
   if (!q.valid) return 0.0f;
   // Eq. 18, mixed with the lobe-choice probability.
   float pdf = (1.0f - ps) * cosine_hemisphere_pdf(q.NoL);
@@ -155,12 +155,12 @@ bool is_mirror(float roughness) { return roughness < kMirrorRoughness; }
 // --- BRDF ---------------------------------------------------------------------------------
 
 glm::vec3 brdf_eval(const BrdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {
-  return eval_pair(clamp_params(p), make_pair(wo, wi));
+  return eval_pair(clamp_params(p), pair_geometry(wo, wi));
 }
 
 float brdf_pdf(const BrdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {
   const Clamped c = clamp_params(p);
-  const Pair q = make_pair(wo, wi);
+  const PairGeometry q = pair_geometry(wo, wi);
   if (!q.valid) return 0.0f;
   return pdf_pair(c, specular_probability_clamped(c, q.NoV), q);
 }
@@ -200,7 +200,7 @@ bool brdf_sample(const BrdfParams& p, const glm::vec3& wo, float u_lobe, const g
 
   // Half vectors with wo.h < 0 reflect wo below the horizon: those samples (and the
   // kMinCosine band) are lost; brdf_pdf integrates to 1 minus their probability.
-  const Pair q = make_pair(wo, wi);
+  const PairGeometry q = pair_geometry(wo, wi);
   if (!q.valid) return false;
   const float pdf = pdf_pair(c, ps, q);
   if (!(pdf > kTinyDenominator)) return false;

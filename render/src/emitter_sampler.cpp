@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "phyir/core/safe_math.h"
@@ -71,6 +72,8 @@ EmitterSampler::EmitterSampler(const scenes::Scene& scene) : scene_(&scene) {
         continue;
       e.normal = c / len;
       e.area = 0.5f * len;
+      e.cluster = -1;
+      e.pmf_in_cluster = 0.0f;
       const float weight = e.area * power_density;
       if (!(weight > 0.0f) || !std::isfinite(weight)) continue;
       lookup_.back() = static_cast<int>(triangles_.size());
@@ -78,15 +81,140 @@ EmitterSampler::EmitterSampler(const scenes::Scene& scene) : scene_(&scene) {
       weights.push_back(weight);
     }
   }
+  build_clusters(weights);
   distribution_ = Distribution1D(std::move(weights));
   if (!triangles_.empty())
-    spdlog::debug("emitter sampler: {} emissive triangles, total power {}", triangles_.size(), total_power());
+    spdlog::debug("emitter sampler: {} emissive triangles in {} clusters ({}), total power {}",
+                  triangles_.size(), clusters_.size(), spatial_ ? "spatial selection" : "power selection",
+                  total_power());
+}
+
+void EmitterSampler::build_clusters(const std::vector<float>& weights) {
+  // Coplanar triangles of one mesh share a cluster; a mesh with more planes than this is
+  // treated as one curved cluster (no facing test).
+  constexpr size_t kMaxPlanesPerMesh = 16;
+  // Two triangles are coplanar when normals agree to 1e-4 and planes to 0.1 mm.
+  constexpr float kNormalTolerance = 1e-4f, kOffsetTolerance = 1e-4f;
+  size_t begin = 0;
+  while (begin < triangles_.size()) {
+    size_t end = begin;
+    while (end < triangles_.size() && triangles_[end].mesh == triangles_[begin].mesh) ++end;
+    const scenes::Material& material = scene_->materials[scene_->meshes[triangles_[begin].mesh].material];
+    std::vector<Cluster> planes;
+    for (size_t i = begin; i < end; ++i) {
+      const EmissiveTriangle& e = triangles_[i];
+      const float offset = glm::dot(e.normal, e.p0);
+      auto same_plane = [&](const Cluster& c) {
+        return glm::dot(c.normal, e.normal) > 1.0f - kNormalTolerance && std::abs(c.plane_offset - offset) < kOffsetTolerance;
+      };
+      auto it = std::find_if(planes.begin(), planes.end(), same_plane);
+      if (it == planes.end()) {
+        if (planes.size() == kMaxPlanesPerMesh) {
+          planes.clear();
+          break;
+        }
+        Cluster c;
+        c.normal = e.normal;
+        c.plane_offset = offset;
+        c.planar = true;
+        c.one_sided_plane = !material.double_sided;
+        planes.push_back(c);
+        it = planes.end() - 1;
+      }
+      it->triangles.push_back(static_cast<int>(i));
+    }
+    if (planes.empty()) {  // curved: one cluster for the whole mesh
+      Cluster c;
+      for (size_t i = begin; i < end; ++i) c.triangles.push_back(static_cast<int>(i));
+      planes.push_back(c);
+    }
+    for (Cluster& c : planes) {
+      scenes::Bounds bounds;
+      std::vector<float> w;
+      for (int i : c.triangles) {
+        const EmissiveTriangle& e = triangles_[i];
+        for (const glm::vec3& p : {e.p0, e.p1, e.p2}) bounds.extend(p);
+        w.push_back(weights[i]);
+        c.power += weights[i];
+      }
+      c.centre = 0.5f * (bounds.min + bounds.max);
+      c.bounds_min = bounds.min;
+      c.bounds_max = bounds.max;
+      c.half_diagonal2 = 0.25f * glm::dot(bounds.max - bounds.min, bounds.max - bounds.min);
+      c.distribution = Distribution1D(std::move(w));
+      const int cluster_index = static_cast<int>(clusters_.size());
+      for (size_t k = 0; k < c.triangles.size(); ++k) {
+        triangles_[c.triangles[k]].cluster = cluster_index;
+        triangles_[c.triangles[k]].pmf_in_cluster = c.distribution.pmf(static_cast<int>(k));
+      }
+      clusters_.push_back(std::move(c));
+    }
+    begin = end;
+  }
+  spatial_ = clusters_.size() > 1 && clusters_.size() <= size_t(kMaxSpatialClusters);
+}
+
+float EmitterSampler::cluster_weights(const glm::vec3& reference, float* weights) const {
+  float total = 0.0f;
+  for (size_t i = 0; i < clusters_.size(); ++i) {
+    const Cluster& c = clusters_[i];
+    float w = 0.0f;
+    const float height = c.planar ? glm::dot(c.normal, reference) - c.plane_offset : 1.0f;
+    // A one-sided plane lights only the half-space its front faces (cos_light > 0 there).
+    if (!c.one_sided_plane || height > 0.0f) {
+      const glm::vec3 d = c.centre - reference;
+      // Distance to the centre, but never less than the cluster's own size: close to a
+      // large panel its far parts matter as much as its centre.
+      w = c.power / std::max(glm::dot(d, d), c.half_diagonal2);
+      if (c.planar) {
+        // cos at the emitter is height / distance, and no point of the cluster is nearer
+        // than its bounding box: an upper bound that is > 0 whenever the plane can light
+        // the point (e.g. a panel's edge seen along the ceiling gets almost nothing).
+        const glm::vec3 nearest = glm::clamp(reference, c.bounds_min, c.bounds_max);
+        const float h = std::abs(height);
+        w *= h / std::max(glm::length(reference - nearest), h);
+      }
+    }
+    weights[i] = std::isfinite(w) ? w : 0.0f;
+    total += weights[i];
+  }
+  return total;
+}
+
+float EmitterSampler::selection_pmf(const glm::vec3& reference, int index) const {
+  if (!spatial_) return distribution_.pmf(index);
+  float weights[kMaxSpatialClusters];
+  const float total = cluster_weights(reference, weights);
+  const EmissiveTriangle& e = triangles_[index];
+  return total > 0.0f ? weights[e.cluster] / total * e.pmf_in_cluster : 0.0f;
 }
 
 bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const glm::vec2& u_point,
                             EmitterSample* out) const {
   float pmf = 0.0f;
-  const int index = distribution_.sample(u_select, &pmf);
+  int index = -1;
+  if (spatial_) {
+    float weights[kMaxSpatialClusters];
+    const float total = cluster_weights(reference, weights);
+    if (!(total > 0.0f)) return false;
+    // Pick a cluster by inverting the cumulative weights, reusing u_select inside it.
+    float target = u_select * total, acc = 0.0f;
+    int chosen = -1;
+    for (size_t i = 0; i < clusters_.size(); ++i) {
+      if (weights[i] <= 0.0f) continue;
+      chosen = static_cast<int>(i);
+      if (target < acc + weights[i]) break;
+      acc += weights[i];
+    }
+    const float remapped = std::clamp((target - acc) / weights[chosen], 0.0f, 0x1.fffffep-1f);
+    const Cluster& c = clusters_[chosen];
+    const int k = c.distribution.sample(remapped);
+    if (k < 0) return false;
+    index = c.triangles[k];
+    pmf = weights[chosen] / total * triangles_[index].pmf_in_cluster;
+  } else {
+    index = distribution_.sample(u_select, &pmf);
+  }
   if (index < 0) return false;
   const EmissiveTriangle& e = triangles_[index];
   const glm::vec2 b12 = sample_uniform_triangle(u_point);
@@ -121,7 +249,7 @@ float EmitterSampler::pdf(const glm::vec3& reference, int mesh, int triangle, co
   const int index = lookup_[first_of_mesh_[mesh] + triangle];
   if (index < 0) return 0.0f;
   const EmissiveTriangle& e = triangles_[index];
-  return solid_angle_pdf(distribution_.pmf(index), e.area, e.normal, reference, point).pdf;
+  return solid_angle_pdf(selection_pmf(reference, index), e.area, e.normal, reference, point).pdf;
 }
 
 }  // namespace phyir::render

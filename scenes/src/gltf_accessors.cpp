@@ -22,37 +22,56 @@ struct Bytes {
 size_t component_size(int component_type) {
   switch (component_type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 1;
     case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 2;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;  // INT and DOUBLE are not valid glTF 2.0 accessor types
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return 4;
+    default:
+      return 0;  // INT and DOUBLE are not valid glTF 2.0 accessor types
   }
 }
 
 const char* component_name(int component_type) {
   switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
-    case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
-    default: return "invalid";
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+      return "BYTE";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return "UNSIGNED_BYTE";
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+      return "SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return "UNSIGNED_SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      return "UNSIGNED_INT";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return "FLOAT";
+    default:
+      return "invalid";
   }
 }
 
 const char* type_name(int type) {
   switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
-    case TINYGLTF_TYPE_VEC2: return "VEC2";
-    case TINYGLTF_TYPE_VEC3: return "VEC3";
-    case TINYGLTF_TYPE_VEC4: return "VEC4";
-    case TINYGLTF_TYPE_MAT2: return "MAT2";
-    case TINYGLTF_TYPE_MAT3: return "MAT3";
-    case TINYGLTF_TYPE_MAT4: return "MAT4";
-    default: return "invalid";
+    case TINYGLTF_TYPE_SCALAR:
+      return "SCALAR";
+    case TINYGLTF_TYPE_VEC2:
+      return "VEC2";
+    case TINYGLTF_TYPE_VEC3:
+      return "VEC3";
+    case TINYGLTF_TYPE_VEC4:
+      return "VEC4";
+    case TINYGLTF_TYPE_MAT2:
+      return "MAT2";
+    case TINYGLTF_TYPE_MAT3:
+      return "MAT3";
+    case TINYGLTF_TYPE_MAT4:
+      return "MAT4";
+    default:
+      return "invalid";
   }
 }
 
@@ -75,8 +94,8 @@ Bytes view_bytes(const GltfContext& ctx, int view_index, const std::string& who)
              model.bufferViews.size());
   const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(view_index)];
   if (!in_range(view.buffer, model.buffers.size()))
-    ctx.fail("bufferView {} refers to buffer {}, which does not exist ({} buffers)", view_index,
-             view.buffer, model.buffers.size());
+    ctx.fail("bufferView {} refers to buffer {}, which does not exist ({} buffers)", view_index, view.buffer,
+             model.buffers.size());
   const std::vector<unsigned char>& data = model.buffers[static_cast<size_t>(view.buffer)].data;
   if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
     ctx.fail("bufferView {} (byteOffset {}, byteLength {}) reads past the end of buffer {} ({} bytes)",
@@ -90,14 +109,16 @@ void check_fits(const GltfContext& ctx, const std::string& who, int view_index, 
                 size_t offset, size_t count, size_t stride, size_t element_size) {
   const size_t needed = bytes_spanned(offset, count, stride, element_size);
   if (needed > bytes.size)
-    ctx.fail("{} reads past the end of bufferView {}: needs {} bytes (byteOffset {}, stride {}, count {}) "
-             "but the view holds {}",
-             who, view_index, needed, offset, stride, count, bytes.size);
+    ctx.fail(
+        "{} reads past the end of bufferView {}: needs {} bytes (byteOffset {}, stride {}, count {}) "
+        "but the view holds {}",
+        who, view_index, needed, offset, stride, count, bytes.size);
 }
 
 uint32_t read_unsigned(const unsigned char* p, int component_type) {
   switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return *p;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return *p;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
       uint16_t v;
       std::memcpy(&v, p, sizeof v);
@@ -111,31 +132,19 @@ uint32_t read_unsigned(const unsigned char* p, int component_type) {
   }
 }
 
-// One component as float; normalized integers per glTF 2.0 section 3.11 (signed ones
-// clamp at -1 so that -128 and -127 both map to -1).
-float read_float(const unsigned char* p, int component_type, bool normalized) {
+// One component as float: FLOAT as stored, normalized UNSIGNED_BYTE / UNSIGNED_SHORT
+// mapped to [0, 1] (glTF 2.0 section 3.11). read_floats admits no other kind.
+float read_float(const unsigned char* p, int component_type) {
   switch (component_type) {
     case TINYGLTF_COMPONENT_TYPE_FLOAT: {
       float v;
       std::memcpy(&v, p, sizeof v);
       return v;
     }
-    case TINYGLTF_COMPONENT_TYPE_BYTE: {
-      int8_t v;
-      std::memcpy(&v, p, sizeof v);
-      return normalized ? std::max(v / 127.0f, -1.0f) : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_SHORT: {
-      int16_t v;
-      std::memcpy(&v, p, sizeof v);
-      return normalized ? std::max(v / 32767.0f, -1.0f) : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? *p / 255.0f : *p;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-      const uint32_t v = read_unsigned(p, component_type);
-      return normalized ? v / 65535.0f : static_cast<float>(v);
-    }
-    default: return static_cast<float>(read_unsigned(p, component_type));
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return *p / 255.0f;
+    default:
+      return read_unsigned(p, component_type) / 65535.0f;
   }
 }
 
@@ -145,7 +154,7 @@ struct CheckedAccessor {
   std::string who;  // accessor_label()
   size_t component_size;
   size_t components;
-  Bytes dense;        // data == nullptr when the accessor has no bufferView (all zeros)
+  Bytes dense;  // data == nullptr when the accessor has no bufferView (all zeros)
   size_t stride = 0;
   size_t element_size() const { return component_size * components; }
 };
@@ -159,8 +168,8 @@ CheckedAccessor check_accessor(const GltfContext& ctx, int index, const std::str
     ctx.fail("{} refers to accessor {}, which does not exist ({} accessors)", role, index,
              ctx.model.accessors.size());
   const tinygltf::Accessor& accessor = ctx.model.accessors[static_cast<size_t>(index)];
-  CheckedAccessor checked{accessor, accessor_label(index, role), component_size(accessor.componentType),
-                          0, {}, 0};
+  CheckedAccessor checked{
+      accessor, accessor_label(index, role), component_size(accessor.componentType), 0, {}, 0};
   const std::string& who = checked.who;
   if (checked.component_size == 0) ctx.fail("{} has invalid componentType {}", who, accessor.componentType);
   const int components = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(accessor.type));
@@ -178,8 +187,8 @@ CheckedAccessor check_accessor(const GltfContext& ctx, int index, const std::str
     ctx.fail("{}: bufferView {} byteStride {} is smaller than one element ({} bytes)", who,
              accessor.bufferView, declared_stride, checked.element_size());
   checked.stride = declared_stride != 0 ? declared_stride : checked.element_size();
-  check_fits(ctx, who, accessor.bufferView, checked.dense, accessor.byteOffset, accessor.count, checked.stride,
-             checked.element_size());
+  check_fits(ctx, who, accessor.bufferView, checked.dense, accessor.byteOffset, accessor.count,
+             checked.stride, checked.element_size());
   return checked;
 }
 
@@ -205,7 +214,8 @@ void visit_sparse(const GltfContext& ctx, const tinygltf::Accessor& accessor, co
   const size_t value_offset = static_cast<size_t>(sparse.values.byteOffset);
   // Sparse indices and values are tightly packed.
   check_fits(ctx, index_who, sparse.indices.bufferView, indices, index_offset, count, index_size, index_size);
-  check_fits(ctx, value_who, sparse.values.bufferView, values, value_offset, count, element_size, element_size);
+  check_fits(ctx, value_who, sparse.values.bufferView, values, value_offset, count, element_size,
+             element_size);
   for (size_t i = 0; i < count; ++i) {
     const uint32_t target = read_unsigned(indices.data + index_offset + i * index_size, index_type);
     if (target >= accessor.count)
@@ -262,8 +272,7 @@ FloatElements read_floats(const GltfContext& ctx, int index, const std::string& 
   out.values.resize(out.count * components);
   visit_elements(ctx, checked, [&](size_t element, const unsigned char* p) {
     for (size_t c = 0; c < components; ++c)
-      out.values[element * components + c] =
-          read_float(p + c * checked.component_size, component_type, accessor.normalized);
+      out.values[element * components + c] = read_float(p + c * checked.component_size, component_type);
   });
   for (size_t i = 0; i < out.values.size(); ++i) {
     if (!std::isfinite(out.values[i])) {
@@ -286,7 +295,8 @@ std::vector<uint32_t> read_indices(const GltfContext& ctx, int index, const std:
     ctx.fail("{} has componentType {}, expected UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT", checked.who,
              component_name(type));
   std::vector<uint32_t> indices(accessor.count);
-  visit_elements(ctx, checked, [&](size_t element, const unsigned char* p) { indices[element] = read_unsigned(p, type); });
+  visit_elements(ctx, checked,
+                 [&](size_t element, const unsigned char* p) { indices[element] = read_unsigned(p, type); });
   return indices;
 }
 

@@ -19,22 +19,26 @@ Camera make_camera(const GltfContext& ctx, const NodeInstance& instance) {
   camera.name = !source.name.empty() ? source.name : !node.name.empty() ? node.name : where;
   const glm::dmat3 linear(instance.world);
   camera.position = glm::vec3(instance.world[3]);
-  camera.forward = safe_normalize(glm::vec3(linear * glm::dvec3(0.0, 0.0, -1.0)), glm::vec3(0.0f, 0.0f, -1.0f));
+  camera.forward =
+      safe_normalize(glm::vec3(linear * glm::dvec3(0.0, 0.0, -1.0)), glm::vec3(0.0f, 0.0f, -1.0f));
   camera.up = safe_normalize(glm::vec3(linear * glm::dvec3(0.0, 1.0, 0.0)), glm::vec3(0.0f, 1.0f, 0.0f));
 
   if (source.type == "orthographic") {
     camera.perspective = false;
     camera.znear = static_cast<float>(source.orthographic.znear);
     camera.zfar = static_cast<float>(source.orthographic.zfar);
-    ctx.warn("{} (on {}) is orthographic: kept with perspective=false; renderers that need a perspective "
-             "camera skip it", where, node_name);
+    ctx.warn(
+        "{} (on {}) is orthographic: kept with perspective=false; renderers that need a perspective "
+        "camera skip it",
+        where, node_name);
     return camera;
   }
   if (source.type != "perspective") ctx.fail("{} has unknown type '{}'", where, source.type);
   const tinygltf::PerspectiveCamera& p = source.perspective;
   if (!(p.yfov > 0.0 && p.yfov < kPi)) ctx.fail("{} yfov {} is outside (0, pi)", where, p.yfov);
   camera.yfov = static_cast<float>(p.yfov);
-  camera.aspect_ratio = std::isfinite(p.aspectRatio) && p.aspectRatio > 0.0 ? static_cast<float>(p.aspectRatio) : 0.0f;
+  camera.aspect_ratio =
+      std::isfinite(p.aspectRatio) && p.aspectRatio > 0.0 ? static_cast<float>(p.aspectRatio) : 0.0f;
   if (std::isfinite(p.znear) && p.znear > 0.0) camera.znear = static_cast<float>(p.znear);
   camera.zfar = std::isfinite(p.zfar) && p.zfar > camera.znear ? static_cast<float>(p.zfar) : 0.0f;
   return camera;

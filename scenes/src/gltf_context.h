@@ -54,8 +54,6 @@ std::string label(const char* kind, int index, const std::vector<T>& items) {
                : fmt::format("{} {}", kind, index);
 }
 
-inline bool in_range(int index, size_t size) {
-  return index >= 0 && static_cast<size_t>(index) < size;
-}
+inline bool in_range(int index, size_t size) { return index >= 0 && static_cast<size_t>(index) < size; }
 
 }  // namespace phyir::scenes::gltf

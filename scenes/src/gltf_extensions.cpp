@@ -6,9 +6,8 @@
 namespace phyir::scenes::gltf {
 
 const std::vector<std::string>& supported_extensions() {
-  static const std::vector<std::string> names = {
-      "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_transmission",
-      "KHR_texture_transform"};
+  static const std::vector<std::string> names = {"KHR_materials_emissive_strength", "KHR_materials_ior",
+                                                 "KHR_materials_transmission", "KHR_texture_transform"};
   return names;
 }
 
@@ -20,7 +19,8 @@ bool is_supported_extension(const std::string& name) {
 std::string unsupported_extension_warning(const std::string& name) {
   // The fallback is what the core glTF data gives; these say what that means here.
   static const std::map<std::string, std::string> fallbacks = {
-      {"KHR_materials_volume", "glass treated as a solid refractive dielectric (no thickness, no absorption)"},
+      {"KHR_materials_volume",
+       "glass treated as a solid refractive dielectric (no thickness, no absorption)"},
       {"KHR_materials_clearcoat", "base layer only"},
       {"KHR_materials_sheen", "base layer only, no sheen"},
       {"KHR_materials_specular", "dielectric specular from the IOR only"},

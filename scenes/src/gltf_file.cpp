@@ -11,9 +11,9 @@ namespace {
 
 // GLB layout (glTF 2.0 section 4.4): 12-byte header, then chunks of
 // {uint32 length, uint32 type, data padded to 4 bytes}; the first chunk is JSON.
-constexpr uint32_t kGlbMagic = 0x46546C67;      // "glTF"
-constexpr uint32_t kChunkJson = 0x4E4F534A;     // "JSON"
-constexpr uint32_t kChunkBin = 0x004E4942;      // "BIN\0"
+constexpr uint32_t kGlbMagic = 0x46546C67;   // "glTF"
+constexpr uint32_t kChunkJson = 0x4E4F534A;  // "JSON"
+constexpr uint32_t kChunkBin = 0x004E4942;   // "BIN\0"
 constexpr size_t kHeaderSize = 12;
 constexpr size_t kChunkHeaderSize = 8;
 
@@ -36,15 +36,15 @@ void locate_glb_chunks(GltfFile& file, const Diagnostics& diagnostics) {
   if (read_u32(b, 16) != kChunkJson) diagnostics.fail("GLB first chunk is not JSON");
   const size_t json_start = kHeaderSize + kChunkHeaderSize;
   if (json_length > b.size() - json_start)
-    diagnostics.fail("GLB JSON chunk of {} bytes runs past the end of the file ({} bytes)",
-                     json_length, b.size());
+    diagnostics.fail("GLB JSON chunk of {} bytes runs past the end of the file ({} bytes)", json_length,
+                     b.size());
   file.json = std::string_view(b).substr(json_start, json_length);
   const size_t bin_header = json_start + json_length;
   if (b.size() - bin_header >= kChunkHeaderSize && read_u32(b, bin_header + 4) == kChunkBin) {
     const uint32_t bin_length = read_u32(b, bin_header);
     if (bin_length > b.size() - bin_header - kChunkHeaderSize)
-      diagnostics.fail("GLB BIN chunk of {} bytes runs past the end of the file ({} bytes)",
-                       bin_length, b.size());
+      diagnostics.fail("GLB BIN chunk of {} bytes runs past the end of the file ({} bytes)", bin_length,
+                       b.size());
     file.bin_chunk_size = bin_length;
   }
 }

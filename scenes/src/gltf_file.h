@@ -11,10 +11,10 @@ namespace phyir::scenes::gltf {
 
 struct GltfFile {
   std::filesystem::path path;
-  std::string bytes;           // the whole file
-  bool binary = false;         // GLB container
-  std::string_view json;       // the JSON text (a view into `bytes`)
-  size_t bin_chunk_size = 0;   // GLB BIN chunk length, 0 when absent
+  std::string bytes;          // the whole file
+  bool binary = false;        // GLB container
+  std::string_view json;      // the JSON text (a view into `bytes`)
+  size_t bin_chunk_size = 0;  // GLB BIN chunk length, 0 when absent
 };
 
 // Reads the file and validates the GLB header and chunk layout when it is one.

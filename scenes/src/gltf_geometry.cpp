@@ -38,13 +38,15 @@ Mesh bake_to_world(const PrimitiveData& local, const glm::dmat4& world) {
   for (const glm::vec3& p : local.positions) mesh.positions.emplace_back(world * glm::dvec4(p, 1.0));
   mesh.normals.reserve(local.normals.size());
   for (const glm::vec3& n : local.normals)
-    mesh.normals.push_back(safe_normalize(glm::vec3(normal_matrix * glm::dvec3(n)), glm::vec3(0.0f, 0.0f, 1.0f)));
+    mesh.normals.push_back(
+        safe_normalize(glm::vec3(normal_matrix * glm::dvec3(n)), glm::vec3(0.0f, 0.0f, 1.0f)));
   // Without file normals the file's tangents must be ignored (glTF 2.0 3.7.2.1).
-  const bool keep_tangents = !local.normals.empty();
-  mesh.tangents.reserve(keep_tangents ? local.tangents.size() : 0);
-  for (const glm::vec4& t : keep_tangents ? local.tangents : std::vector<glm::vec4>{}) {
-    const glm::vec3 xyz = safe_normalize(glm::vec3(linear * glm::dvec3(t)), glm::vec3(1.0f, 0.0f, 0.0f));
-    mesh.tangents.emplace_back(xyz, mirrored ? -t.w : t.w);
+  if (!local.normals.empty()) {
+    mesh.tangents.reserve(local.tangents.size());
+    for (const glm::vec4& t : local.tangents) {
+      const glm::vec3 xyz = safe_normalize(glm::vec3(linear * glm::dvec3(t)), glm::vec3(1.0f, 0.0f, 0.0f));
+      mesh.tangents.emplace_back(xyz, mirrored ? -t.w : t.w);
+    }
   }
   mesh.texcoords0 = local.texcoords0;
   mesh.texcoords1 = local.texcoords1;
@@ -65,12 +67,13 @@ void make_flat_normals(Mesh& mesh) {
   mesh.colors = unshare(mesh.colors, triangles);
   mesh.normals.clear();
   mesh.normals.reserve(mesh.positions.size());
-  for (uint32_t t = 0; t < triangles.size(); ++t) {
+  for (size_t t = 0; t < triangles.size(); ++t) {
     const glm::vec3* p = &mesh.positions[3 * t];
     // Counter-clockwise winding faces the normal (the convention in scene.h).
     const glm::vec3 n = safe_normalize(glm::cross(p[1] - p[0], p[2] - p[0]), glm::vec3(0.0f, 0.0f, 1.0f));
     mesh.normals.insert(mesh.normals.end(), 3, n);
-    mesh.triangles[t] = glm::uvec3(3 * t, 3 * t + 1, 3 * t + 2);
+    const auto first = static_cast<uint32_t>(3 * t);
+    mesh.triangles[t] = glm::uvec3(first, first + 1, first + 2);
   }
 }
 

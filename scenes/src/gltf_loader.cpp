@@ -27,7 +27,8 @@ void warn_about_unsupported(const GltfContext& ctx) {
     if (!is_supported_extension(name)) ctx.warn("{}", unsupported_extension_warning(name));
   if (!ctx.model.animations.empty())
     ctx.warn("{} animations ignored: the static pose is used", ctx.model.animations.size());
-  if (!ctx.model.skins.empty()) ctx.warn("{} skins ignored: skinned meshes keep their bind pose", ctx.model.skins.size());
+  if (!ctx.model.skins.empty())
+    ctx.warn("{} skins ignored: skinned meshes keep their bind pose", ctx.model.skins.size());
 }
 
 // scenes[scene].extras.phyir.candidate_viewpoints: [[x, y, z], ...], written by the room
@@ -45,8 +46,10 @@ std::vector<glm::vec3> read_candidate_viewpoints(const GltfContext& ctx, int sce
   std::vector<glm::vec3> viewpoints;
   for (size_t i = 0; i < list->ArrayLen(); ++i) {
     const auto p = as_vec3(list->Get(static_cast<int>(i)));
-    if (p) viewpoints.push_back(*p);
-    else ctx.warn("{} entry {} is not [x, y, z]: skipped", where, i);
+    if (p)
+      viewpoints.push_back(*p);
+    else
+      ctx.warn("{} entry {} is not [x, y, z]: skipped", where, i);
   }
   return viewpoints;
 }
@@ -92,14 +95,15 @@ class InstanceBaker {
  private:
   void add_mesh(int mesh_index, const NodeInstance& instance) {
     if (!in_range(mesh_index, ctx_.model.meshes.size()))
-      ctx_.fail("{} refers to mesh {}, which does not exist ({} meshes)", label("node", instance.node, ctx_.model.nodes),
-                mesh_index, ctx_.model.meshes.size());
+      ctx_.fail("{} refers to mesh {}, which does not exist ({} meshes)",
+                label("node", instance.node, ctx_.model.nodes), mesh_index, ctx_.model.meshes.size());
     const tinygltf::Mesh& source = ctx_.model.meshes[static_cast<size_t>(mesh_index)];
     for (size_t p = 0; p < source.primitives.size(); ++p) {
       const std::optional<PrimitiveData>& data = primitive(mesh_index, static_cast<int>(p));
       if (!data) continue;
       Mesh mesh = bake_to_world(*data, instance.world);
-      mesh.name = fmt::format("{}/{}", source.name.empty() ? fmt::format("mesh{}", mesh_index) : source.name, p);
+      mesh.name =
+          fmt::format("{}/{}", source.name.empty() ? fmt::format("mesh{}", mesh_index) : source.name, p);
       mesh.material = material_index(source.primitives[p].material, mesh_index, static_cast<int>(p));
       add_tangents_for_normal_map(mesh, mesh_index, static_cast<int>(p));
       scene_.meshes.push_back(std::move(mesh));
@@ -109,15 +113,16 @@ class InstanceBaker {
   const std::optional<PrimitiveData>& primitive(int mesh, int primitive) {
     const auto key = std::make_pair(mesh, primitive);
     auto found = primitives_.find(key);
-    if (found == primitives_.end()) found = primitives_.emplace(key, read_primitive(ctx_, mesh, primitive)).first;
+    if (found == primitives_.end())
+      found = primitives_.emplace(key, read_primitive(ctx_, mesh, primitive)).first;
     return found->second;
   }
 
   int material_index(int material, int mesh, int primitive) {
     const int file_materials = static_cast<int>(ctx_.model.materials.size());
     if (material >= file_materials)
-      ctx_.fail("{} refers to material {}, which does not exist ({} materials)", primitive_label(ctx_, mesh, primitive),
-                material, file_materials);
+      ctx_.fail("{} refers to material {}, which does not exist ({} materials)",
+                primitive_label(ctx_, mesh, primitive), material, file_materials);
     if (material >= 0) return material;
     if (default_material_ < 0) {
       default_material_ = static_cast<int>(scene_.materials.size());

@@ -55,16 +55,19 @@ class MaterialConverter {
     const tinygltf::PbrMetallicRoughness& pbr = source_.pbrMetallicRoughness;
     const std::vector<double> base = checked_numbers(pbr.baseColorFactor, 4, "baseColorFactor");
     m.base_color_factor = glm::vec4(base[0], base[1], base[2], base[3]);
-    m.base_color_texture = slot(ref_from_info(pbr.baseColorTexture), TextureEncoding::SrgbColour, "baseColorTexture");
+    m.base_color_texture =
+        slot(ref_from_info(pbr.baseColorTexture), TextureEncoding::SrgbColour, "baseColorTexture");
     m.metallic_factor = std::clamp(checked_number(pbr.metallicFactor, "metallicFactor"), 0.0f, 1.0f);
     m.roughness_factor = std::clamp(checked_number(pbr.roughnessFactor, "roughnessFactor"), 0.0f, 1.0f);
-    m.metallic_roughness_texture =
-        slot(ref_from_info(pbr.metallicRoughnessTexture), TextureEncoding::LinearData, "metallicRoughnessTexture");
-    m.normal_texture = slot(ref_from_info(source_.normalTexture), TextureEncoding::LinearData, "normalTexture");
+    m.metallic_roughness_texture = slot(ref_from_info(pbr.metallicRoughnessTexture),
+                                        TextureEncoding::LinearData, "metallicRoughnessTexture");
+    m.normal_texture =
+        slot(ref_from_info(source_.normalTexture), TextureEncoding::LinearData, "normalTexture");
     m.normal_scale = checked_number(source_.normalTexture.scale, "normalTexture.scale");
     const std::vector<double> emissive = checked_numbers(source_.emissiveFactor, 3, "emissiveFactor");
     m.emissive_factor = glm::max(glm::vec3(emissive[0], emissive[1], emissive[2]), glm::vec3(0.0f));
-    m.emissive_texture = slot(ref_from_info(source_.emissiveTexture), TextureEncoding::SrgbColour, "emissiveTexture");
+    m.emissive_texture =
+        slot(ref_from_info(source_.emissiveTexture), TextureEncoding::SrgbColour, "emissiveTexture");
     m.alpha_mode = alpha_mode(source_.alphaMode);
     m.alpha_cutoff = checked_number(source_.alphaCutoff, "alphaCutoff");
     m.double_sided = source_.doubleSided;
@@ -74,11 +77,13 @@ class MaterialConverter {
     if (const tinygltf::Value* e = find_extension(source_.extensions, kEmissiveStrength)) {
       const std::string where = where_ + " " + kEmissiveStrength;
       m.emissive_strength = number_member(ctx_, *e, "emissiveStrength", where).value_or(1.0f);
-      if (m.emissive_strength < 0.0f) ctx_.fail("{} emissiveStrength {} is negative", where, m.emissive_strength);
+      if (m.emissive_strength < 0.0f)
+        ctx_.fail("{} emissiveStrength {} is negative", where, m.emissive_strength);
     }
     if (const tinygltf::Value* e = find_extension(source_.extensions, kTransmission)) {
       const std::string where = where_ + " " + kTransmission;
-      m.transmission_factor = std::clamp(number_member(ctx_, *e, "transmissionFactor", where).value_or(0.0f), 0.0f, 1.0f);
+      m.transmission_factor =
+          std::clamp(number_member(ctx_, *e, "transmissionFactor", where).value_or(0.0f), 0.0f, 1.0f);
       if (const tinygltf::Value* info = member(*e, "transmissionTexture"))
         m.transmission_texture = slot(ref_from_value(*info, where + " transmissionTexture"),
                                       TextureEncoding::LinearData, "transmissionTexture");
@@ -114,14 +119,18 @@ class MaterialConverter {
     if (ref.transform != nullptr) {
       used_.insert(kTextureTransform);
       const std::string transform_where = where + " " + kTextureTransform;
-      slot.transform.offset = vec2_member(ctx_, *ref.transform, "offset", transform_where).value_or(glm::vec2(0.0f));
-      slot.transform.scale = vec2_member(ctx_, *ref.transform, "scale", transform_where).value_or(glm::vec2(1.0f));
-      slot.transform.rotation = number_member(ctx_, *ref.transform, "rotation", transform_where).value_or(0.0f);
+      slot.transform.offset =
+          vec2_member(ctx_, *ref.transform, "offset", transform_where).value_or(glm::vec2(0.0f));
+      slot.transform.scale =
+          vec2_member(ctx_, *ref.transform, "scale", transform_where).value_or(glm::vec2(1.0f));
+      slot.transform.rotation =
+          number_member(ctx_, *ref.transform, "rotation", transform_where).value_or(0.0f);
       texcoord = integer_member(ctx_, *ref.transform, "texCoord", transform_where).value_or(texcoord);
     }
     if (texcoord < 0) ctx_.fail("{} texCoord {} is negative", where, texcoord);
     if (texcoord > 1) {
-      ctx_.warn("{} uses TEXCOORD_{}: only TEXCOORD_0 and TEXCOORD_1 are kept, TEXCOORD_0 used", where, texcoord);
+      ctx_.warn("{} uses TEXCOORD_{}: only TEXCOORD_0 and TEXCOORD_1 are kept, TEXCOORD_0 used", where,
+                texcoord);
       texcoord = 0;
     }
     slot.texcoord = texcoord;
@@ -142,7 +151,8 @@ class MaterialConverter {
   }
 
   std::vector<double> checked_numbers(const std::vector<double>& values, size_t count, const char* property) {
-    if (values.size() != count) ctx_.fail("{} {} has {} numbers, expected {}", where_, property, values.size(), count);
+    if (values.size() != count)
+      ctx_.fail("{} {} has {} numbers, expected {}", where_, property, values.size(), count);
     for (double v : values) checked_number(v, property);
     return values;
   }

@@ -13,10 +13,11 @@ namespace {
 void check_length(const GltfContext& ctx, int node, const char* property, const std::vector<double>& values,
                   size_t expected) {
   if (!values.empty() && values.size() != expected)
-    ctx.fail("{} {} has {} numbers, expected {}", label("node", node, ctx.model.nodes), property, values.size(),
-             expected);
+    ctx.fail("{} {} has {} numbers, expected {}", label("node", node, ctx.model.nodes), property,
+             values.size(), expected);
   for (double v : values)
-    if (!std::isfinite(v)) ctx.fail("{} {} holds a non-finite number", label("node", node, ctx.model.nodes), property);
+    if (!std::isfinite(v))
+      ctx.fail("{} {} holds a non-finite number", label("node", node, ctx.model.nodes), property);
 }
 
 }  // namespace
@@ -77,8 +78,9 @@ std::vector<NodeInstance> flatten_nodes(const GltfContext& ctx, const std::vecto
     if (!in_range(parent.node, nodes.size()))
       ctx.fail("node {} does not exist ({} nodes)", parent.node, nodes.size());
     if (reached[static_cast<size_t>(parent.node)])
-      ctx.fail("{} is reached twice from the scene (a node has at most one parent and is not its own ancestor)",
-               label("node", parent.node, nodes));
+      ctx.fail(
+          "{} is reached twice from the scene (a node has at most one parent and is not its own ancestor)",
+          label("node", parent.node, nodes));
     reached[static_cast<size_t>(parent.node)] = true;
     const NodeInstance instance{parent.node, parent.world * local_transform(ctx, parent.node)};
     out.push_back(instance);

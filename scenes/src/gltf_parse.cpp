@@ -11,8 +11,8 @@ namespace {
 // tinygltf's image callback: keep the bytes; gltf_textures.cpp decodes the images a
 // material actually uses, through OpenImageIO.
 bool keep_encoded_image(tinygltf::Image* image, const int /*index*/, std::string* /*err*/,
-                        std::string* /*warn*/, int /*width*/, int /*height*/,
-                        const unsigned char* bytes, int size, void* /*user*/) {
+                        std::string* /*warn*/, int /*width*/, int /*height*/, const unsigned char* bytes,
+                        int size, void* /*user*/) {
   image->image.assign(bytes, bytes + size);
   image->as_is = true;
   return true;

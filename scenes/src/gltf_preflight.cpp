@@ -56,15 +56,16 @@ void check_asset(const json& doc, const Diagnostics& diagnostics) {
   if (asset == doc.end() || !asset->is_object()) diagnostics.fail("'asset' object missing");
   const std::string version = string_member(*asset, "version");
   if (version.empty()) diagnostics.fail("asset.version missing");
-  if (version.rfind("2.", 0) != 0) diagnostics.fail("asset.version '{}' is not supported (glTF 2.x only)", version);
+  if (version.rfind("2.", 0) != 0)
+    diagnostics.fail("asset.version '{}' is not supported (glTF 2.x only)", version);
 }
 
 void check_required_extensions(const json& doc, const Diagnostics& diagnostics) {
   for (const json& name : array_member(doc, "extensionsRequired")) {
     if (!name.is_string()) diagnostics.fail("extensionsRequired holds a non-string entry");
     if (!is_supported_extension(name.get<std::string>())) {
-      diagnostics.fail("required extension {} is not supported (supported: {})",
-                       name.get<std::string>(), fmt::join(supported_extensions(), ", "));
+      diagnostics.fail("required extension {} is not supported (supported: {})", name.get<std::string>(),
+                       fmt::join(supported_extensions(), ", "));
     }
   }
 }
@@ -100,7 +101,8 @@ std::vector<uint64_t> check_buffers(const json& doc, const GltfFile& file, const
       const auto size = data_uri_size(uri);
       if (!size) diagnostics.fail("buffer {} data URI is not valid base64", i);
       if (*size != *byte_length)
-        diagnostics.fail("buffer {} data URI holds {} bytes but its byteLength is {}", i, *size, *byte_length);
+        diagnostics.fail("buffer {} data URI holds {} bytes but its byteLength is {}", i, *size,
+                         *byte_length);
     } else {
       const fs::path path = resolve_uri(file.path.parent_path(), uri);
       std::error_code ec;
@@ -135,8 +137,10 @@ void check_images(const json& doc, const GltfFile& file, const std::vector<uint6
         diagnostics.fail("image {} bufferView {} has no valid buffer and byteLength", i, *view_index);
       const uint64_t size = buffer_sizes[*buffer];
       if (offset > size || *length > size - offset)
-        diagnostics.fail("image {} bufferView {} (byteOffset {}, byteLength {}) reads past the end of buffer {} ({} bytes)",
-                         i, *view_index, offset, *length, *buffer, size);
+        diagnostics.fail(
+            "image {} bufferView {} (byteOffset {}, byteLength {}) reads past the end of buffer {} ({} "
+            "bytes)",
+            i, *view_index, offset, *length, *buffer, size);
       continue;
     }
     const std::string uri = string_member(image, "uri");

@@ -10,14 +10,22 @@ namespace {
 
 const char* mode_name(int mode) {
   switch (mode) {
-    case TINYGLTF_MODE_POINTS: return "POINTS";
-    case TINYGLTF_MODE_LINE: return "LINES";
-    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
-    case 3: return "LINE_STRIP";
-    case TINYGLTF_MODE_TRIANGLES: return "TRIANGLES";
-    case TINYGLTF_MODE_TRIANGLE_STRIP: return "TRIANGLE_STRIP";
-    case TINYGLTF_MODE_TRIANGLE_FAN: return "TRIANGLE_FAN";
-    default: return "unknown";
+    case TINYGLTF_MODE_POINTS:
+      return "POINTS";
+    case TINYGLTF_MODE_LINE:
+      return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP:
+      return "LINE_LOOP";
+    case 3:
+      return "LINE_STRIP";
+    case TINYGLTF_MODE_TRIANGLES:
+      return "TRIANGLES";
+    case TINYGLTF_MODE_TRIANGLE_STRIP:
+      return "TRIANGLE_STRIP";
+    case TINYGLTF_MODE_TRIANGLE_FAN:
+      return "TRIANGLE_FAN";
+    default:
+      return "unknown";
   }
 }
 
@@ -26,36 +34,29 @@ bool draws_triangles(int mode) {
          mode == TINYGLTF_MODE_TRIANGLE_FAN;
 }
 
+// Components the accessor lacks (alpha of an RGB colour) come from `fill`.
 template <typename Vec>
-std::vector<Vec> to_vectors(const FloatElements& elements) {
-  std::vector<Vec> out(elements.count, Vec(0.0f));
+std::vector<Vec> to_vectors(const FloatElements& elements, const Vec& fill = Vec(0.0f)) {
+  std::vector<Vec> out(elements.count, fill);
   const int n = std::min(elements.components, static_cast<int>(Vec::length()));
   for (size_t i = 0; i < elements.count; ++i)
-    for (int c = 0; c < n; ++c) out[i][c] = elements.values[i * static_cast<size_t>(elements.components) + static_cast<size_t>(c)];
+    for (int c = 0; c < n; ++c)
+      out[i][c] = elements.values[i * static_cast<size_t>(elements.components) + static_cast<size_t>(c)];
   return out;
 }
 
 // Reads an optional attribute, checking that it has one element per position.
 template <typename Vec>
-std::vector<Vec> read_attribute(const GltfContext& ctx, const tinygltf::Primitive& primitive, const char* name,
-                                const std::string& where, size_t vertex_count, const FloatFormat& format) {
+std::vector<Vec> read_attribute(const GltfContext& ctx, const tinygltf::Primitive& primitive,
+                                const char* name, const std::string& where, size_t vertex_count,
+                                const FloatFormat& format, const Vec& fill = Vec(0.0f)) {
   const auto it = primitive.attributes.find(name);
   if (it == primitive.attributes.end()) return {};
   const FloatElements elements = read_floats(ctx, it->second, std::string(name) + " of " + where, format);
   if (elements.count != vertex_count)
     ctx.fail("{} attribute {} (accessor {}) has {} elements but POSITION has {}", where, name, it->second,
              elements.count, vertex_count);
-  return to_vectors<Vec>(elements);
-}
-
-std::vector<glm::vec4> read_colors(const GltfContext& ctx, const tinygltf::Primitive& primitive,
-                                   const std::string& where, size_t vertex_count) {
-  std::vector<glm::vec4> colors = read_attribute<glm::vec4>(
-      ctx, primitive, "COLOR_0", where, vertex_count, {{TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, true});
-  const int accessor = colors.empty() ? -1 : primitive.attributes.at("COLOR_0");
-  if (accessor >= 0 && ctx.model.accessors[static_cast<size_t>(accessor)].type == TINYGLTF_TYPE_VEC3)
-    for (glm::vec4& c : colors) c.w = 1.0f;  // RGB colours are opaque
-  return colors;
+  return to_vectors<Vec>(elements, fill);
 }
 
 std::vector<uint32_t> read_checked_indices(const GltfContext& ctx, const tinygltf::Primitive& primitive,
@@ -109,14 +110,18 @@ std::optional<PrimitiveData> read_primitive(const GltfContext& ctx, int mesh_ind
   if (position == primitive.attributes.end()) ctx.fail("{} has no POSITION attribute", where);
 
   PrimitiveData data;
-  data.positions = to_vectors<glm::vec3>(read_floats(ctx, position->second, "POSITION of " + where, {{TINYGLTF_TYPE_VEC3}}));
+  data.positions = to_vectors<glm::vec3>(
+      read_floats(ctx, position->second, "POSITION of " + where, {{TINYGLTF_TYPE_VEC3}}));
   const size_t n = data.positions.size();
   data.normals = read_attribute<glm::vec3>(ctx, primitive, "NORMAL", where, n, {{TINYGLTF_TYPE_VEC3}});
   data.tangents = read_attribute<glm::vec4>(ctx, primitive, "TANGENT", where, n, {{TINYGLTF_TYPE_VEC4}});
   const FloatFormat uv_format{{TINYGLTF_TYPE_VEC2}, true};
   data.texcoords0 = read_attribute<glm::vec2>(ctx, primitive, "TEXCOORD_0", where, n, uv_format);
   data.texcoords1 = read_attribute<glm::vec2>(ctx, primitive, "TEXCOORD_1", where, n, uv_format);
-  data.colors = read_colors(ctx, primitive, where, n);
+  const FloatFormat colour_format{{TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, true};
+  // RGB colours are opaque.
+  data.colors =
+      read_attribute<glm::vec4>(ctx, primitive, "COLOR_0", where, n, colour_format, glm::vec4(0, 0, 0, 1));
 
   const std::vector<uint32_t> indices = read_checked_indices(ctx, primitive, where, n);
   if (mode == TINYGLTF_MODE_TRIANGLES && indices.size() % 3 != 0)

@@ -12,11 +12,11 @@ namespace phyir::scenes::gltf {
 
 struct PrimitiveData {
   std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals;     // empty when the file has none
+  std::vector<glm::vec3> normals;  // empty when the file has none
   std::vector<glm::vec4> tangents;
   std::vector<glm::vec2> texcoords0;
   std::vector<glm::vec2> texcoords1;
-  std::vector<glm::vec4> colors;      // COLOR_0 as linear RGBA
+  std::vector<glm::vec4> colors;  // COLOR_0 as linear RGBA
   std::vector<glm::uvec3> triangles;
 };
 

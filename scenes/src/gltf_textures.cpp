@@ -9,9 +9,12 @@ namespace {
 
 WrapMode wrap_mode(const GltfContext& ctx, int sampler, int gl_wrap) {
   switch (gl_wrap) {
-    case TINYGLTF_TEXTURE_WRAP_REPEAT: return WrapMode::Repeat;
-    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return WrapMode::ClampToEdge;
-    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return WrapMode::MirroredRepeat;
+    case TINYGLTF_TEXTURE_WRAP_REPEAT:
+      return WrapMode::Repeat;
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+      return WrapMode::ClampToEdge;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+      return WrapMode::MirroredRepeat;
     default:
       ctx.warn("sampler {} has unknown wrap mode {}: REPEAT used", sampler, gl_wrap);
       return WrapMode::Repeat;
@@ -24,8 +27,10 @@ std::vector<glm::vec4> to_rgba(const Image& image) {
   const int c = image.channels;
   for (size_t i = 0; i < texels.size(); ++i) {
     const float* p = &image.pixels[i * static_cast<size_t>(c)];
-    if (c >= 3) texels[i] = glm::vec4(p[0], p[1], p[2], c >= 4 ? p[3] : 1.0f);
-    else texels[i] = glm::vec4(p[0], p[0], p[0], c == 2 ? p[1] : 1.0f);
+    if (c >= 3)
+      texels[i] = glm::vec4(p[0], p[1], p[2], c >= 4 ? p[3] : 1.0f);
+    else
+      texels[i] = glm::vec4(p[0], p[0], p[0], c == 2 ? p[1] : 1.0f);
   }
   return texels;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "phyir/core/safe_math.h"
 #include "phyir/scenes/room_layout.h"
 #include "room_plan_steps.h"
 
@@ -37,6 +38,36 @@ glm::vec3 sample_point(const RoomLayout& layout, Pcg32& rng) {
   const float y = rng.uniform(kViewpointMinHeight, kViewpointMaxHeight);
   const float z = rng.uniform(-0.5f * layout.shell.depth, 0.5f * layout.shell.depth);
   return {to_millimetres(x), to_millimetres(y), to_millimetres(z)};
+}
+
+// A level view direction for the camera: of 16 headings, the one that sees the most floor
+// furniture (centres within 0.7 rad, about the horizontal half-field of yfov 1.2 at 3:2),
+// ties going to the longest look across the room. Returns a point 1 m away that way.
+glm::vec3 aim_camera(const RoomLayout& layout, const glm::vec3& eye) {
+  constexpr int kHeadings = 16;
+  constexpr float kHalfView = 0.7f;
+  glm::vec2 best_dir(0.0f, -1.0f);
+  int best_seen = -1;
+  float best_reach = -1.0f;
+  for (int k = 0; k < kHeadings; ++k) {
+    const float yaw = kTwoPi * static_cast<float>(k) / kHeadings;
+    const glm::vec2 dir(std::sin(yaw), std::cos(yaw));
+    int seen = 0;
+    for (const RoomObject& object : layout.objects) {
+      if (object.mount != Mount::Floor) continue;
+      const glm::vec3 c = object.bounds.centre();
+      const glm::vec2 to(c.x - eye.x, c.z - eye.z);
+      if (glm::dot(to, dir) > std::cos(kHalfView) * glm::length(to)) ++seen;
+    }
+    float reach = 0.0f;  // to the wall, in 5 cm steps
+    while (layout.shell.contains(glm::vec2(eye.x, eye.z) + (reach + 0.05f) * dir, 0.0f)) reach += 0.05f;
+    if (seen > best_seen || (seen == best_seen && reach > best_reach)) {
+      best_seen = seen;
+      best_reach = reach;
+      best_dir = dir;
+    }
+  }
+  return eye + glm::vec3(best_dir.x, 0.0f, best_dir.y);
 }
 
 }  // namespace
@@ -73,17 +104,7 @@ bool plan_viewpoints(RoomLayout& layout, Pcg32 rng) {
     if (clearance(layout, points[i]) > clearance(layout, points[camera])) camera = i;
   }
   layout.camera_position = points[camera];
-  // A level view towards the farthest corner of the floor: the longest look across the room.
-  glm::vec2 farthest(0.0f);
-  float best = -1.0f;
-  for (const glm::vec2& corner : layout.shell.outline()) {
-    const float d = glm::distance(corner, glm::vec2(points[camera].x, points[camera].z));
-    if (d > best) {
-      best = d;
-      farthest = corner;
-    }
-  }
-  layout.camera_target = {farthest.x, points[camera].y, farthest.y};
+  layout.camera_target = aim_camera(layout, points[camera]);
   layout.candidate_viewpoints.clear();
   for (size_t i = 0; i < points.size(); ++i) {
     if (i != camera) layout.candidate_viewpoints.push_back(points[i]);

@@ -35,8 +35,8 @@ glm::vec3 mean_texel(const Texture& texture) {
 struct EmitterSummary {
   size_t meshes = 0;
   size_t triangles = 0;
-  double area = 0.0;         // m^2
-  glm::dvec3 power{0.0};     // W per channel
+  double area = 0.0;      // m^2
+  glm::dvec3 power{0.0};  // W per channel
 };
 
 // Each emissive triangle as a Lambertian emitter of radiance L: flux = pi * L * area, per
@@ -50,7 +50,8 @@ EmitterSummary summarize_emitters(const Scene& scene) {
     if (!m.is_emissive()) continue;
     glm::vec3 radiance = m.emission();
     const int t = m.emissive_texture.texture;
-    if (t >= 0 && static_cast<size_t>(t) < scene.textures.size()) radiance *= mean_texel(scene.textures[static_cast<size_t>(t)]);
+    if (t >= 0 && static_cast<size_t>(t) < scene.textures.size())
+      radiance *= mean_texel(scene.textures[static_cast<size_t>(t)]);
     double area = 0.0;
     for (const glm::uvec3& tri : mesh.triangles) {
       const glm::dvec3 a(mesh.positions[tri.x]), b(mesh.positions[tri.y]), c(mesh.positions[tri.z]);
@@ -161,7 +162,8 @@ json scene_info_json(const Scene& scene) {
             {"power_luminance_w", luminance(glm::vec3(emitters.power))}}},
           {"cameras", cameras_json(scene)},
           {"candidate_viewpoints", viewpoints},
-          {"bounds", bounds.empty() ? json(nullptr) : json{{"min", to_json(bounds.min)}, {"max", to_json(bounds.max)}}},
+          {"bounds",
+           bounds.empty() ? json(nullptr) : json{{"min", to_json(bounds.min)}, {"max", to_json(bounds.max)}}},
           {"warnings", scene.warnings}};
 }
 
@@ -169,15 +171,17 @@ std::string scene_info_text(const Scene& scene) {
   const SourceInfo& s = scene.info;
   std::string out = fmt::format("scene: {}\n", scene.source);
   if (!s.generator.empty()) out += fmt::format("generator: {}\n", s.generator);
-  out += fmt::format("file: {} nodes, {} meshes ({} primitives), {} mesh instances in scene {}, {} materials, "
-                     "{} textures, {} images, {} samplers, {} cameras\n",
-                     s.nodes, s.meshes, s.primitives, s.mesh_instances, s.default_scene, s.materials, s.textures,
-                     s.images, s.samplers, s.cameras);
-  if (!s.extensions_used.empty()) out += fmt::format("extensions used: {}\n", fmt::join(s.extensions_used, ", "));
+  out += fmt::format(
+      "file: {} nodes, {} meshes ({} primitives), {} mesh instances in scene {}, {} materials, "
+      "{} textures, {} images, {} samplers, {} cameras\n",
+      s.nodes, s.meshes, s.primitives, s.mesh_instances, s.default_scene, s.materials, s.textures, s.images,
+      s.samplers, s.cameras);
+  if (!s.extensions_used.empty())
+    out += fmt::format("extensions used: {}\n", fmt::join(s.extensions_used, ", "));
   if (!s.extensions_required.empty())
     out += fmt::format("extensions required: {}\n", fmt::join(s.extensions_required, ", "));
-  out += fmt::format("geometry: {} meshes, {} triangles, {} vertices\n", scene.meshes.size(), scene.triangle_count(),
-                     vertex_count(scene));
+  out += fmt::format("geometry: {} meshes, {} triangles, {} vertices\n", scene.meshes.size(),
+                     scene.triangle_count(), vertex_count(scene));
   const Bounds bounds = scene.compute_bounds();
   if (!bounds.empty())
     out += fmt::format("bounds: {} to {}, size {}\n", format_vec3(bounds.min), format_vec3(bounds.max),
@@ -189,21 +193,25 @@ std::string scene_info_text(const Scene& scene) {
     const Material& m = scene.materials[i];
     const auto count = uses.find(static_cast<int>(i));
     std::vector<std::string> notes{fmt::format("{} meshes", count != uses.end() ? count->second : 0)};
-    if (const auto t = texture_uses(m); !t.empty()) notes.push_back(fmt::format("textures {}", fmt::join(t, "+")));
+    if (const auto t = texture_uses(m); !t.empty())
+      notes.push_back(fmt::format("textures {}", fmt::join(t, "+")));
     if (!m.extensions.empty()) notes.push_back(fmt::format("{}", fmt::join(m.extensions, ", ")));
     if (m.is_emissive()) notes.push_back(fmt::format("emissive {}", format_vec3(m.emission())));
-    if (m.is_transmissive()) notes.push_back(fmt::format("transmissive {:.2f}, ior {:.2f}", m.transmission_factor, m.ior));
+    if (m.is_transmissive())
+      notes.push_back(fmt::format("transmissive {:.2f}, ior {:.2f}", m.transmission_factor, m.ior));
     out += fmt::format("  [{}] {}: {}\n", i, m.name.empty() ? "(unnamed)" : m.name, fmt::join(notes, "; "));
   }
 
   const EmitterSummary e = summarize_emitters(scene);
-  out += fmt::format("emitters: {} meshes, {} triangles, {:.4g} m^2, power about {:.4g} W (RGB {})\n", e.meshes,
-                     e.triangles, e.area, luminance(glm::vec3(e.power)), format_vec3(glm::vec3(e.power)));
+  out +=
+      fmt::format("emitters: {} meshes, {} triangles, {:.4g} m^2, power about {:.4g} W (RGB {})\n", e.meshes,
+                  e.triangles, e.area, luminance(glm::vec3(e.power)), format_vec3(glm::vec3(e.power)));
   out += fmt::format("cameras ({}):\n", scene.cameras.size());
   for (const Camera& c : scene.cameras) {
-    out += fmt::format("  {}: {} at {}, forward {}\n", c.name,
-                       c.perspective ? fmt::format("perspective yfov {:.1f} deg", c.yfov * 180.0f / kPi) : "orthographic",
-                       format_vec3(c.position), format_vec3(c.forward));
+    out += fmt::format(
+        "  {}: {} at {}, forward {}\n", c.name,
+        c.perspective ? fmt::format("perspective yfov {:.1f} deg", c.yfov * 180.0f / kPi) : "orthographic",
+        format_vec3(c.position), format_vec3(c.forward));
   }
   out += fmt::format("candidate viewpoints: {}\n", scene.candidate_viewpoints.size());
   out += fmt::format("warnings ({}):\n", scene.warnings.size());

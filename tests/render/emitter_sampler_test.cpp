@@ -150,16 +150,18 @@ TEST(EmitterSampler, PdfIntegratesToOneOverTheSphere) {
   EXPECT_NEAR(est.mean, 1.0, 0.02);
 }
 
-double fraction_picking_mesh(const EmitterSampler& sampler, int mesh, int n) {
+double fraction_picking_mesh(const EmitterSampler& sampler, int mesh, int n, const glm::vec3& reference) {
   Rng rng(3, 3);
   int hits = 0;
   for (int i = 0; i < n; ++i) {
     EmitterSample s;
-    if (sampler.sample({0, 0, 0}, rng.next_float(), rng.next_2d(), &s) && s.mesh == mesh) ++hits;
+    if (sampler.sample(reference, rng.next_float(), rng.next_2d(), &s) && s.mesh == mesh) ++hits;
   }
   return double(hits) / n;
 }
 
+// Selection is power / distance^2 per cluster: seen from a point equidistant from both
+// lights' centres it is power alone.
 TEST(EmitterSampler, LightsArePickedInProportionToPower) {
   const int n = 200000;
   const double sigma = std::sqrt(0.75 * 0.25 / n);
@@ -169,7 +171,7 @@ TEST(EmitterSampler, LightsArePickedInProportionToPower) {
     add_quad(scene, {0.5f, 2, -1}, {1, 0, 0}, {0, 0, 1}, add_material(scene, make_emitter(glm::vec3(1.0f))));
     const EmitterSampler sampler(scene);
     EXPECT_NEAR(sampler.total_power(), 3.0f + 1.0f, 1e-5f);
-    const double f = fraction_picking_mesh(sampler, bright, n);
+    const double f = fraction_picking_mesh(sampler, bright, n, {0.25f, -50.0f, -0.5f});
     std::cout << "radiance 3:1 -> picked " << f << " : " << 1 - f << "\n";
     EXPECT_NEAR(f, 0.75, 4.0 * sigma);
   }
@@ -179,7 +181,7 @@ TEST(EmitterSampler, LightsArePickedInProportionToPower) {
     const int big = add_quad(scene, {-4, 2, -1}, {3, 0, 0}, {0, 0, 1}, mat);
     add_quad(scene, {0.5f, 2, -1}, {1, 0, 0}, {0, 0, 1}, mat);
     const EmitterSampler sampler(scene);
-    EXPECT_NEAR(fraction_picking_mesh(sampler, big, n), 0.75, 4.0 * sigma);
+    EXPECT_NEAR(fraction_picking_mesh(sampler, big, n, {-0.75f, -50.0f, -0.5f}), 0.75, 4.0 * sigma);
   }
   {  // Equal factors, emissive textures of mean luminance 1.5 : 0.5 (grey texels).
     scenes::Scene scene;
@@ -189,8 +191,31 @@ TEST(EmitterSampler, LightsArePickedInProportionToPower) {
     const int brighter = add_quad(scene, {-1, 2, -1}, {1, 0, 0}, {0, 0, 1}, add_material(scene, a));
     add_quad(scene, {0.5f, 2, -1}, {1, 0, 0}, {0, 0, 1}, add_material(scene, b));
     const EmitterSampler sampler(scene);
-    EXPECT_NEAR(fraction_picking_mesh(sampler, brighter, n), 0.75, 4.0 * sigma);
+    EXPECT_NEAR(fraction_picking_mesh(sampler, brighter, n, {0.25f, -50.0f, -0.5f}), 0.75, 4.0 * sigma);
   }
+}
+
+TEST(EmitterSampler, NearerAndFacingLightsArePickedMore) {
+  scenes::Scene scene;
+  const int mat = add_material(scene, make_emitter(glm::vec3(1.0f)));
+  // Two equal down-facing lights at heights 2 and 4 above the origin, and one facing up
+  // (away from any point below it).
+  const int near_light = add_quad(scene, {-0.5f, 2, -0.5f}, {1, 0, 0}, {0, 0, 1}, mat);
+  const int far_light = add_quad(scene, {3.5f, 4, -0.5f}, {1, 0, 0}, {0, 0, 1}, mat);
+  const int up_light = add_quad(scene, {-0.5f, 1, 3.0f}, {0, 0, 1}, {1, 0, 0}, mat);
+  const EmitterSampler sampler(scene);
+  ASSERT_EQ(sampler.cluster_count(), 3u);
+  const int n = 100000;
+  EXPECT_EQ(fraction_picking_mesh(sampler, up_light, n, {0, 0, 0}), 0.0);
+  // Weights cos_bound / d^2 to the centres: the near light is straight above (cos 1,
+  // d^2 = 4); the far one has d^2 = 4^2 + 4^2 and cos bound 4 / |(3.5, 4, 0)| at the
+  // nearest point of its bounds.
+  const double w_near = 1.0 / 4.0, w_far = 4.0 / std::sqrt(3.5 * 3.5 + 16.0) / 32.0;
+  const double p_near = w_near / (w_near + w_far);
+  EXPECT_NEAR(fraction_picking_mesh(sampler, near_light, n, {0, 0, 0}), p_near, 4.0 * std::sqrt(0.1 / n));
+  EXPECT_NEAR(fraction_picking_mesh(sampler, far_light, n, {0, 0, 0}), 1.0 - p_near, 4.0 * std::sqrt(0.1 / n));
+  // Above every light only the up-facing one can light the point.
+  EXPECT_EQ(fraction_picking_mesh(sampler, up_light, n, {0, 5.0f, 3.5f}), 1.0);
 }
 
 TEST(EmitterSampler, OneSidedEmitterIsDarkFromBehind) {

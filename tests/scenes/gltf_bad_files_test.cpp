@@ -13,10 +13,10 @@
 namespace phyir::scenes {
 namespace {
 
-using ::testing::AllOf;
-using ::testing::HasSubstr;
 using nlohmann::json;
 using test::GltfBuilder;
+using ::testing::AllOf;
+using ::testing::HasSubstr;
 
 std::filesystem::path fixture(const std::string& name) {
   return std::filesystem::path(PHYIR_TEST_DATA_DIR) / "gltf" / name;
@@ -43,7 +43,7 @@ GltfBuilder triangle_builder() {
 
 TEST(GltfBadFiles, TruncatedJson) {
   EXPECT_THAT(load_error(fixture("truncated.gltf")),
-              AllOf(HasSubstr("truncated.gltf: invalid JSON"), HasSubstr("line 5")));
+              AllOf(HasSubstr("truncated.gltf: invalid JSON"), HasSubstr("unexpected end of input")));
 }
 
 TEST(GltfBadFiles, MissingFile) {
@@ -59,7 +59,8 @@ TEST(GltfBadFiles, BinShorterThanItsByteLength) {
   GltfBuilder b = triangle_builder();
   const std::filesystem::path path = b.write_gltf(test::fresh_test_dir(), "short");
   std::filesystem::resize_file(path.parent_path() / "short.bin", 20);
-  EXPECT_THAT(load_error(path), HasSubstr("short.gltf: buffer 0 uri 'short.bin' holds 20 bytes but its byteLength is"));
+  EXPECT_THAT(load_error(path),
+              HasSubstr("short.gltf: buffer 0 uri 'short.bin' holds 20 bytes but its byteLength is"));
 }
 
 TEST(GltfBadFiles, AccessorReadsPastItsBufferView) {
@@ -74,44 +75,52 @@ TEST(GltfBadFiles, BufferViewReadsPastItsBuffer) {
   GltfBuilder b = triangle_builder();
   b.doc["bufferViews"][0]["byteOffset"] = 40;
   EXPECT_THAT(load_error(b.write_gltf(test::fresh_test_dir(), "view")),
-              AllOf(HasSubstr("view.gltf: bufferView 0 (byteOffset 40, byteLength 36) reads past the end of buffer 0")));
+              AllOf(HasSubstr(
+                  "view.gltf: bufferView 0 (byteOffset 40, byteLength 36) reads past the end of buffer 0")));
 }
 
 TEST(GltfBadFiles, HugeCountDoesNotOverflow) {
   GltfBuilder b = triangle_builder();
   b.doc["accessors"][0]["count"] = std::numeric_limits<uint64_t>::max() / 2;
-  EXPECT_THAT(load_error(b.write_gltf(test::fresh_test_dir(), "huge")),
-              HasSubstr("huge.gltf: accessor 0 (POSITION of mesh 0 'tri' primitive 0) reads past the end of bufferView 0"));
+  EXPECT_THAT(
+      load_error(b.write_gltf(test::fresh_test_dir(), "huge")),
+      HasSubstr(
+          "huge.gltf: accessor 0 (POSITION of mesh 0 'tri' primitive 0) reads past the end of bufferView 0"));
 }
 
 TEST(GltfBadFiles, IndexOutOfRange) {
   GltfBuilder b;
   b.add_triangles("tri", test::unit_triangle(), {0, 1, 7});
   b.set_scene({b.add_node({{"mesh", 0}})});
-  EXPECT_THAT(load_error(b.write_gltf(test::fresh_test_dir(), "index")),
-              HasSubstr("index.gltf: index 7 (element 2 of accessor 1) is out of range for mesh 0 'tri' primitive 0 "
-                        "with 3 vertices"));
+  EXPECT_THAT(
+      load_error(b.write_gltf(test::fresh_test_dir(), "index")),
+      HasSubstr("index.gltf: index 7 (element 2 of accessor 1) is out of range for mesh 0 'tri' primitive 0 "
+                "with 3 vertices"));
 }
 
 TEST(GltfBadFiles, NanPosition) {
   GltfBuilder b;
   b.add_triangles("tri", {{0, 0, 0}, {std::numeric_limits<float>::quiet_NaN(), 0, 0}, {0, 1, 0}}, {0, 1, 2});
   b.set_scene({b.add_node({{"mesh", 0}})});
-  EXPECT_THAT(load_error(b.write_gltf(test::fresh_test_dir(), "nan")),
-              HasSubstr("nan.gltf: accessor 0 (POSITION of mesh 0 'tri' primitive 0) element 1 is not finite"));
+  EXPECT_THAT(
+      load_error(b.write_gltf(test::fresh_test_dir(), "nan")),
+      HasSubstr("nan.gltf: accessor 0 (POSITION of mesh 0 'tri' primitive 0) element 1 is not finite"));
 }
 
 TEST(GltfBadFiles, InfinitePositionInGlb) {
   GltfBuilder b;
   b.add_triangles("tri", {{0, 0, 0}, {1, 0, 0}, {0, std::numeric_limits<float>::infinity(), 0}}, {});
   b.set_scene({b.add_node({{"mesh", 0}})});
-  EXPECT_THAT(load_error(b.write_glb(test::fresh_test_dir(), "inf")),
-              HasSubstr("inf.glb: accessor 0 (POSITION of mesh 0 'tri' primitive 0) element 2 is not finite"));
+  EXPECT_THAT(
+      load_error(b.write_glb(test::fresh_test_dir(), "inf")),
+      HasSubstr("inf.glb: accessor 0 (POSITION of mesh 0 'tri' primitive 0) element 2 is not finite"));
 }
 
 TEST(GltfBadFiles, UnknownRequiredExtension) {
-  EXPECT_THAT(load_error(fixture("unknown_required_extension.gltf")),
-              HasSubstr("unknown_required_extension.gltf: required extension KHR_draco_mesh_compression is not supported"));
+  EXPECT_THAT(
+      load_error(fixture("unknown_required_extension.gltf")),
+      HasSubstr(
+          "unknown_required_extension.gltf: required extension KHR_draco_mesh_compression is not supported"));
 }
 
 TEST(GltfBadFiles, MissingTextureImage) {
@@ -122,49 +131,60 @@ TEST(GltfBadFiles, MissingTextureImage) {
 
 TEST(GltfBadFiles, WrongAccessorTypeForAttribute) {
   GltfBuilder b = triangle_builder();
-  b.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = b.add_floats(std::vector<glm::vec2>(3, {0, 1}));
-  EXPECT_THAT(load_error(b.write_gltf(test::fresh_test_dir(), "type")),
-              HasSubstr("type.gltf: accessor 2 (NORMAL of mesh 0 'tri' primitive 0) has type VEC2, expected VEC3"));
+  b.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] =
+      b.add_floats(std::vector<glm::vec2>(3, {0, 1}));
+  EXPECT_THAT(
+      load_error(b.write_gltf(test::fresh_test_dir(), "type")),
+      HasSubstr("type.gltf: accessor 2 (NORMAL of mesh 0 'tri' primitive 0) has type VEC2, expected VEC3"));
 }
 
 TEST(GltfBadFiles, AttributeCountDiffersFromPositions) {
   GltfBuilder b = triangle_builder();
-  b.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = b.add_floats(std::vector<glm::vec3>(2, {0, 0, 1}));
+  b.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] =
+      b.add_floats(std::vector<glm::vec3>(2, {0, 0, 1}));
   EXPECT_THAT(load_error(b.write_gltf(test::fresh_test_dir(), "count")),
-              HasSubstr("count.gltf: mesh 0 'tri' primitive 0 attribute NORMAL (accessor 2) has 2 elements but POSITION has 3"));
+              HasSubstr("count.gltf: mesh 0 'tri' primitive 0 attribute NORMAL (accessor 2) has 2 elements "
+                        "but POSITION has 3"));
 }
 
 TEST(GltfBadFiles, SparseIndexOutOfRange) {
   GltfBuilder b = triangle_builder();
   const std::vector<uint16_t> index{9};
   const glm::vec3 value(1.0f);
-  b.doc["accessors"][0]["sparse"] = {{"count", 1},
-                                     {"indices", {{"bufferView", b.add_view(index.data(), 2)}, {"componentType", 5123}}},
-                                     {"values", {{"bufferView", b.add_view(&value, 12)}}}};
+  b.doc["accessors"][0]["sparse"] = {
+      {"count", 1},
+      {"indices", {{"bufferView", b.add_view(index.data(), 2)}, {"componentType", 5123}}},
+      {"values", {{"bufferView", b.add_view(&value, 12)}}}};
   EXPECT_THAT(load_error(b.write_gltf(test::fresh_test_dir(), "sparse")),
-              HasSubstr("sparse.gltf: accessor 0 (POSITION of mesh 0 'tri' primitive 0) sparse index 9 (entry 0) is out of range"));
+              HasSubstr("sparse.gltf: accessor 0 (POSITION of mesh 0 'tri' primitive 0) sparse index 9 "
+                        "(entry 0) is out of range"));
 }
 
 TEST(GltfBadFiles, MissingReferencedObjects) {
   const std::filesystem::path dir = test::fresh_test_dir();
   GltfBuilder b = triangle_builder();
   b.doc["nodes"][0]["mesh"] = 3;
-  EXPECT_THAT(load_error(b.write_gltf(dir, "mesh")), HasSubstr("mesh.gltf: node 0 refers to mesh 3, which does not exist"));
+  EXPECT_THAT(load_error(b.write_gltf(dir, "mesh")),
+              HasSubstr("mesh.gltf: node 0 refers to mesh 3, which does not exist"));
   b = triangle_builder();
   b.doc["meshes"][0]["primitives"][0]["material"] = 2;
-  EXPECT_THAT(load_error(b.write_gltf(dir, "material")),
-              HasSubstr("material.gltf: mesh 0 'tri' primitive 0 refers to material 2, which does not exist"));
+  EXPECT_THAT(
+      load_error(b.write_gltf(dir, "material")),
+      HasSubstr("material.gltf: mesh 0 'tri' primitive 0 refers to material 2, which does not exist"));
   b = triangle_builder();
   b.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 5;
-  EXPECT_THAT(load_error(b.write_gltf(dir, "accessor")),
-              HasSubstr("accessor.gltf: POSITION of mesh 0 'tri' primitive 0 refers to accessor 5, which does not exist"));
+  EXPECT_THAT(
+      load_error(b.write_gltf(dir, "accessor")),
+      HasSubstr(
+          "accessor.gltf: POSITION of mesh 0 'tri' primitive 0 refers to accessor 5, which does not exist"));
 }
 
 TEST(GltfBadFiles, NodeCycle) {
   GltfBuilder b = triangle_builder();
   b.add_node({{"children", {0}}});
   b.doc["nodes"][0]["children"] = {1};
-  EXPECT_THAT(load_error(b.write_gltf(test::fresh_test_dir(), "cycle")), HasSubstr("cycle.gltf: node 0 is reached twice"));
+  EXPECT_THAT(load_error(b.write_gltf(test::fresh_test_dir(), "cycle")),
+              HasSubstr("cycle.gltf: node 0 is reached twice"));
 }
 
 TEST(GltfBadFiles, TruncatedGlb) {
@@ -178,7 +198,8 @@ TEST(GltfBadFiles, TruncatedGlb) {
 // no crash, no other exception type.
 TEST(GltfBadFiles, EveryTruncationIsAnErrorNotACrash) {
   GltfBuilder b = triangle_builder();
-  b.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = b.add_floats(std::vector<glm::vec3>(3, {0, 0, 1}));
+  b.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] =
+      b.add_floats(std::vector<glm::vec3>(3, {0, 0, 1}));
   const std::filesystem::path dir = test::fresh_test_dir();
   const std::string glb = read_file(b.write_glb(dir, "whole"));
   const std::string gltf = read_file(b.write_gltf(dir, "whole"));

@@ -13,10 +13,10 @@
 namespace phyir::scenes {
 namespace {
 
-using ::testing::Contains;
-using ::testing::HasSubstr;
 using nlohmann::json;
 using test::GltfBuilder;
+using ::testing::Contains;
+using ::testing::HasSubstr;
 
 constexpr float kTol = 1e-5f;
 
@@ -27,7 +27,8 @@ void expect_near(const glm::vec3& actual, const glm::vec3& expected, float tol =
 }
 
 glm::vec3 geometric_normal(const Mesh& mesh, const glm::uvec3& t) {
-  return glm::normalize(glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
+  return glm::normalize(
+      glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
 }
 
 bool any_warning_has(const Scene& scene, const std::string& text) {
@@ -50,7 +51,8 @@ TEST(GltfTransforms, TrsHierarchyBakesVertexPosition) {
   b.add_triangles("tri", test::unit_triangle(), {0, 1, 2});
   const int child = b.add_node({{"mesh", 0}, {"translation", {1, 0, 0}}});
   const float s = std::sqrt(0.5f);  // 90 degrees about +Z
-  const int parent = b.add_node({{"children", {child}}, {"translation", {1, 2, 3}}, {"rotation", {0, 0, s, s}}, {"scale", {2, 2, 2}}});
+  const int parent = b.add_node(
+      {{"children", {child}}, {"translation", {1, 2, 3}}, {"rotation", {0, 0, s, s}}, {"scale", {2, 2, 2}}});
   b.set_scene({parent});
   const Scene scene = load_gltf(b.write_gltf(test::fresh_test_dir(), "trs"));
   ASSERT_EQ(scene.meshes.size(), 1u);
@@ -157,17 +159,29 @@ TEST(GltfAttributes, NormalizedTexcoordsColoursStrideAndSmallIndices) {
   // POSITION and NORMAL interleaved in one view with byteStride 24.
   const std::vector<float> interleaved{0, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 1};
   const int view = b.add_view(interleaved.data(), interleaved.size() * sizeof(float), 24);
-  const int position = b.add_accessor({{"bufferView", view}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}});
-  const int normal = b.add_accessor({{"bufferView", view}, {"byteOffset", 12}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}});
+  const int position =
+      b.add_accessor({{"bufferView", view}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}});
+  const int normal = b.add_accessor(
+      {{"bufferView", view}, {"byteOffset", 12}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}});
   const std::vector<uint8_t> uv_bytes{0, 255, 255, 128, 51, 0};
   const int uv_view = b.add_view(uv_bytes.data(), uv_bytes.size());
-  const int uv = b.add_accessor({{"bufferView", uv_view}, {"componentType", 5121}, {"normalized", true}, {"count", 3}, {"type", "VEC2"}});
+  const int uv = b.add_accessor({{"bufferView", uv_view},
+                                 {"componentType", 5121},
+                                 {"normalized", true},
+                                 {"count", 3},
+                                 {"type", "VEC2"}});
   const std::vector<uint16_t> colour_shorts{65535, 0, 0, 0, 65535, 0, 0, 0, 65535};
   const int colour_view = b.add_view(colour_shorts.data(), colour_shorts.size() * 2);
-  const int colour = b.add_accessor({{"bufferView", colour_view}, {"componentType", 5123}, {"normalized", true}, {"count", 3}, {"type", "VEC3"}});
+  const int colour = b.add_accessor({{"bufferView", colour_view},
+                                     {"componentType", 5123},
+                                     {"normalized", true},
+                                     {"count", 3},
+                                     {"type", "VEC3"}});
   const int indices = b.add_indices(std::vector<uint8_t>{0, 1, 2});
-  b.add_mesh("attrs", {{{"attributes", {{"POSITION", position}, {"NORMAL", normal}, {"TEXCOORD_0", uv}, {"COLOR_0", colour}}},
-                        {"indices", indices}}});
+  b.add_mesh(
+      "attrs",
+      {{{"attributes", {{"POSITION", position}, {"NORMAL", normal}, {"TEXCOORD_0", uv}, {"COLOR_0", colour}}},
+        {"indices", indices}}});
   b.set_scene({b.add_node({{"mesh", 0}})});
   const Scene scene = load_gltf(b.write_gltf(test::fresh_test_dir(), "attrs"));
   const Mesh& mesh = scene.meshes[0];
@@ -198,8 +212,10 @@ TEST(GltfAttributes, SparseAccessorSubstitutesValues) {
 
 TEST(GltfPrimitives, StripsAndFansBecomeTrianglesWithConsistentWinding) {
   GltfBuilder b;
-  const int strip_positions = b.add_floats(std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 2, 0}});
-  const int fan_positions = b.add_floats(std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 1, 0}});
+  const int strip_positions =
+      b.add_floats(std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 2, 0}});
+  const int fan_positions =
+      b.add_floats(std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 1, 0}});
   b.add_mesh("modes", {{{"attributes", {{"POSITION", strip_positions}}}, {"mode", 5}},
                        {{"attributes", {{"POSITION", fan_positions}}}, {"mode", 6}}});
   b.set_scene({b.add_node({{"mesh", 0}})});
@@ -226,7 +242,8 @@ TEST(GltfPrimitives, PointsAndLinesAreSkippedWithAWarning) {
 TEST(GltfMaterials, DefaultMaterialIsAppendedOnce) {
   GltfBuilder b;
   const int positions = b.add_floats(test::unit_triangle());
-  b.add_mesh("plain", {{{"attributes", {{"POSITION", positions}}}}, {{"attributes", {{"POSITION", positions}}}, {"material", 0}}});
+  b.add_mesh("plain", {{{"attributes", {{"POSITION", positions}}}},
+                       {{"attributes", {{"POSITION", positions}}}, {"material", 0}}});
   b.doc["materials"] = {{{"name", "red"}, {"pbrMetallicRoughness", {{"baseColorFactor", {1, 0, 0, 1}}}}}};
   b.add_node({{"mesh", 0}});
   b.add_node({{"mesh", 0}});
@@ -259,9 +276,12 @@ Scene load_with_material(const json& material, const std::vector<std::string>& e
 }
 
 TEST(GltfMaterials, CoreFactorsAlphaAndSidedness) {
-  const Scene scene = load_with_material({{"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.25, 1, 0.75}},
-                                                                     {"metallicFactor", 0.2}, {"roughnessFactor", 0.7}}},
-                                          {"alphaMode", "MASK"}, {"alphaCutoff", 0.3}, {"doubleSided", true}});
+  const Scene scene = load_with_material(
+      {{"pbrMetallicRoughness",
+        {{"baseColorFactor", {0.5, 0.25, 1, 0.75}}, {"metallicFactor", 0.2}, {"roughnessFactor", 0.7}}},
+       {"alphaMode", "MASK"},
+       {"alphaCutoff", 0.3},
+       {"doubleSided", true}});
   const Material& m = scene.materials[0];
   EXPECT_EQ(m.base_color_factor, glm::vec4(0.5f, 0.25f, 1.0f, 0.75f));
   EXPECT_FLOAT_EQ(m.metallic_factor, 0.2f);
@@ -273,9 +293,10 @@ TEST(GltfMaterials, CoreFactorsAlphaAndSidedness) {
 }
 
 TEST(GltfMaterials, EmissiveStrengthScalesEmission) {
-  const Scene scene = load_with_material(
-      {{"emissiveFactor", {1, 0.5, 0.25}}, {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}}}}},
-      {"KHR_materials_emissive_strength"});
+  const Scene scene =
+      load_with_material({{"emissiveFactor", {1, 0.5, 0.25}},
+                          {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}}}}},
+                         {"KHR_materials_emissive_strength"});
   const Material& m = scene.materials[0];
   EXPECT_TRUE(m.is_emissive());
   EXPECT_EQ(m.emission(), glm::vec3(4, 2, 1));
@@ -284,27 +305,32 @@ TEST(GltfMaterials, EmissiveStrengthScalesEmission) {
 }
 
 TEST(GltfMaterials, TransmissionAndIor) {
-  const Scene scene = load_with_material(
-      {{"extensions",
-        {{"KHR_materials_transmission", {{"transmissionFactor", 0.9}, {"transmissionTexture", {{"index", 0}}}}},
-         {"KHR_materials_ior", {{"ior", 1.33}}}}}},
-      {"KHR_materials_transmission", "KHR_materials_ior"});
+  const Scene scene =
+      load_with_material({{"extensions",
+                           {{"KHR_materials_transmission",
+                             {{"transmissionFactor", 0.9}, {"transmissionTexture", {{"index", 0}}}}},
+                            {"KHR_materials_ior", {{"ior", 1.33}}}}}},
+                         {"KHR_materials_transmission", "KHR_materials_ior"});
   const Material& m = scene.materials[0];
   EXPECT_FLOAT_EQ(m.transmission_factor, 0.9f);
   EXPECT_FLOAT_EQ(m.ior, 1.33f);
   EXPECT_TRUE(m.is_transmissive());
   ASSERT_TRUE(m.transmission_texture.present());
-  EXPECT_EQ(scene.textures[static_cast<size_t>(m.transmission_texture.texture)].encoding, TextureEncoding::LinearData);
+  EXPECT_EQ(scene.textures[static_cast<size_t>(m.transmission_texture.texture)].encoding,
+            TextureEncoding::LinearData);
   EXPECT_THAT(m.extensions, Contains("KHR_materials_transmission"));
   EXPECT_THAT(m.extensions, Contains("KHR_materials_ior"));
 }
 
 TEST(GltfMaterials, TextureTransformOnEveryTextureInfo) {
-  const json transform = {{"KHR_texture_transform", {{"offset", {0.5, 0.25}}, {"rotation", 1.5}, {"scale", {2, 3}}, {"texCoord", 1}}}};
+  const json transform = {{"KHR_texture_transform",
+                           {{"offset", {0.5, 0.25}}, {"rotation", 1.5}, {"scale", {2, 3}}, {"texCoord", 1}}}};
   const Scene scene = load_with_material(
       {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}, {"extensions", transform}}}}},
        {"emissiveTexture", {{"index", 0}, {"texCoord", 1}}},
-       {"extensions", {{"KHR_materials_transmission", {{"transmissionTexture", {{"index", 0}, {"extensions", transform}}}}}}}},
+       {"extensions",
+        {{"KHR_materials_transmission",
+          {{"transmissionTexture", {{"index", 0}, {"extensions", transform}}}}}}}},
       {"KHR_texture_transform", "KHR_materials_transmission"});
   const Material& m = scene.materials[0];
   for (const TextureSlot* slot : {&m.base_color_texture, &m.transmission_texture}) {
@@ -320,10 +346,12 @@ TEST(GltfMaterials, TextureTransformOnEveryTextureInfo) {
 
 TEST(GltfExtensions, UnsupportedUsedExtensionsWarnWithTheirFallback) {
   const Scene scene = load_with_material(
-      {{"extensions", {{"KHR_materials_clearcoat", {{"clearcoatFactor", 1}}}, {"KHR_materials_volume", json::object()}}}},
+      {{"extensions",
+        {{"KHR_materials_clearcoat", {{"clearcoatFactor", 1}}}, {"KHR_materials_volume", json::object()}}}},
       {"KHR_materials_clearcoat", "KHR_materials_volume", "EXT_made_up"});
   EXPECT_THAT(scene.warnings, Contains("KHR_materials_clearcoat ignored: base layer only"));
-  EXPECT_TRUE(any_warning_has(scene, "KHR_materials_volume ignored: glass treated as a solid refractive dielectric"));
+  EXPECT_TRUE(
+      any_warning_has(scene, "KHR_materials_volume ignored: glass treated as a solid refractive dielectric"));
   EXPECT_TRUE(any_warning_has(scene, "EXT_made_up ignored"));
   EXPECT_THAT(scene.materials[0].extensions, Contains("KHR_materials_clearcoat"));
   EXPECT_THAT(scene.info.extensions_used, Contains("EXT_made_up"));
@@ -331,8 +359,11 @@ TEST(GltfExtensions, UnsupportedUsedExtensionsWarnWithTheirFallback) {
 
 TEST(GltfCameras, PerspectivePoseAndOrthographicWarning) {
   GltfBuilder b;
-  b.doc["cameras"] = {{{"name", "eye"}, {"type", "perspective"}, {"perspective", {{"yfov", 0.9}, {"znear", 0.05}, {"aspectRatio", 2.0}}}},
-                      {{"type", "orthographic"}, {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0.1}, {"zfar", 10}}}}};
+  b.doc["cameras"] = {
+      {{"name", "eye"},
+       {"type", "perspective"},
+       {"perspective", {{"yfov", 0.9}, {"znear", 0.05}, {"aspectRatio", 2.0}}}},
+      {{"type", "orthographic"}, {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0.1}, {"zfar", 10}}}}};
   const float s = std::sqrt(0.5f);  // 90 degrees about +Y: -Z turns to -X
   const int eye = b.add_node({{"camera", 0}, {"translation", {1, 2, 3}}, {"rotation", {0, s, 0, s}}});
   const int ortho = b.add_node({{"camera", 1}});
@@ -379,7 +410,8 @@ TEST(GltfScenes, CandidateViewpointsFromSceneExtras) {
   GltfBuilder b;
   b.add_triangles("tri", test::unit_triangle(), {0, 1, 2});
   b.set_scene({b.add_node({{"mesh", 0}})});
-  b.doc["scenes"][0]["extras"] = {{"phyir", {{"candidate_viewpoints", {{1, 1.5, 2}, {-1, 1.2, 0}, {"bad"}}}}}};
+  b.doc["scenes"][0]["extras"] = {
+      {"phyir", {{"candidate_viewpoints", {{1, 1.5, 2}, {-1, 1.2, 0}, {"bad"}}}}}};
   const Scene scene = load_gltf(b.write_gltf(test::fresh_test_dir(), "viewpoints"));
   ASSERT_EQ(scene.candidate_viewpoints.size(), 2u);
   expect_near(scene.candidate_viewpoints[1], {-1, 1.2f, 0});

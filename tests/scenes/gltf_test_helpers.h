@@ -44,7 +44,8 @@ class GltfBuilder {
     while (bin.size() % 4 != 0) bin.push_back(0);
     nlohmann::json view = {{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", size}};
     if (stride != 0) view["byteStride"] = stride;
-    bin.insert(bin.end(), static_cast<const unsigned char*>(data), static_cast<const unsigned char*>(data) + size);
+    bin.insert(bin.end(), static_cast<const unsigned char*>(data),
+               static_cast<const unsigned char*>(data) + size);
     return append("bufferViews", view);
   }
 
@@ -65,7 +66,8 @@ class GltfBuilder {
   int add_indices(const std::vector<T>& indices) {
     const int component = sizeof(T) == 1 ? 5121 : sizeof(T) == 2 ? 5123 : 5125;
     const int view = add_view(indices.data(), indices.size() * sizeof(T));
-    return add_accessor({{"bufferView", view}, {"componentType", component}, {"count", indices.size()}, {"type", "SCALAR"}});
+    return add_accessor(
+        {{"bufferView", view}, {"componentType", component}, {"count", indices.size()}, {"type", "SCALAR"}});
   }
 
   int add_mesh(const std::string& name, const std::vector<nlohmann::json>& primitives) {

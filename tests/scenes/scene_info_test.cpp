@@ -14,14 +14,15 @@
 namespace phyir::scenes {
 namespace {
 
-using ::testing::HasSubstr;
 using nlohmann::json;
 using test::GltfBuilder;
+using ::testing::HasSubstr;
 
 // A 2 m x 1.5 m emissive quad (radiance 5 * (1, 0.5, 0.25)), one-sided, plus a camera.
 Scene load_lamp_scene() {
   GltfBuilder b;
-  b.add_triangles("lamp", {{0, 0, 0}, {2, 0, 0}, {2, 1.5f, 0}, {0, 1.5f, 0}}, {0, 1, 2, 0, 2, 3}, {}, {{"material", 0}});
+  b.add_triangles("lamp", {{0, 0, 0}, {2, 0, 0}, {2, 1.5f, 0}, {0, 1.5f, 0}}, {0, 1, 2, 0, 2, 3}, {},
+                  {{"material", 0}});
   b.doc["materials"] = {{{"name", "panel"},
                          {"emissiveFactor", {1, 0.5, 0.25}},
                          {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 5}}}}}}};

@@ -34,8 +34,10 @@ Scene load_textured(const json& sampler, bool glb = false) {
   write_image(dir / "two_texels.png", image);
   GltfBuilder b;
   b.add_triangles("tri", test::unit_triangle(), {0, 1, 2}, {}, {{"material", 0}});
-  b.doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicRoughnessTexture", {{"index", 0}}}}},
-                         {"emissiveTexture", {{"index", 0}}}}};
+  b.doc["materials"] = {
+      {{"pbrMetallicRoughness",
+        {{"baseColorTexture", {{"index", 0}}}, {"metallicRoughnessTexture", {{"index", 0}}}}},
+       {"emissiveTexture", {{"index", 0}}}}};
   if (glb) {
     // The image inside the binary buffer instead of a file.
     const std::string png = read_file(dir / "two_texels.png");
@@ -72,7 +74,8 @@ TEST(GltfTextures, ColourIsSrgbDecodedDataStaysLinear) {
 
 TEST(GltfTextures, ImageInsideGlbBufferView) {
   const Scene scene = load_textured(json::object(), /*glb=*/true);
-  const Texture& data = scene.textures[static_cast<size_t>(scene.materials[0].metallic_roughness_texture.texture)];
+  const Texture& data =
+      scene.textures[static_cast<size_t>(scene.materials[0].metallic_roughness_texture.texture)];
   ASSERT_EQ(data.texels.size(), 2u);
   EXPECT_NEAR(data.texels[0].x, kLeft[0], 1e-6f);
   EXPECT_NEAR(data.texels[1].y, kRight[1], 1e-6f);
@@ -93,7 +96,8 @@ TEST(GltfTextures, SamplerWrapModesAndNearestMagFilter) {
 TEST(GltfTextures, HandWrittenFixtureWithExternalFilesRelativeToTheGltf) {
   // Loaded through a relative path so that the .bin and the image are found from the
   // .gltf's folder, not from the working directory.
-  const std::filesystem::path fixture = std::filesystem::path(PHYIR_TEST_DATA_DIR) / "gltf" / "textured_quad.gltf";
+  const std::filesystem::path fixture =
+      std::filesystem::path(PHYIR_TEST_DATA_DIR) / "gltf" / "textured_quad.gltf";
   const Scene scene = load_gltf(std::filesystem::relative(fixture));
   ASSERT_EQ(scene.meshes.size(), 1u);
   EXPECT_EQ(scene.meshes[0].texcoords0[0], glm::vec2(0, 1));

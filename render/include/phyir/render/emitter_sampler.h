@@ -1,10 +1,18 @@
 #pragma once
-// Next-event estimation on emissive triangles: picks a triangle with probability
-// proportional to its emitted power (area x luminance of the emission, times the mean of
-// the emissive texture), then a uniform point on it. pdf() returns the solid-angle
-// density of the same strategy, for multiple importance sampling when a BSDF-sampled ray
-// hits an emitter. Empty when the scene has no emitters (then the integrator does no
-// light sampling at all).
+// Next-event estimation on emissive triangles, in two steps:
+//  1. a cluster of emissive triangles (the coplanar triangles of one mesh, e.g. one face
+//     of a light panel, or a whole curved mesh such as a bulb) is picked with probability
+//     proportional to power x (an upper bound of the cosine at the emitter, for planar
+//     clusters) / distance^2 from the reference point; zero when a one-sided planar
+//     cluster faces away from it (it cannot light the point);
+//  2. a triangle of that cluster proportionally to its power (area x luminance of the
+//     emission x mean of the emissive texture), then a uniform point on it.
+// Step 1 is what keeps a ceiling lit by a lamp from wasting its samples on down-facing
+// panels. Scenes with more than kMaxSpatialClusters clusters fall back to pure power
+// selection, which keeps the per-sample cost bounded.
+// pdf() returns the solid-angle density of the same strategy for multiple importance
+// sampling. Empty when the scene has no emitters (the integrator then does no light
+// sampling at all).
 #include <glm/glm.hpp>
 
 #include <vector>
@@ -29,10 +37,13 @@ struct EmitterSample {
 
 class EmitterSampler {
  public:
+  static constexpr int kMaxSpatialClusters = 64;
+
   explicit EmitterSampler(const scenes::Scene& scene);
 
   bool empty() const { return triangles_.empty(); }
   size_t emissive_triangle_count() const { return triangles_.size(); }
+  size_t cluster_count() const { return clusters_.size(); }
   float total_power() const { return distribution_.total(); }
 
   bool sample(const glm::vec3& reference, float u_select, const glm::vec2& u_point,
@@ -50,7 +61,25 @@ class EmitterSampler {
     glm::vec3 p0, p1, p2;
     glm::vec3 normal;  // unit
     float area;
+    int cluster;           // index in clusters_
+    float pmf_in_cluster;  // probability of this triangle once its cluster is picked
   };
+  struct Cluster {
+    std::vector<int> triangles;  // indices in triangles_
+    Distribution1D distribution; // over `triangles`, by power
+    glm::vec3 centre{0.0f};
+    glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
+    float half_diagonal2 = 0.0f; // (half the bounding-box diagonal)^2
+    float power = 0.0f;
+    bool planar = false;           // all triangles in one plane
+    bool one_sided_plane = false;  // planar, emitting from the front only
+    glm::vec3 normal{0.0f};
+    float plane_offset = 0.0f;     // dot(normal, point on the plane)
+  };
+  void build_clusters(const std::vector<float>& weights);
+  // Selection weights of every cluster seen from `reference`; returns their sum.
+  float cluster_weights(const glm::vec3& reference, float* weights) const;
+  float selection_pmf(const glm::vec3& reference, int index) const;
   const scenes::Scene* scene_;
   std::vector<EmissiveTriangle> triangles_;
   // (mesh, triangle) -> index in triangles_: lookup_[first_of_mesh_[mesh] + triangle],
@@ -58,7 +87,9 @@ class EmitterSampler {
   // for meshes without emitters.
   std::vector<int> first_of_mesh_;
   std::vector<int> lookup_;
-  Distribution1D distribution_;
+  Distribution1D distribution_;  // by power over all triangles (fallback selection)
+  std::vector<Cluster> clusters_;
+  bool spatial_ = false;          // clusters used for selection
 };
 
 }  // namespace phyir::render

@@ -124,7 +124,7 @@ struct RoomLayout {
   std::vector<TextureSpec> textures;
   std::vector<RoomObject> objects;
   glm::vec3 camera_position{0.0f};
-  glm::vec3 camera_target{0.0f};  // the camera looks at it (same height: level view)
+  glm::vec3 camera_target{0.0f};  // the camera looks at it (same height: a level view)
   std::vector<glm::vec3> candidate_viewpoints;
 };
 

@@ -1,0 +1,362 @@
+#!/usr/bin/python3
+"""Errors and time to equal error for the phyir / Cycles comparison (scripts/cycles/compare.sh).
+
+    compare.py camera SCENE.gltf
+        prints the world position of the scene's first camera node as x,y,z
+    compare.py analyse --runs DIR --figures DIR --name NAME --spp-list 1,2,... --repeats R
+                       --modes principled,ue4 --reference-spp ours=4096,cycles_principled=4096,...
+        reads DIR (layout written by compare.sh), writes NAME's CSV and PNG figures
+
+Error: relative RMSE = sqrt(mean((a - b)^2)) / mean(|b|) over the RGB channels of every
+pixel, b the reference: the definition of `phyir bench convergence` (core/src/image_error.cpp).
+Time to an error: log-log interpolation between the two sweep points around it.
+Needs Debian's /usr/bin/python3 with python3-numpy, python3-openimageio and python3-matplotlib.
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import sys
+
+import numpy as np
+import OpenImageIO as oiio
+
+TARGETS = (0.10, 0.05, 0.02)
+
+
+# --- glTF camera --------------------------------------------------------------------------
+
+def node_matrix(node):
+    if "matrix" in node:
+        return np.array(node["matrix"], dtype=float).reshape(4, 4).T  # glTF is column-major
+    t = np.array(node.get("translation", [0, 0, 0]), dtype=float)
+    x, y, z, w = node.get("rotation", [0, 0, 0, 1])
+    r = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                  [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                  [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+    s = np.array(node.get("scale", [1, 1, 1]), dtype=float)
+    m = np.eye(4)
+    m[:3, :3] = r * s
+    m[:3, 3] = t
+    return m
+
+
+def camera_position(path):
+    gltf = json.load(open(path))
+    nodes = gltf.get("nodes", [])
+    scene = gltf.get("scenes", [{}])[gltf.get("scene", 0)]
+    stack = [(i, np.eye(4)) for i in scene.get("nodes", [])]
+    while stack:  # depth first, in file order
+        index, parent = stack.pop(0)
+        world = parent @ node_matrix(nodes[index])
+        if "camera" in nodes[index]:
+            return world[:3, 3]
+        stack[0:0] = [(c, world) for c in nodes[index].get("children", [])]
+    sys.exit(f"{path}: no node of the default scene has a camera")
+
+
+# --- images and errors ----------------------------------------------------------------------
+
+def read_exr(path, channels=("R", "G", "B")):
+    image = oiio.ImageInput.open(path)
+    if image is None:
+        sys.exit(f"{path}: cannot open ({oiio.geterror()})")
+    spec = image.spec()
+    pixels = image.read_image(format=oiio.FLOAT)
+    image.close()
+    if pixels is None:
+        sys.exit(f"{path}: cannot read pixels")
+    pixels = pixels.reshape(spec.height, spec.width, spec.nchannels)
+    names = list(spec.channelnames)
+    picked = []
+    for c in channels:
+        matches = [i for i, n in enumerate(names) if n == c or n.endswith("." + c)]
+        if not matches:
+            sys.exit(f"{path}: no channel '{c}' among {names}")
+        picked.append(matches[0])
+    out = pixels[..., picked]
+    if not np.isfinite(out).all():
+        print(f"warning: {path}: {np.count_nonzero(~np.isfinite(out))} non-finite values", file=sys.stderr)
+    return out
+
+
+def relative_rmse(a, b):
+    return float(np.sqrt(np.mean((a.astype(np.float64) - b) ** 2)) / np.mean(np.abs(b)))
+
+
+def rmse(a, b):
+    return float(np.sqrt(np.mean((a.astype(np.float64) - b) ** 2)))
+
+
+def time_to_error(seconds, errors, target):
+    """Seconds at which the (seconds, error) curve first reaches `target`, log-log interpolated.
+
+    Returns (seconds, how): how is "interpolated", "below the first point" (returns the first
+    point's seconds as an upper bound) or "not reached" (None).
+    """
+    for i, (t, e) in enumerate(zip(seconds, errors)):
+        if e <= target:
+            if i == 0:
+                return t, "at or below the first point"
+            t0, e0 = seconds[i - 1], errors[i - 1]
+            f = (math.log(target) - math.log(e0)) / (math.log(e) - math.log(e0))
+            return math.exp(math.log(t0) + f * (math.log(t) - math.log(t0))), "interpolated"
+    return None, "not reached"
+
+
+# --- the sweep ----------------------------------------------------------------------------------
+
+def load_json(path):
+    with open(path) as f:
+        return json.load(f)
+
+
+def sweep_point(runs, key, spp, repeat):
+    """Image and times of one sweep render."""
+    if key == "ours":
+        base = os.path.join(runs, "sweep", f"ours_spp{spp}_r{repeat}")
+        report = load_json(os.path.join(base, "render.json"))
+        process = load_json(base + ".time.json")
+        return read_exr(os.path.join(base, "color.exr")), {
+            "render_seconds": report["timings"]["color_seconds"],
+            "total_seconds": report["timings"]["total_seconds"],
+            "process_seconds": process["wall_seconds"],
+            "cpu_seconds": process["user_seconds"] + process["system_seconds"],
+            "nonfinite": report.get("counters", {}).get("nonfinite_samples_caught", 0),
+        }
+    base = os.path.join(runs, "sweep", f"{key}_spp{spp}_r{repeat}")
+    report = load_json(base + ".json")
+    process = load_json(base + ".time.json")
+    t = report["timings"]
+    if t["render_seconds"] is None:
+        sys.exit(f"{base}.json: Cycles' render time was not found in its log")
+    return read_exr(base + ".exr"), {
+        "render_seconds": t["render_seconds"],
+        "total_seconds": t["render_call_seconds"],
+        "process_seconds": process["wall_seconds"],
+        "cpu_seconds": t["render_call_cpu_seconds"],
+        "nonfinite": 0,
+    }
+
+
+def noise_constant(points, key, reference_spp):
+    """a in relative_rmse(n) ~ a sqrt(1/n + 1/N) against the renderer's own reference (N spp)."""
+    values = [p["rel_own"] / math.sqrt(1.0 / p["spp"] + 1.0 / reference_spp)
+              for p in points if p["renderer"] == key and p["spp"] >= 4]
+    return float(np.median(values)) if values else float("nan")
+
+
+def alignment(ours, cycles):
+    """Relative RMSE of Cycles' converged image against ours under shifts and flips."""
+    rows = {}
+    for dx in (-2, -1, 0, 1, 2):
+        rows[f"shift {dx:+d} px"] = relative_rmse(np.roll(cycles, dx, axis=1), ours)
+    rows["mirrored left-right"] = relative_rmse(cycles[:, ::-1], ours)
+    rows["upside down"] = relative_rmse(cycles[::-1], ours)
+    rows["rotated 90 deg about up"] = relative_rmse(np.roll(cycles, cycles.shape[1] // 4, axis=1), ours)
+    return rows
+
+
+def depth_agreement(runs):
+    ours_path = os.path.join(runs, "align", "ours", "depth.exr")
+    cycles_path = os.path.join(runs, "align", "cycles.exr")
+    if not (os.path.exists(ours_path) and os.path.exists(cycles_path)):
+        return None
+    ours = read_exr(ours_path, ("Y",))[..., 0]
+    cycles = read_exr(cycles_path, ("Depth.Z",))[..., 0]
+    valid = (ours > 0) & np.isfinite(cycles) & (cycles > 0) & (cycles < 1e9)
+    rel = np.abs(cycles[valid] - ours[valid]) / ours[valid]
+    return {"pixels": int(valid.sum()), "median_relative_difference": float(np.median(rel)),
+            "fraction_within_1_percent": float(np.mean(rel < 0.01)),
+            "fraction_within_5_percent": float(np.mean(rel < 0.05))}
+
+
+def preview(image, exposure):
+    x = np.clip(image * 2.0 ** exposure, 0.0, 1.0)
+    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1.0 / 2.4) - 0.055)
+
+
+def analyse(args):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    runs, name = args.runs, args.name
+    spps = [int(s) for s in args.spp_list.split(",")]
+    modes = [m for m in args.modes.split(",") if m]
+    keys = ["ours"] + [f"cycles_{m}" for m in modes]
+    labels = {"ours": "phyir", "cycles_principled": "Cycles, Principled BSDF (as imported)",
+              "cycles_ue4": "Cycles, UE4 terms (rebuilt)"}
+    machine = open(os.path.join(runs, "machine.txt")).read()
+    reference_spp = {k: int(v) for k, v in (item.split("=") for item in args.reference_spp.split(","))}
+    refs = {"ours": read_exr(os.path.join(runs, "reference", "ours.exr"))}
+    for m in modes:
+        refs[f"cycles_{m}"] = read_exr(os.path.join(runs, "reference", f"cycles_{m}.exr"))
+
+    # Sweep: time = minimum over repeats, error = mean over repeats (one seed each).
+    points = []
+    for key in keys:
+        for spp in spps:
+            errors_shared, errors_own, rmse_shared, times = [], [], [], []
+            for r in range(1, args.repeats + 1):
+                image, t = sweep_point(runs, key, spp, r)
+                errors_shared.append(relative_rmse(image, refs["ours"]))
+                rmse_shared.append(rmse(image, refs["ours"]))
+                errors_own.append(relative_rmse(image, refs[key]))
+                times.append(t)
+            points.append({
+                "renderer": key, "spp": spp,
+                "render_seconds": min(t["render_seconds"] for t in times),
+                "render_seconds_max": max(t["render_seconds"] for t in times),
+                "total_seconds": min(t["total_seconds"] for t in times),
+                "process_seconds": min(t["process_seconds"] for t in times),
+                "cpu_seconds": min(t["cpu_seconds"] for t in times),
+                "rel_shared": float(np.mean(errors_shared)), "rmse_shared": float(np.mean(rmse_shared)),
+                "rel_own": float(np.mean(errors_own)),
+                "nonfinite": sum(t["nonfinite"] for t in times),
+            })
+
+    os.makedirs(args.figures, exist_ok=True)
+    csv_path = os.path.join(args.figures, f"cycles_{name}.csv")
+    with open(csv_path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["renderer", "spp", "render_seconds", "render_seconds_max", "total_seconds", "process_seconds",
+                    "cpu_seconds", "relative_rmse_shared_reference", "rmse_shared_reference",
+                    "relative_rmse_own_reference"])
+        for p in points:
+            w.writerow([p["renderer"], p["spp"], f'{p["render_seconds"]:.4f}', f'{p["render_seconds_max"]:.4f}',
+                        f'{p["total_seconds"]:.4f}', f'{p["process_seconds"]:.3f}', f'{p["cpu_seconds"]:.3f}',
+                        f'{p["rel_shared"]:.5f}', f'{p["rmse_shared"]:.5f}', f'{p["rel_own"]:.5f}'])
+
+    # Time to equal error, on render seconds and on CPU seconds.
+    summary = []
+    curves = [(k, "own") for k in keys] + [(k, "shared") for k in keys if k != "ours"]
+    for key, against in curves:
+        pts = [p for p in points if p["renderer"] == key]
+        errors = [p["rel_own" if against == "own" else "rel_shared"] for p in pts]
+        for clock in ("render_seconds", "cpu_seconds"):
+            for target in TARGETS:
+                t, how = time_to_error([p[clock] for p in pts], errors, target)
+                summary.append({"renderer": key, "reference": "own" if against == "own" else "phyir",
+                                "clock": clock, "target": target, "seconds": t, "how": how})
+    for s in summary:
+        ours = next(o for o in summary if o["renderer"] == "ours" and o["clock"] == s["clock"]
+                    and o["target"] == s["target"])
+        s["ratio_to_phyir"] = (s["seconds"] / ours["seconds"]
+                               if s["seconds"] and ours["seconds"] else None)
+    summary_path = os.path.join(args.figures, f"cycles_{name}_time_to_error.csv")
+    with open(summary_path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["renderer", "reference", "clock", "target_relative_rmse", "seconds", "how",
+                    "seconds_over_phyir_seconds"])
+        for s in summary:
+            w.writerow([s["renderer"], s["reference"], s["clock"], s["target"],
+                        "" if s["seconds"] is None else f'{s["seconds"]:.3f}', s["how"],
+                        "" if s["ratio_to_phyir"] is None else f'{s["ratio_to_phyir"]:.2f}'])
+
+    # Converged images: agreement, noise expected from the sweeps, alignment, depth.
+    noise = {k: noise_constant(points, k, reference_spp[k]) for k in keys}
+    agreement = {}
+    for m in modes:
+        key = f"cycles_{m}"
+        a, b = refs[key], refs["ours"]
+        expected = math.sqrt(noise["ours"] ** 2 / reference_spp["ours"] + noise[key] ** 2 / reference_spp[key])
+        agreement[key] = {
+            "relative_rmse": relative_rmse(a, b),
+            "expected_from_noise": expected,
+            "mean_ratio_rgb": (a.reshape(-1, 3).mean(0) / b.reshape(-1, 3).mean(0)).tolist(),
+            "alignment": alignment(b, a),
+        }
+    report = {"name": name, "reference_spp": reference_spp, "noise_constant": noise,
+              "agreement": agreement, "depth": depth_agreement(runs),
+              "nonfinite_samples_caught_phyir": sum(p["nonfinite"] for p in points if p["renderer"] == "ours"),
+              "time_to_error": summary}
+    with open(os.path.join(args.figures, f"cycles_{name}.json"), "w") as f:
+        json.dump(report, f, indent=1)
+
+    # Figure 1: relative RMSE versus seconds, against own and shared references.
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.4), sharey=True)
+    colours = {"ours": "C0", "cycles_principled": "C3", "cycles_ue4": "C2"}
+    for ax, against in zip(axes, ("own", "shared")):
+        for key in keys:
+            pts = [p for p in points if p["renderer"] == key]
+            errors = [p["rel_own" if against == "own" else "rel_shared"] for p in pts]
+            ax.loglog([p["render_seconds"] for p in pts], errors, "o-", color=colours.get(key), ms=4,
+                      label=labels.get(key, key))
+            for p, e in zip(pts, errors):
+                if p["spp"] in (1, 16, spps[-1]):
+                    ax.annotate(f'{p["spp"]}', (p["render_seconds"], e), textcoords="offset points",
+                                xytext=(3, 3), fontsize=7, color=colours.get(key))
+        for target in TARGETS:
+            ax.axhline(target, color="0.6", lw=0.8, ls=":")
+        ax.set_xlabel("render time, s (minimum of repeats; labels: spp)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.set_title("each against its own converged reference" if against == "own"
+                     else "all against phyir's converged reference", fontsize=9)
+    axes[0].set_ylabel("relative RMSE")
+    axes[0].legend(fontsize=8)
+    cpu = next((line.split(": ", 1)[1] for line in machine.splitlines() if line.startswith("cpu:")), "")
+    fig.suptitle(f"phyir vs Cycles, {name} room, {refs['ours'].shape[1]}x{refs['ours'].shape[0]} "
+                 f"equirect, {cpu}", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(os.path.join(args.figures, f"cycles_{name}.png"), dpi=100)
+    plt.close(fig)
+
+    # Figure 2: the converged images and the differences.
+    exposure = -math.log2(max(np.percentile(refs["ours"], 99), 1e-6))
+    panels = [("phyir", refs["ours"])]
+    for m in modes:
+        panels.append((labels[f"cycles_{m}"], refs[f"cycles_{m}"]))
+    for m in modes:
+        d = refs[f"cycles_{m}"].mean(axis=2) / np.maximum(refs["ours"].mean(axis=2), 1e-4)
+        panels.append((f"{labels[f'cycles_{m}']} / phyir, luminance", d))
+    fig, axes = plt.subplots(len(panels), 1, figsize=(5.2, 2.8 * len(panels) * 0.62))
+    for ax, (title, img) in zip(axes, panels):
+        if img.ndim == 3:
+            ax.imshow(preview(img, exposure), interpolation="nearest")
+        else:
+            shown = ax.imshow(img, cmap="RdBu_r", vmin=0.7, vmax=1.3, interpolation="nearest")
+            fig.colorbar(shown, ax=ax, fraction=0.025, pad=0.01)
+        ax.set_title(title, fontsize=8)
+        ax.axis("off")
+    fig.tight_layout()
+    fig.savefig(os.path.join(args.figures, f"cycles_{name}_images.png"), dpi=100)
+    plt.close(fig)
+
+    # Console summary.
+    print(f"wrote {csv_path}, {summary_path} and figures in {args.figures}")
+    for s in summary:
+        if s["clock"] == "render_seconds":
+            t = "not reached" if s["seconds"] is None else f'{s["seconds"]:.2f} s'
+            r = "" if s["ratio_to_phyir"] is None else f' ({s["ratio_to_phyir"]:.2f}x phyir)'
+            print(f'  {s["renderer"]:18s} vs {s["reference"]:5s} reference: {s["target"]:.0%} in {t}{r}')
+    for key, a in agreement.items():
+        print(f'  converged {key} vs phyir: relative RMSE {a["relative_rmse"]:.4f} '
+              f'(noise alone ~{a["expected_from_noise"]:.4f}), mean ratio {np.round(a["mean_ratio_rgb"], 4)}')
+    print(f'  depth: {report["depth"]}')
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="command", required=True)
+    cam = sub.add_parser("camera")
+    cam.add_argument("scene")
+    an = sub.add_parser("analyse")
+    an.add_argument("--runs", required=True)
+    an.add_argument("--figures", required=True)
+    an.add_argument("--name", required=True)
+    an.add_argument("--spp-list", required=True)
+    an.add_argument("--repeats", type=int, default=2)
+    an.add_argument("--modes", default="principled,ue4")
+    an.add_argument("--reference-spp", required=True, help="ours=4096,cycles_principled=4096,...")
+    args = parser.parse_args()
+    if args.command == "camera":
+        p = camera_position(args.scene)
+        print(f"{p[0]:.6g},{p[1]:.6g},{p[2]:.6g}")
+    else:
+        analyse(args)
+
+
+if __name__ == "__main__":
+    main()
