@@ -77,6 +77,9 @@ void write_image(const fs::path& path, const Image& image,
   ImageSpec spec(image.width, image.height, image.channels, hdr ? TypeDesc::FLOAT : TypeDesc::UINT8);
   spec.channelnames = channel_names.empty() ? default_channel_names(image.channels) : channel_names;
   if (ext == ".exr") spec.attribute("compression", "zip");
+  // A fixed timestamp: the same render must give byte-identical files (OpenEXR and PNG
+  // writers stamp the current time otherwise).
+  spec.attribute("DateTime", "1970:01:01 00:00:00");
   if (!out->open(tmp.string(), spec)) fail("{}: cannot open for writing: {}", path.string(), out->geterror());
   bool ok;
   if (hdr) {

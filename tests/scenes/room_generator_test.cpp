@@ -12,7 +12,6 @@
 #include "gltf_test_helpers.h"
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
-#include "phyir/core/progress.h"
 #include "phyir/scenes/gltf_loader.h"
 #include "phyir/scenes/room_generator.h"
 
@@ -199,7 +198,6 @@ TEST(RoomPlan, HardRoomsHaveEveryMaterialKindAndTheHardCases) {
 }
 
 TEST(RoomGenerator, SameSeedWritesByteIdenticalFiles) {
-  Progress::set_enabled(false);
   const fs::path dir = test::fresh_test_dir();
   const RoomSummary a = generate_room(dir / "a", 2, kSeed, RoomPreset::Hard);
   generate_room(dir / "b", 2, kSeed, RoomPreset::Hard);
