@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error or off")
       ->capture_default_str();
   app.require_subcommand(1);
+  app.fallthrough();  // global options (--log-level) also work after the subcommand
   app.parse_complete_callback([&] { phyir::set_log_level(log_level); });
 
   phyir::cli::add_scenes_command(app);

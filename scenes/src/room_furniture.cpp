@@ -240,8 +240,15 @@ RoomObject make_ceiling_panel(Pcg32& rng, MaterialPalette& palette, float ceilin
     size.x = rng.uniform(0.5f, 0.8f);
     size.z = size.x;
   }
-  // 1 mm below the ceiling: no coplanar faces with it.
-  add_part(light, "panel", Shape::Box, footprint_box(0, 0, ceiling - 0.001f - size.y, size), palette.get(MaterialRole::LightPanel));
+  // 1 mm below the ceiling: no coplanar faces with it. Only the 2 mm diffuser under a
+  // non-emissive housing glows, so no light leaks up into the gap above the fixture (it
+  // would light a hidden strip of ceiling brightly and feed fireflies), and renderers that
+  // emit from both faces (Cycles) see the same light as one-sided ones.
+  const float bottom = ceiling - 0.001f - size.y, diffuser = 0.002f;
+  add_part(light, "diffuser", Shape::Box, footprint_box(0, 0, bottom, {size.x, diffuser, size.z}),
+           palette.get(MaterialRole::LightPanel));
+  add_part(light, "housing", Shape::Box, footprint_box(0, 0, bottom + diffuser, {size.x, size.y - diffuser, size.z}),
+           palette.get(MaterialRole::Ceiling));
   return light;
 }
 
