@@ -82,7 +82,8 @@ void add_scenes_generate_command(CLI::App& scenes) {
   cmd->add_option("--preset", options->preset,
                   "mini: small rectangular rooms, one ceiling light, few triangles; "
                   "hard: rectangular or L-shaped rooms with mirrors, metals, glass, small bright "
-                  "lights and thin geometry")
+                  "lights and thin geometry; diffuse: a mini layout with only rough, untextured, "
+                  "non-metallic materials")
       ->capture_default_str();
   cmd->callback([options] { run(*options); });
 }

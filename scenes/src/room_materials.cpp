@@ -108,7 +108,7 @@ MaterialPalette::MaterialPalette(Pcg32 rng, RoomPreset preset, uint64_t texture_
 int MaterialPalette::get(MaterialRole role) {
   const auto found = by_role_.find(role);
   if (found != by_role_.end()) return found->second;
-  MaterialSpec spec = make(role);
+  MaterialSpec spec = preset_ == RoomPreset::Diffuse ? make_diffuse(role) : make(role);
   spec.name = role_name(role);
   materials_.push_back(spec);
   const int index = static_cast<int>(materials_.size()) - 1;
@@ -127,6 +127,23 @@ int MaterialPalette::add_texture(const std::string& name, TexturePattern pattern
   t.seed = splitmix64(texture_seed_ + textures_.size());
   textures_.push_back(t);
   return static_cast<int>(textures_.size()) - 1;
+}
+
+// The diffuse preset: lights as usual, everything else rough, non-metallic, untextured.
+MaterialSpec MaterialPalette::make_diffuse(MaterialRole role) {
+  switch (role) {
+    case MaterialRole::LightPanel:
+    case MaterialRole::LampShade:
+    case MaterialRole::BrightBulb:
+      return make(role);
+    case MaterialRole::Wall:
+    case MaterialRole::Ceiling:
+      return dielectric(MaterialKind::Diffuse, jitter(rng_, rng_.pick(kWallColours)), 1.0f);
+    case MaterialRole::Floor:
+      return dielectric(MaterialKind::Diffuse, jitter(rng_, vec3(0.25f, 0.24f, 0.22f)), 1.0f);
+    default:
+      return dielectric(MaterialKind::Diffuse, jitter(rng_, rng_.pick(kPaintColours)), 1.0f);
+  }
 }
 
 // Every random draw is its own statement: the evaluation order of function arguments is

@@ -34,6 +34,7 @@ class MaterialPalette {
 
  private:
   MaterialSpec make(MaterialRole role);
+  MaterialSpec make_diffuse(MaterialRole role);
   int add_texture(const std::string& name, TexturePattern pattern, int size, glm::vec3 a,
                   glm::vec3 b);
 

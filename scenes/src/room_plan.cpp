@@ -13,11 +13,17 @@ namespace phyir::scenes {
 RoomPreset parse_room_preset(const std::string& name) {
   if (name == "mini") return RoomPreset::Mini;
   if (name == "hard") return RoomPreset::Hard;
-  fail("unknown room preset '{}' (expected 'mini' or 'hard')", name);
+  if (name == "diffuse") return RoomPreset::Diffuse;
+  fail("unknown room preset '{}' (expected 'mini', 'hard' or 'diffuse')", name);
 }
 
 const char* room_preset_name(RoomPreset preset) {
-  return preset == RoomPreset::Hard ? "hard" : "mini";
+  switch (preset) {
+    case RoomPreset::Hard: return "hard";
+    case RoomPreset::Diffuse: return "diffuse";
+    case RoomPreset::Mini: break;
+  }
+  return "mini";
 }
 
 const char* material_kind_name(MaterialKind kind) {

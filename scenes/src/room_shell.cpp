@@ -55,7 +55,7 @@ bool RoomShell::contains(glm::vec2 min_xz, glm::vec2 max_xz, float margin) const
 
 RoomShell plan_shell(Pcg32& rng, RoomPreset preset) {
   RoomShell shell;
-  if (preset == RoomPreset::Mini) {
+  if (preset != RoomPreset::Hard) {
     shell.width = rng.uniform(3.0f, 4.5f);
     shell.depth = rng.uniform(3.0f, 4.5f);
     shell.height = rng.uniform(2.4f, 2.8f);

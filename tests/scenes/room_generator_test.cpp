@@ -75,10 +75,12 @@ std::map<std::string, std::string> read_folder(const fs::path& dir) {
   return files;
 }
 
-TEST(RoomPreset, ParsesTheTwoPresets) {
+TEST(RoomPreset, ParsesThePresets) {
   EXPECT_EQ(parse_room_preset("mini"), RoomPreset::Mini);
   EXPECT_EQ(parse_room_preset("hard"), RoomPreset::Hard);
+  EXPECT_EQ(parse_room_preset("diffuse"), RoomPreset::Diffuse);
   EXPECT_STREQ(room_preset_name(RoomPreset::Hard), "hard");
+  EXPECT_STREQ(room_preset_name(RoomPreset::Diffuse), "diffuse");
 }
 
 TEST(RoomPreset, RejectsUnknownNamesNamingThem) {
@@ -153,6 +155,26 @@ TEST(RoomPlan, CameraAndCandidateViewpointsAreValid) {
       EXPECT_GE(room.candidate_viewpoints.size(), 8u) << "room " << room.index;
       for (const glm::vec3& p : room.candidate_viewpoints) expect_valid_viewpoint(room, p, "candidate");
     }
+  }
+}
+
+TEST(RoomPlan, DiffuseRoomsHaveOnlyRoughUntexturedDielectricsAndLights) {
+  for (const RoomLayout& room : plans(RoomPreset::Diffuse)) {
+    SCOPED_TRACE("diffuse room " + std::to_string(room.index));
+    EXPECT_TRUE(room.textures.empty());
+    int emitters = 0;
+    for (const MaterialSpec& m : room.materials) {
+      EXPECT_FALSE(m.textured()) << m.name;
+      EXPECT_EQ(m.transmission, 0.0f) << m.name;
+      if (m.kind == MaterialKind::Emissive) {
+        ++emitters;
+        continue;
+      }
+      EXPECT_EQ(m.kind, MaterialKind::Diffuse) << m.name;
+      EXPECT_EQ(m.metallic, 0.0f) << m.name;
+      EXPECT_EQ(m.roughness, 1.0f) << m.name;
+    }
+    EXPECT_GE(emitters, 1);
   }
 }
 

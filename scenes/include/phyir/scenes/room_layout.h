@@ -14,7 +14,10 @@ namespace phyir::scenes {
 // mini: small rectangular rooms, one ceiling light, few triangles (fast smoke tests).
 // hard: larger rectangular or L-shaped rooms with mirrors, metals, glass, small bright
 // lights and thin geometry (the cases that break renderers and the network).
-enum class RoomPreset { Mini, Hard };
+// mini: small and fast; hard: mirrors, metals, glass, small bright lights, thin geometry;
+// diffuse: a mini layout whose every non-emissive material is rough (R = 1), non-metallic
+// and untextured (the baseline for "simulate only the effects a scene calls for").
+enum class RoomPreset { Mini, Hard, Diffuse };
 
 // "mini" or "hard"; throws phyir::Error naming the bad value otherwise.
 RoomPreset parse_room_preset(const std::string& name);
