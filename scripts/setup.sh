@@ -11,8 +11,8 @@ phyir="${PHYIR_BUILD_DIR:-$root/build}/cli/phyir"
 out="${PHYIR_EXAMPLE_DIR:-$root/example}"
 "$phyir" --version
 "$phyir" scenes generate --out "$out/rooms" --count 1 --seed 1 --preset mini
-"$phyir" scenes info "$out/rooms/room_000.gltf"
-"$phyir" render "$out/rooms/room_000.gltf" --out "$out/render" --width 512 --height 256 --spp 64 --seed 1
+"$phyir" scenes info "$out/rooms/room_0.gltf"
+"$phyir" render "$out/rooms/room_0.gltf" --out "$out/render" --width 512 --height 256 --spp 64 --seed 1
 echo
-echo "setup: done. The example room is $out/rooms/room_000.gltf; its panorama and labels are in $out/render/"
+echo "setup: done. The example room is $out/rooms/room_0.gltf; its panorama and labels are in $out/render/"
 ls -l "$out/render"
