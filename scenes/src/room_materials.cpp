@@ -124,7 +124,7 @@ int MaterialPalette::add_texture(const std::string& name, TexturePattern pattern
   t.size = size;
   t.colour_a = a;
   t.colour_b = b;
-  t.seed = splitmix64(texture_seed_ + textures_.size());
+  t.seed = mix64(texture_seed_ + textures_.size());
   textures_.push_back(t);
   return static_cast<int>(textures_.size()) - 1;
 }

@@ -19,7 +19,7 @@ int wrap(int i, int period) { return ((i % period) + period) % period; }
 // A hash of a lattice point in [0, 1).
 float lattice(int ix, int iy, uint64_t seed) {
   const uint64_t key = (static_cast<uint64_t>(static_cast<uint32_t>(ix)) << 32) | static_cast<uint32_t>(iy);
-  return static_cast<float>(splitmix64(seed ^ splitmix64(key)) >> 40) * 0x1p-24f;
+  return static_cast<float>(mix64(seed ^ mix64(key)) >> 40) * 0x1p-24f;
 }
 
 // Value noise with a lattice of period_x x period_y cells over (x, y) in cell units.

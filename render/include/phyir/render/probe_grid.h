@@ -1,0 +1,85 @@
+#pragma once
+// Where per-pixel light probes sit and how they are laid out (the SC lighting label of the
+// PhyIR paper, sec. 3.2 and C.1: a 16x32 probe per pixel of a 128x256 grid of a 256x512
+// panorama). docs/probes.md is the user-facing description.
+//
+// Layout. A grid of H x W probes, each an h x w equirectangular image in the toolkit's one
+// mapping (equirect.h), world-aligned like the panorama. The mosaic is (H h) x (W w): probe
+// (i, j) (row i, column j) is the block of rows [i h, (i+1) h) and columns [j w, (j+1) w).
+//
+// Placement. Probe (i, j) belongs to the direction through the centre of grid cell (i, j),
+// i.e. the camera's continuous pixel position ((j + 0.5) width / W, (i + 0.5) height / H).
+// For a grid of half the panorama's resolution that is the corner shared by the 2x2 block of
+// pixels (2i, 2j) .. (2i+1, 2j+1); for a grid of the panorama's resolution it is the pixel
+// centre (the same ray as the AOVs). The probe's origin is the first surface seen along that
+// ray, moved off it along its shading normal (the side facing the camera) by the offset.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "phyir/render/camera.h"
+#include "phyir/render/render_scene.h"
+#include "phyir/render/rng.h"
+
+namespace phyir::render {
+
+struct ProbeLayout {
+  int grid_height = 128;  // H: probes per column of the grid
+  int grid_width = 256;   // W
+  int res_height = 16;    // h: texels per probe, rows
+  int res_width = 32;     // w
+
+  int probe_count() const { return grid_height * grid_width; }
+  int texels_per_probe() const { return res_height * res_width; }
+  int mosaic_width() const { return grid_width * res_width; }
+  int mosaic_height() const { return grid_height * res_height; }
+  // Throws phyir::Error naming the flag when a size is out of range.
+  void validate() const;
+};
+
+// Parses "HxW" (e.g. "128x256"); `flag` names the option in the error message.
+void parse_size(const std::string& text, const std::string& flag, int* height, int* width);
+
+// Why a probe is or is not a valid label. The mask is 1 only for kValid, matching the paper's
+// M_mask ("object regions except light source and transmission object", eq. 7).
+enum class ProbeStatus : uint8_t {
+  kValid = 0,
+  kNothing = 1,      // the ray sees no surface: probe, position and mask are 0
+  kEmitter = 2,      // the surface emits towards the camera: probe computed, mask 0
+  kTransparent = 3,  // glass or alpha below 1: probe computed, mask 0
+};
+
+struct ProbeSite {
+  glm::vec3 surface{0.0f};  // first surface along the placement ray
+  glm::vec3 normal{0.0f};   // its unit shading normal, facing the camera (as normal.exr)
+  glm::vec3 origin{0.0f};   // surface + offset * normal: where the probe sees from
+  float offset = 0.0f;      // the offset used (shortened if something is closer, see place_probes)
+  ProbeStatus status = ProbeStatus::kNothing;
+
+  bool computed() const { return status != ProbeStatus::kNothing; }
+  bool valid() const { return status == ProbeStatus::kValid; }
+};
+
+// The camera's continuous pixel position of probe (i, j) (see the layout note above).
+glm::vec2 probe_pixel_position(const ProbeLayout& layout, const CameraModel& camera, int i, int j);
+
+// One site per probe, row-major (index i * W + j), from one ray each (no random numbers).
+// `offset` is in metres along the shading normal; if a surface lies closer than that along
+// the normal (a gap narrower than the offset), the origin is put half way to it instead.
+std::vector<ProbeSite> place_probes(const RenderScene& scene, const CameraModel& camera,
+                                    const ProbeLayout& layout, float offset);
+
+// A direction inside texel (row, col) of an h x w probe, uniform in solid angle over the
+// texel for `a` uniform in [0,1)^2: phi uniform across the texel's columns, cos(theta)
+// uniform between its rows' edges, then equirect_direction() of the result.
+glm::vec3 probe_texel_direction(int row, int col, int height, int width, const glm::vec2& a);
+
+// `count` points of [0,1)^2 stratified on the smallest s x t grid with s t >= count
+// (s = ceil(sqrt(count))): distinct cells picked by a random permutation, one jittered point
+// in each. Every point is uniform over the square on its own, so any average over them is
+// unbiased; when count is a perfect square every cell is used once.
+void stratified_square(int count, Rng& rng, std::vector<glm::vec2>* points);
+
+}  // namespace phyir::render

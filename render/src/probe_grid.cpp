@@ -1,0 +1,106 @@
+#include "phyir/render/probe_grid.h"
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "phyir/core/error.h"
+#include "phyir/core/safe_math.h"
+#include "phyir/render/equirect.h"
+#include "phyir/render/gbuffer.h"
+#include "phyir/render/ray_offset.h"
+
+namespace phyir::render {
+
+void ProbeLayout::validate() const {
+  if (grid_height <= 0 || grid_width <= 0 || grid_height > 4096 || grid_width > 8192)
+    fail("--probe-grid {}x{} must be between 1x1 and 4096x8192", grid_height, grid_width);
+  if (res_height <= 0 || res_width <= 0 || res_height > 1024 || res_width > 2048)
+    fail("--probe-res {}x{} must be between 1x1 and 1024x2048", res_height, res_width);
+  const double texels = double(mosaic_width()) * double(mosaic_height());
+  // One RGB float mosaic of this size is 12 bytes per texel; 2^31 texels would be 24 GB.
+  if (mosaic_width() > 1 << 20 || mosaic_height() > 1 << 20 || texels > double(1u << 31))
+    fail("--probe-grid {}x{} with --probe-res {}x{} makes a {}x{} mosaic, too large to hold", grid_height,
+         grid_width, res_height, res_width, mosaic_height(), mosaic_width());
+}
+
+void parse_size(const std::string& text, const std::string& flag, int* height, int* width) {
+  std::istringstream in(text);
+  int h = 0, w = 0;
+  char x = 0;
+  if (!(in >> h >> x >> w) || (x != 'x' && x != 'X') || !in.eof())
+    fail("{} '{}' is not HxW (two positive integers, e.g. 16x32)", flag, text);
+  *height = h;
+  *width = w;
+}
+
+glm::vec2 probe_pixel_position(const ProbeLayout& layout, const CameraModel& camera, int i, int j) {
+  return glm::vec2((j + 0.5f) * float(camera.width) / float(layout.grid_width),
+                   (i + 0.5f) * float(camera.height) / float(layout.grid_height));
+}
+
+std::vector<ProbeSite> place_probes(const RenderScene& scene, const CameraModel& camera,
+                                    const ProbeLayout& layout, float offset) {
+  std::vector<ProbeSite> sites(size_t(layout.probe_count()));
+  tbb::parallel_for(tbb::blocked_range<int>(0, layout.grid_height), [&](const tbb::blocked_range<int>& rows) {
+    for (int i = rows.begin(); i < rows.end(); ++i) {
+      for (int j = 0; j < layout.grid_width; ++j) {
+        ProbeSite& site = sites[size_t(i) * layout.grid_width + j];
+        const Ray ray = camera.generate_ray(probe_pixel_position(layout, camera, i, j));
+        SurfaceInteraction si;
+        if (!scene.trace(ray, &si)) continue;  // kNothing, all zeros
+        // The G-buffer's own flags, so the probe mask agrees with mask_emissive and
+        // mask_transparent for a grid of the panorama's resolution.
+        const GBufferSample g = GBufferSample::from_hit(si);
+        site.status = g.emissive > 0.0f      ? ProbeStatus::kEmitter
+                      : g.transparent > 0.0f ? ProbeStatus::kTransparent
+                                             : ProbeStatus::kValid;
+        site.surface = si.position;
+        site.normal = si.shading_normal;
+        // Anything between the surface and the intended origin (a gap narrower than the
+        // offset, e.g. a panel 2 mm off a wall)? Then stop half way to it.
+        site.offset = offset;
+        if (offset > 0.0f) {
+          Ray up{spawn_origin(si.position, si.geometric_normal, si.shading_normal), si.shading_normal};
+          up.tmax = offset;
+          Hit hit;
+          if (scene.accelerator().intersect(up, &hit)) site.offset = 0.5f * hit.t;
+        }
+        site.origin = si.position + site.offset * si.shading_normal;
+      }
+    }
+  });
+  return sites;
+}
+
+glm::vec3 probe_texel_direction(int row, int col, int height, int width, const glm::vec2& a) {
+  const double cos0 = std::cos(double(kPi) * row / height);
+  const double cos1 = std::cos(double(kPi) * (row + 1) / height);
+  const double cos_theta = cos0 + (cos1 - cos0) * double(a.y);
+  const float u = (float(col) + a.x) / float(width);
+  const float v = float(std::acos(std::clamp(cos_theta, -1.0, 1.0)) / double(kPi));
+  return equirect_direction(glm::vec2(u, v));
+}
+
+void stratified_square(int count, Rng& rng, std::vector<glm::vec2>* points) {
+  points->clear();
+  if (count <= 0) return;
+  const int s = int(std::ceil(std::sqrt(double(count))));
+  const int t = (count + s - 1) / s;
+  // Partial Fisher-Yates: the first `count` entries of a random permutation of the s t cells.
+  thread_local std::vector<int> cells;
+  cells.resize(size_t(s) * t);
+  for (int k = 0; k < s * t; ++k) cells[k] = k;
+  for (int k = 0; k < count; ++k) {
+    const int pick = k + int(rng.next_u32() % uint32_t(s * t - k));
+    std::swap(cells[k], cells[pick]);
+    const glm::vec2 jitter = rng.next_2d();
+    // Rounding can land a point of the last cell on 1.0; keep it inside [0,1).
+    constexpr float kBelowOne = 0x1.fffffep-1f;
+    points->push_back(glm::vec2(std::min((float(cells[k] % s) + jitter.x) / float(s), kBelowOne),
+                                std::min((float(cells[k] / s) + jitter.y) / float(t), kBelowOne)));
+  }
+}
+
+}  // namespace phyir::render
