@@ -180,6 +180,7 @@ void add_bench_command(CLI::App& app) {
   auto* thr = bench->add_subcommand("throughput", "integrator rays/s as a fraction of raw Embree throughput");
   add_common(thr, *f);
   thr->callback(with_threads(&run_throughput));
+  add_bench_probes_command(*bench);
 }
 
 }  // namespace phyir::cli

@@ -1,12 +1,66 @@
-// phyir infer: placeholder until issue 6 lands; listed in --help so users see it coming.
+// phyir infer: run a trained PhyIR network on a panorama. docs/commands/infer.md
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+
 #include "commands.h"
+#include "phyir/core/error.h"
+
+#ifdef PHYIR_HAVE_MODEL
+#include "phyir/model/training.h"
+#endif
 
 namespace phyir::cli {
 
+#ifdef PHYIR_HAVE_MODEL
+
 void add_infer_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("infer", "Run a trained network on panoramas (arrives with issue 6)");
-  cmd->allow_extras();
-  cmd->callback([] { not_yet_available("infer", 6); });
+  auto o = std::make_shared<model::InferOptions>();
+  auto* cmd = app.add_subcommand(
+      "infer", "Run a trained network on a panorama: depth, normal, base colour, roughness, metalness, "
+               "probes and the re-rendered image, in the renderer's conventions");
+  cmd->add_option("--model", o->checkpoint, "checkpoint.pt written by phyir train")->check(CLI::ExistingFile);
+  cmd->add_option("--input", o->input, "equirect panorama: .png (LDR) or .exr (HDR, tone-mapped with --exposure)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--out", o->out_dir, "output folder")->required();
+  cmd->add_option("--threads", o->threads, "torch threads")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "seed of the rendering layer's samples")->capture_default_str();
+  cmd->add_option("--exposure", o->exposure, "exposure in stops for an .exr input")->capture_default_str();
+  auto check = std::make_shared<model::RenderCheckOptions>();
+  cmd->add_option("--check-render-layer", check->view_dir,
+                  "instead: re-render a view folder's ground-truth maps and probes (phyir render --probes) "
+                  "with the rendering layer and report the MSE against its color.exr")
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--diffuse-samples", check->diffuse_samples, "with --check-render-layer")->capture_default_str();
+  cmd->add_option("--specular-samples", check->specular_samples, "with --check-render-layer")->capture_default_str();
+  cmd->callback([o, check] {
+    if (!check->view_dir.empty()) {
+      check->out_dir = o->out_dir;
+      check->seed = o->seed;
+      check->threads = o->threads;
+      const model::RenderCheckResult r = model::check_render_layer(*check);
+      std::printf("rendering layer on ground truth: %dx%d, %lld pixels, MSE %.6g, relative MSE %.4g, "
+                  "mean colour %.5g, mean re-render %.5g, mean abs error %.5g\n",
+                  r.width, r.height, static_cast<long long>(r.pixels), r.mse, r.relative_mse, r.mean_color,
+                  r.mean_rerender, r.mean_abs_error);
+      return;
+    }
+    if (o->checkpoint.empty() || o->input.empty()) fail("phyir infer: --model and --input are required (or --check-render-layer VIEW)");
+    model::infer(*o);
+  });
 }
+
+#else
+
+void add_infer_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("infer", "Run a trained network (not built: PHYIR_BUILD_MODEL=OFF)");
+  cmd->allow_extras();
+  cmd->callback([] {
+    std::fprintf(stderr, "phyir infer: not available in this build (configured with -DPHYIR_BUILD_MODEL=OFF)\n");
+    std::exit(3);
+  });
+}
+
+#endif
 
 }  // namespace phyir::cli

@@ -19,6 +19,9 @@ struct RenderFlags {
   std::string environment;
   bool no_aovs = false;
   bool quiet = false;
+  std::string probe_grid = "128x256";
+  std::string probe_res = "16x32";
+  std::string probe_mode = "cache";
 };
 
 glm::vec3 parse_position(const std::string& text) {
@@ -57,6 +60,16 @@ void add_render_command(CLI::App& app) {
   cmd->add_flag("--force-all-effects", job.settings.force_all_effects,
                 "run every integrator feature even if the scene lacks it (benchmarking; same output)");
   cmd->add_flag("--quiet", flags->quiet, "no progress display");
+  // Light probes (docs/probes.md).
+  cmd->add_flag("--probes", job.probes, "also render per-pixel light probes: probes.exr, probe_position.exr, "
+                                        "probe_normal.exr, probe_mask.exr and a \"probes\" block in render.json");
+  cmd->add_option("--probe-grid", flags->probe_grid, "probes HxW (the paper: 128x256 for a 256x512 panorama)")->capture_default_str();
+  cmd->add_option("--probe-res", flags->probe_res, "texels per probe hxw (equirectangular)")->capture_default_str();
+  cmd->add_option("--probe-spp", job.probe.spp, "directions per probe texel")->capture_default_str();
+  cmd->add_option("--probe-mode", flags->probe_mode, "cache (shared irradiance cache) or path (unbiased reference, slow)")->capture_default_str();
+  cmd->add_option("--probe-offset", job.probe.offset, "probe origin's distance off the surface along its normal, metres")->capture_default_str();
+  cmd->add_option("--probe-cache-cell", job.probe.cache_cell, "cache mode: cell size, metres")->capture_default_str();
+  cmd->add_option("--probe-cache-spp", job.probe.cache_spp, "cache mode: irradiance samples per cell")->capture_default_str();
   cmd->callback([flags] {
     render::RenderJob& job = flags->job;
     job.scene_path = flags->scene;
@@ -66,6 +79,9 @@ void add_render_command(CLI::App& app) {
     job.environment_path = flags->environment;
     job.settings.aovs = !flags->no_aovs;
     job.settings.progress = !flags->quiet;
+    render::parse_size(flags->probe_grid, "--probe-grid", &job.probe.layout.grid_height, &job.probe.layout.grid_width);
+    render::parse_size(flags->probe_res, "--probe-res", &job.probe.layout.res_height, &job.probe.layout.res_width);
+    job.probe.mode = render::parse_probe_mode(flags->probe_mode);
     render::run_render_job(job);
   });
 }

@@ -1,12 +1,103 @@
-// phyir train: placeholder until issue 6 lands; listed in --help so users see it coming.
+// phyir train: one stage of the PhyIR network's training (appendix B.1). docs/commands/train.md
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+
 #include "commands.h"
+
+#ifdef PHYIR_HAVE_MODEL
+#include "phyir/model/training.h"
+#endif
 
 namespace phyir::cli {
 
+#ifdef PHYIR_HAVE_MODEL
+
 void add_train_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("train", "Train the PhyIR network (arrives with issue 6)");
-  cmd->allow_extras();
-  cmd->callback([] { not_yet_available("train", 6); });
+  auto o = std::make_shared<model::TrainOptions>();
+  auto stage = std::make_shared<std::string>("gmnet");
+  auto quiet = std::make_shared<bool>(false);
+  auto w = std::make_shared<model::LossWeights>();
+  auto* cmd = app.add_subcommand(
+      "train", "Train one stage of the PhyIR network (gmnet, lnet, joint, gsnet): checkpoint.pt, "
+               "train_log.csv/json, loss_curve.png");
+  model::ModelConfig& c = o->config;
+  cmd->add_option("--data", o->data_dir, "dataset folder (view folders with color.exr, input.png, AOVs, probes)")
+      ->required()->check(CLI::ExistingDirectory);
+  cmd->add_option("--out", o->out_dir, "output folder (checkpoint, logs, loss curve)")->required();
+  cmd->add_option("--stage", *stage, "gmnet | lnet | joint | gsnet (paper appendix B.1)")->capture_default_str();
+  cmd->add_option("--split", o->split, "with a manifest.json: the split to train on (train, val, test; \"\" = all)")
+      ->capture_default_str();
+  cmd->add_option("--init", o->init, "checkpoint of the previous stage to start from");
+  cmd->add_flag("--resume", o->resume, "continue --out/checkpoint.pt exactly where it stopped");
+  cmd->add_option("--epochs", o->epochs, "epochs to reach (paper: 120 / 90 / 10 / 80)")->capture_default_str();
+  cmd->add_option("--lr", o->learning_rate, "Adam learning rate (default: 1e-4 / 1e-4 / 1e-5 / 5e-4 by stage)");
+  cmd->add_option("--batch", o->batch_size, "batch size (default: 8 / 4 / 4 / 16 by stage)");
+  cmd->add_option("--seed", o->seed, "random seed (initialisation, shuffling, Monte-Carlo samples)")->capture_default_str();
+  cmd->add_option("--threads", o->threads, "torch threads (1 = bit-reproducible runs)")->capture_default_str();
+  cmd->add_option("--max-steps", o->max_steps, "stop after this many steps in total (0 = all epochs)");
+  cmd->add_option("--checkpoint-every", o->checkpoint_every, "also checkpoint every N steps (0 = per epoch)");
+  cmd->add_option("--max-views", o->max_views, "use only the first N views (0 = all)");
+  cmd->add_option("--encoder-weights", o->encoder_weights, "ResNet-18 encoder weights (torch::save of the encoder)");
+  cmd->add_option("--input-height", c.input_height, "GMNet input height (multiple of 32; paper 256)")->capture_default_str();
+  cmd->add_option("--input-width", c.input_width, "GMNet input width (multiple of 32; paper 512)")->capture_default_str();
+  cmd->add_option("--render-height", c.render_height, "LNet / rendering height (multiple of 16; paper 128)")->capture_default_str();
+  cmd->add_option("--render-width", c.render_width, "LNet / rendering width (multiple of 16; paper 256)")->capture_default_str();
+  cmd->add_option("--probe-height", c.probe_height, "probe height (paper 16)")->capture_default_str();
+  cmd->add_option("--probe-width", c.probe_width, "probe width (paper 32)")->capture_default_str();
+  cmd->add_option("--diffuse-samples", c.diffuse_samples, "rendering layer diffuse samples (paper 512)")->capture_default_str();
+  cmd->add_option("--specular-samples", c.specular_samples, "rendering layer specular samples (paper 256)")->capture_default_str();
+  cmd->add_option("--width-divisor", c.width_divisor, "divide every channel count by 2 or 4 (quick experiments; 1 = the paper)")->capture_default_str();
+  auto* wopt = cmd->add_option_group("loss weights", "override every weight of the stage (defaults: B.1)");
+  auto* first = wopt->add_option("--w-basecolor", w->base_color, "beta_B");
+  wopt->add_option("--w-roughness", w->roughness, "beta_R");
+  wopt->add_option("--w-metalness", w->metalness, "beta_M");
+  wopt->add_option("--w-depth", w->depth, "beta_D");
+  wopt->add_option("--w-normal", w->normal, "beta_N");
+  wopt->add_option("--w-gradient", w->gradient, "beta_gradient");
+  wopt->add_option("--w-probe", w->probe, "beta_L");
+  wopt->add_option("--w-coherence", w->coherence, "beta_SC");
+  wopt->add_option("--w-render", w->render, "beta_render");
+  (void)first;
+  cmd->add_flag("--quiet", *quiet, "no per-step progress lines");
+  cmd->callback([o, stage, quiet, w, cmd] {
+    o->stage = model::parse_stage(*stage);
+    o->progress = !*quiet;
+    bool any_weight = false;
+    for (const char* name : {"--w-basecolor", "--w-roughness", "--w-metalness", "--w-depth", "--w-normal",
+                             "--w-gradient", "--w-probe", "--w-coherence", "--w-render"})
+      any_weight = any_weight || cmd->count(name) > 0;
+    if (any_weight) {
+      // Unset weights keep the stage's defaults.
+      model::LossWeights merged = model::stage_defaults(o->stage).weights;
+      if (cmd->count("--w-basecolor")) merged.base_color = w->base_color;
+      if (cmd->count("--w-roughness")) merged.roughness = w->roughness;
+      if (cmd->count("--w-metalness")) merged.metalness = w->metalness;
+      if (cmd->count("--w-depth")) merged.depth = w->depth;
+      if (cmd->count("--w-normal")) merged.normal = w->normal;
+      if (cmd->count("--w-gradient")) merged.gradient = w->gradient;
+      if (cmd->count("--w-probe")) merged.probe = w->probe;
+      if (cmd->count("--w-coherence")) merged.coherence = w->coherence;
+      if (cmd->count("--w-render")) merged.render = w->render;
+      o->custom_weights = true;
+      o->weights = merged;
+    }
+    o->plot_script = std::string(PHYIR_SOURCE_ROOT) + "/scripts/plot_training.py";
+    model::train(*o);
+  });
 }
+
+#else
+
+void add_train_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("train", "Train the PhyIR network (not built: PHYIR_BUILD_MODEL=OFF)");
+  cmd->allow_extras();
+  cmd->callback([] {
+    std::fprintf(stderr, "phyir train: not available in this build (configured with -DPHYIR_BUILD_MODEL=OFF)\n");
+    std::exit(3);
+  });
+}
+
+#endif
 
 }  // namespace phyir::cli

@@ -75,16 +75,17 @@ torch::Tensor BasicBlockImpl::forward(const torch::Tensor& x) {
   return torch::relu(y + identity);
 }
 
-ResNet18EncoderImpl::ResNet18EncoderImpl() {
-  conv1 = register_module("conv1", CirConv(3, 64, 7, 2, false));
-  bn1 = register_module("bn1", torch::nn::BatchNorm2d(64));
+ResNet18EncoderImpl::ResNet18EncoderImpl(int div) {
+  auto c = [div](int n) { return n / div; };
+  conv1 = register_module("conv1", CirConv(3, c(64), 7, 2, false));
+  bn1 = register_module("bn1", torch::nn::BatchNorm2d(c(64)));
   auto layer = [](int in, int out, int stride) {
     return torch::nn::Sequential(BasicBlock(in, out, stride), BasicBlock(out, out, 1));
   };
-  layer1 = register_module("layer1", layer(64, 64, 1));
-  layer2 = register_module("layer2", layer(64, 128, 2));
-  layer3 = register_module("layer3", layer(128, 256, 2));
-  layer4 = register_module("layer4", layer(256, 512, 2));
+  layer1 = register_module("layer1", layer(c(64), c(64), 1));
+  layer2 = register_module("layer2", layer(c(64), c(128), 2));
+  layer3 = register_module("layer3", layer(c(128), c(256), 2));
+  layer4 = register_module("layer4", layer(c(256), c(512), 2));
   // He initialisation for convolutions, as torchvision's ResNet.
   for (auto& m : modules(false)) {
     if (auto* c = m->as<torch::nn::Conv2d>())
@@ -102,11 +103,11 @@ std::vector<torch::Tensor> ResNet18EncoderImpl::forward(const torch::Tensor& x) 
   return {s0, s1, s2, s3, b};
 }
 
-DecoderImpl::DecoderImpl(int out_channels) {
+DecoderImpl::DecoderImpl(int out_channels, int div) {
   convs = register_module("convs", torch::nn::ModuleList());
   const int io[11][2] = {{512, 256}, {512, 256}, {256, 128}, {256, 128}, {128, 64}, {128, 64},
-                         {64, 32},   {96, 32},   {32, 16},   {16, 16},   {16, out_channels}};
-  for (const auto& c : io) convs->push_back(CirConv(c[0], c[1], 3));
+                         {64, 32},   {96, 32},   {32, 16},   {16, 16},   {16, 0}};
+  for (const auto& c : io) convs->push_back(CirConv(c[0] / div, c[1] == 0 ? out_channels : c[1] / div, 3));
 }
 
 torch::Tensor DecoderImpl::forward(const std::vector<torch::Tensor>& f) {
@@ -124,13 +125,14 @@ torch::Tensor DecoderImpl::forward(const std::vector<torch::Tensor>& f) {
   return conv(10, act(conv(9, x)));  // the output layer has no activation
 }
 
-GMNetImpl::GMNetImpl() {
-  encoder = register_module("encoder", ResNet18Encoder());
-  depth = register_module("depth", Decoder(1));
-  normal = register_module("normal", Decoder(3));
-  base_color = register_module("base_color", Decoder(3));
-  roughness = register_module("roughness", Decoder(1));
-  metalness = register_module("metalness", Decoder(1));
+GMNetImpl::GMNetImpl(int div) {
+  TORCH_CHECK(div >= 1 && 16 % div == 0, "GMNet: width divisor ", div, " must divide 16");
+  encoder = register_module("encoder", ResNet18Encoder(div));
+  depth = register_module("depth", Decoder(1, div));
+  normal = register_module("normal", Decoder(3, div));
+  base_color = register_module("base_color", Decoder(3, div));
+  roughness = register_module("roughness", Decoder(1, div));
+  metalness = register_module("metalness", Decoder(1, div));
 }
 
 GMOutput GMNetImpl::forward(const torch::Tensor& image) {
@@ -162,27 +164,30 @@ torch::Tensor ConvGNImpl::forward(const torch::Tensor& x) {
   return torch::relu(norm->forward(conv->forward(x)));
 }
 
-LNetImpl::LNetImpl(int probe_height, int probe_width) : h(probe_height), w(probe_width) {
-  in = register_module("in", ConvGN(12, 64, 3, 1));
-  e1 = register_module("e1", ConvGN(64, 128, 4, 2));
-  e2 = register_module("e2", ConvGN(128, 256, 4, 2));
-  e3 = register_module("e3", ConvGN(256, 256, 4, 2));
-  e4 = register_module("e4", ConvGN(256, 512, 4, 2));
-  e5 = register_module("e5", ConvGN(512, 1024, 3, 1));
-  d1 = register_module("d1", ConvGN(1024, 512, 1, 1));
-  d2 = register_module("d2", ConvGN(1024, 256, 3, 1));
-  d3 = register_module("d3", ConvGN(512, 256, 3, 1));
-  d4 = register_module("d4", ConvGN(512, 128, 3, 1));
-  d5 = register_module("d5", ConvGN(256, 128, 3, 1));
-  out1 = register_module("out1", CirConv(128, 512, 3));
-  out2 = register_module("out2", CirConv(512, h * w * 3, 3));
+LNetImpl::LNetImpl(int probe_height, int probe_width, int div) : h(probe_height), w(probe_width) {
+  TORCH_CHECK(div >= 1 && 4 % div == 0, "LNet: width divisor ", div, " must divide 4 (16-channel groups)");
+  auto c = [div](int n) { return n / div; };
+  // ("head", not "in": module names must not be Python keywords for torch::save.)
+  head = register_module("head", ConvGN(12, c(64), 3, 1));
+  e1 = register_module("e1", ConvGN(c(64), c(128), 4, 2));
+  e2 = register_module("e2", ConvGN(c(128), c(256), 4, 2));
+  e3 = register_module("e3", ConvGN(c(256), c(256), 4, 2));
+  e4 = register_module("e4", ConvGN(c(256), c(512), 4, 2));
+  e5 = register_module("e5", ConvGN(c(512), c(1024), 3, 1));
+  d1 = register_module("d1", ConvGN(c(1024), c(512), 1, 1));
+  d2 = register_module("d2", ConvGN(c(1024), c(256), 3, 1));
+  d3 = register_module("d3", ConvGN(c(512), c(256), 3, 1));
+  d4 = register_module("d4", ConvGN(c(512), c(128), 3, 1));
+  d5 = register_module("d5", ConvGN(c(256), c(128), 3, 1));
+  out1 = register_module("out1", CirConv(c(128), c(512), 3));
+  out2 = register_module("out2", CirConv(c(512), h * w * 3, 3));
 }
 
 torch::Tensor LNetImpl::forward(const torch::Tensor& input) {
   TORCH_CHECK(input.dim() == 4 && input.size(1) == 12 && input.size(2) % 16 == 0 &&
                   input.size(3) % 16 == 0,
               "LNet: input must be [B,12,H,W] with H and W multiples of 16, got ", input.sizes());
-  const torch::Tensor x0 = in->forward(input);
+  const torch::Tensor x0 = head->forward(input);
   const torch::Tensor x1 = e1->forward(x0);  // 1/2, 128
   const torch::Tensor x2 = e2->forward(x1);  // 1/4, 256
   const torch::Tensor x3 = e3->forward(x2);  // 1/8, 256

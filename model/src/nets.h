@@ -39,8 +39,9 @@ TORCH_MODULE(BasicBlock);
 
 // ResNet-18 (He et al. 2016) with CirP. Returns the skip features at 1/2, 1/4, 1/8, 1/16
 // and the bottleneck at 1/32 (64, 64, 128, 256, 512 channels).
+// `div` divides every channel count (1: the paper's network; tests use 4 to be quick).
 struct ResNet18EncoderImpl : torch::nn::Module {
-  ResNet18EncoderImpl();
+  explicit ResNet18EncoderImpl(int div = 1);
   std::vector<torch::Tensor> forward(const torch::Tensor& x);
   CirConv conv1{nullptr};
   torch::nn::BatchNorm2d bn1{nullptr};
@@ -52,7 +53,7 @@ TORCH_MODULE(ResNet18Encoder);
 //   i512-o256 | up, cat skip(256): i512-o256, i256-o128 | up, cat(128): i256-o128, i128-o64 |
 //   up, cat(64): i128-o64, i64-o32 | up, cat(64): i96-o32, i32-o16 | up: i16-o16, i16-o{3,1}
 struct DecoderImpl : torch::nn::Module {
-  explicit DecoderImpl(int out_channels);
+  DecoderImpl(int out_channels, int div = 1);
   torch::Tensor forward(const std::vector<torch::Tensor>& features);
   torch::nn::ModuleList convs{nullptr};
 };
@@ -67,7 +68,7 @@ struct GMOutput {
 };
 
 struct GMNetImpl : torch::nn::Module {
-  GMNetImpl();
+  explicit GMNetImpl(int div = 1);
   // image: [B,3,H,W] LDR in [0,1], H and W multiples of 32.
   GMOutput forward(const torch::Tensor& image);
   // Loads encoder weights saved with torch::save(encoder) (e.g. a converted ImageNet ResNet-18).
@@ -92,10 +93,10 @@ TORCH_MODULE(ConvGN);
 // (H, W multiples of 16). Output: per-pixel probes in log space, log(1 + L) >= 0 (softplus),
 // [B, H, W, h, w, 3].
 struct LNetImpl : torch::nn::Module {
-  LNetImpl(int probe_height, int probe_width);
+  LNetImpl(int probe_height, int probe_width, int div = 1);
   torch::Tensor forward(const torch::Tensor& input);
   int h, w;
-  ConvGN in{nullptr}, e1{nullptr}, e2{nullptr}, e3{nullptr}, e4{nullptr}, e5{nullptr};
+  ConvGN head{nullptr}, e1{nullptr}, e2{nullptr}, e3{nullptr}, e4{nullptr}, e5{nullptr};
   ConvGN d1{nullptr}, d2{nullptr}, d3{nullptr}, d4{nullptr}, d5{nullptr};
   CirConv out1{nullptr}, out2{nullptr};
 };

@@ -7,8 +7,9 @@
 namespace phyir::model {
 
 // Same constants as render/brdf.h and core/safe_math.h (kept equal by a test).
-constexpr double kMirrorRoughness = 0.008;
-constexpr double kMinCosine = 1e-4;
+// Stored as the float values, so float tensors compare exactly as the renderer does.
+constexpr double kMirrorRoughness = static_cast<double>(0.008f);
+constexpr double kMinCosine = static_cast<double>(1e-4f);
 
 // --- BRDF terms (appendix A.3), elementwise on broadcastable tensors --------------------------
 torch::Tensor D_GGX(const torch::Tensor& NoH, const torch::Tensor& alpha);     // eq. 15

@@ -39,6 +39,48 @@ void validate(const RenderJob& job) {
   if (job.threads < 0) fail("--threads {} must be >= 0 (0 = all cores)", job.threads);
   if (job.camera_position && !is_finite(*job.camera_position)) fail("--camera must be three finite numbers");
   if (!std::isfinite(job.exposure)) fail("--exposure must be finite");
+  if (job.probes) job.probe.validate();
+}
+
+// The probes of the view, their four files and their block of render.json.
+nlohmann::json render_and_write_probes(const RenderJob& job, const RenderScene& scene, const CameraModel& camera,
+                                       const Effects& effects, std::vector<std::string>* files) {
+  ProbeSettings settings = job.probe;
+  settings.seed = job.settings.seed;
+  settings.path = job.settings.path;
+  settings.progress = job.settings.progress;
+  spdlog::info("rendering {}x{} probes of {}x{} texels, {} spp, mode {}", settings.layout.grid_height,
+               settings.layout.grid_width, settings.layout.res_height, settings.layout.res_width, settings.spp,
+               probe_mode_name(settings.mode));
+  const ProbeOutput probes = render_probes(scene, camera, effects, settings);
+  const auto start = Clock::now();
+  write_image(job.out_dir / "probes.exr", probes.mosaic);
+  write_image(job.out_dir / "probe_position.exr", probes.position, {"X", "Y", "Z"});
+  write_image(job.out_dir / "probe_normal.exr", probes.normal, {"X", "Y", "Z"});
+  write_image(job.out_dir / "probe_mask.exr", probes.mask);
+  const std::vector<std::string> written = {"probes.exr", "probe_position.exr", "probe_normal.exr", "probe_mask.exr"};
+  files->insert(files->end(), written.begin(), written.end());
+  nlohmann::json block = settings.to_json();
+  const nlohmann::json stats = probes.stats.to_json();
+  block.update(stats);
+  block["write_seconds"] = seconds_since(start);
+  block["files"] = written;
+  block["conventions"] = {
+      {"probes", "mosaic of (H h) x (W w) RGB radiance: probe (i, j) is the h x w block at rows i h.., columns j w.., "
+                 "an equirectangular image in the panorama's mapping, world-aligned; texel = incident radiance at the "
+                 "probe origin averaged over the texel's solid angle"},
+      {"placement", "probe (i, j) sits on the first surface seen from the camera at the continuous pixel position "
+                    "((j + 0.5) width / W, (i + 0.5) height / H): for W = width / 2 the corner shared by pixels "
+                    "(2i..2i+1, 2j..2j+1), for W = width the pixel centre"},
+      {"probe_position", "H x W, X,Y,Z: the probe origin = surface point + offset * shading normal (facing the camera), metres; 0 where nothing is seen"},
+      {"probe_normal", "H x W, X,Y,Z: the unit shading normal the origin is offset along; 0 where nothing is seen"},
+      {"probe_mask", "H x W, Y: 1 for a valid label; 0 where nothing is seen (probe all 0), on emitters and on glass or "
+                     "alpha-blended surfaces (probe computed anyway), as the paper's M_mask"}};
+  if (probes.stats.counters.nonfinite_samples > 0)
+    spdlog::warn("{} non-finite probe samples were caught and zeroed", probes.stats.counters.nonfinite_samples);
+  spdlog::info("probes: {:.2f} s ({} valid of {}, {:.1f} Mrays)", probes.stats.total_seconds, probes.stats.valid,
+               probes.stats.probes, double(probes.stats.counters.rays) / 1e6);
+  return block;
 }
 
 std::unique_ptr<EnvironmentLight> load_environment(const RenderJob& job) {
@@ -127,9 +169,13 @@ nlohmann::json run_render_job(const RenderJob& job) {
   start = Clock::now();
   fs::create_directories(job.out_dir);
   std::vector<std::string> files = out.film.write_exr(job.out_dir);
+  const double color_write_seconds = seconds_since(start);
+  nlohmann::json probe_block;
+  if (job.probes) probe_block = render_and_write_probes(job, render_scene, camera, out.effects, &files);
+  start = Clock::now();
   write_image(job.out_dir / "color.png", linear_to_display(out.film.color(), job.exposure, job.view));
   files.push_back("color.png");
-  const double write_seconds = seconds_since(start);
+  const double write_seconds = color_write_seconds + seconds_since(start);
 
   nlohmann::json report;
   report["phyir_version"] = PHYIR_VERSION;
@@ -167,6 +213,10 @@ nlohmann::json run_render_job(const RenderJob& job) {
                        {"aov_seconds", out.stats.aov_seconds},
                        {"write_seconds", write_seconds},
                        {"total_seconds", seconds_since(total_start)}};
+  if (job.probes) {
+    report["timings"]["probe_seconds"] = probe_block["seconds"]["total"];
+    report["probes"] = probe_block;
+  }
   report["files"] = files;
   write_file_atomic(job.out_dir / "render.json", report.dump(2) + "\n");
   if (out.stats.counters.nonfinite_samples > 0)

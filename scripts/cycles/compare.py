@@ -22,7 +22,7 @@ import sys
 import numpy as np
 import OpenImageIO as oiio
 
-TARGETS = (0.10, 0.05, 0.02)
+DEFAULT_TARGETS = "0.5,0.3,0.2"
 
 
 # --- glTF camera --------------------------------------------------------------------------
@@ -141,9 +141,11 @@ def sweep_point(runs, key, spp, repeat):
 
 
 def noise_constant(points, key, reference_spp):
-    """a in relative_rmse(n) ~ a sqrt(1/n + 1/N) against the renderer's own reference (N spp)."""
+    """a in relative_rmse(n) ~ a sqrt(1/n + 1/N) against the renderer's own reference (N spp),
+    from the sweep's highest spp (the rate of stratified samplers approaches 1/sqrt(n) there)."""
+    top = max(p["spp"] for p in points if p["renderer"] == key)
     values = [p["rel_own"] / math.sqrt(1.0 / p["spp"] + 1.0 / reference_spp)
-              for p in points if p["renderer"] == key and p["spp"] >= 4]
+              for p in points if p["renderer"] == key and p["spp"] * 4 >= top]
     return float(np.median(values)) if values else float("nan")
 
 
@@ -172,6 +174,28 @@ def depth_agreement(runs):
             "fraction_within_5_percent": float(np.mean(rel < 0.05))}
 
 
+def lights_mask(runs):
+    """Pixels whose centre sees an emitter, grown by one pixel: where pixel-area antialiasing
+    of a light (a huge contrast) dominates the error rather than light transport."""
+    mask = read_exr(os.path.join(runs, "align", "ours", "mask_emissive.exr"), ("Y",))[..., 0] > 0.5
+    grown = mask.copy()
+    for dy in (-1, 0, 1):
+        for dx in (-1, 0, 1):
+            grown |= np.roll(np.roll(mask, dy, axis=0), dx, axis=1)
+    return grown
+
+
+def blur(image, radius):
+    """Box blur of a 2-D image, wrapping around horizontally like the panorama."""
+    out = np.zeros_like(image, dtype=np.float64)
+    padded = np.pad(image, ((radius, radius), (0, 0)), mode="edge")
+    for dy in range(-radius, radius + 1):
+        rows = padded[radius + dy: radius + dy + image.shape[0]]
+        for dx in range(-radius, radius + 1):
+            out += np.roll(rows, dx, axis=1)
+    return out / (2 * radius + 1) ** 2
+
+
 def preview(image, exposure):
     x = np.clip(image * 2.0 ** exposure, 0.0, 1.0)
     return np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1.0 / 2.4) - 0.055)
@@ -190,6 +214,8 @@ def analyse(args):
               "cycles_ue4": "Cycles, UE4 terms (rebuilt)"}
     machine = open(os.path.join(runs, "machine.txt")).read()
     reference_spp = {k: int(v) for k, v in (item.split("=") for item in args.reference_spp.split(","))}
+    targets = [float(t) for t in args.targets.split(",")]
+    keep = ~lights_mask(runs)
     refs = {"ours": read_exr(os.path.join(runs, "reference", "ours.exr"))}
     for m in modes:
         refs[f"cycles_{m}"] = read_exr(os.path.join(runs, "reference", f"cycles_{m}.exr"))
@@ -198,12 +224,13 @@ def analyse(args):
     points = []
     for key in keys:
         for spp in spps:
-            errors_shared, errors_own, rmse_shared, times = [], [], [], []
+            errors_shared, errors_own, rmse_shared, errors_own_unlit, times = [], [], [], [], []
             for r in range(1, args.repeats + 1):
                 image, t = sweep_point(runs, key, spp, r)
                 errors_shared.append(relative_rmse(image, refs["ours"]))
                 rmse_shared.append(rmse(image, refs["ours"]))
                 errors_own.append(relative_rmse(image, refs[key]))
+                errors_own_unlit.append(relative_rmse(image[keep], refs[key][keep]))
                 times.append(t)
             points.append({
                 "renderer": key, "spp": spp,
@@ -214,6 +241,7 @@ def analyse(args):
                 "cpu_seconds": min(t["cpu_seconds"] for t in times),
                 "rel_shared": float(np.mean(errors_shared)), "rmse_shared": float(np.mean(rmse_shared)),
                 "rel_own": float(np.mean(errors_own)),
+                "rel_own_no_lights": float(np.mean(errors_own_unlit)),
                 "nonfinite": sum(t["nonfinite"] for t in times),
             })
 
@@ -223,26 +251,30 @@ def analyse(args):
         w = csv.writer(f)
         w.writerow(["renderer", "spp", "render_seconds", "render_seconds_max", "total_seconds", "process_seconds",
                     "cpu_seconds", "relative_rmse_shared_reference", "rmse_shared_reference",
-                    "relative_rmse_own_reference"])
+                    "relative_rmse_own_reference", "relative_rmse_own_reference_lights_excluded"])
         for p in points:
             w.writerow([p["renderer"], p["spp"], f'{p["render_seconds"]:.4f}', f'{p["render_seconds_max"]:.4f}',
                         f'{p["total_seconds"]:.4f}', f'{p["process_seconds"]:.3f}', f'{p["cpu_seconds"]:.3f}',
-                        f'{p["rel_shared"]:.5f}', f'{p["rmse_shared"]:.5f}', f'{p["rel_own"]:.5f}'])
+                        f'{p["rel_shared"]:.5f}', f'{p["rmse_shared"]:.5f}', f'{p["rel_own"]:.5f}',
+                        f'{p["rel_own_no_lights"]:.5f}'])
 
     # Time to equal error, on render seconds and on CPU seconds.
     summary = []
-    curves = [(k, "own") for k in keys] + [(k, "shared") for k in keys if k != "ours"]
+    columns = {"own": "rel_own", "phyir": "rel_shared", "own, lights excluded": "rel_own_no_lights"}
+    curves = ([(k, "own") for k in keys] + [(k, "phyir") for k in keys if k != "ours"] +
+              [(k, "own, lights excluded") for k in keys])
     for key, against in curves:
         pts = [p for p in points if p["renderer"] == key]
-        errors = [p["rel_own" if against == "own" else "rel_shared"] for p in pts]
+        errors = [p[columns[against]] for p in pts]
         for clock in ("render_seconds", "cpu_seconds"):
-            for target in TARGETS:
+            for target in targets:
                 t, how = time_to_error([p[clock] for p in pts], errors, target)
-                summary.append({"renderer": key, "reference": "own" if against == "own" else "phyir",
+                summary.append({"renderer": key, "reference": against,
                                 "clock": clock, "target": target, "seconds": t, "how": how})
     for s in summary:
         ours = next(o for o in summary if o["renderer"] == "ours" and o["clock"] == s["clock"]
-                    and o["target"] == s["target"])
+                    and o["target"] == s["target"]
+                    and o["reference"] == ("own" if s["reference"] == "phyir" else s["reference"]))
         s["ratio_to_phyir"] = (s["seconds"] / ours["seconds"]
                                if s["seconds"] and ours["seconds"] else None)
     summary_path = os.path.join(args.figures, f"cycles_{name}_time_to_error.csv")
@@ -269,6 +301,7 @@ def analyse(args):
             "alignment": alignment(b, a),
         }
     report = {"name": name, "reference_spp": reference_spp, "noise_constant": noise,
+              "reference_noise": {k: noise[k] / math.sqrt(reference_spp[k]) for k in keys},
               "agreement": agreement, "depth": depth_agreement(runs),
               "nonfinite_samples_caught_phyir": sum(p["nonfinite"] for p in points if p["renderer"] == "ours"),
               "time_to_error": summary}
@@ -276,24 +309,26 @@ def analyse(args):
         json.dump(report, f, indent=1)
 
     # Figure 1: relative RMSE versus seconds, against own and shared references.
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.4), sharey=True)
+    panels = [("rel_own", "each against its own converged reference"),
+              ("rel_shared", "all against phyir's converged reference"),
+              ("rel_own_no_lights", "own reference, directly seen lights excluded")]
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4.4), sharey=True)
     colours = {"ours": "C0", "cycles_principled": "C3", "cycles_ue4": "C2"}
-    for ax, against in zip(axes, ("own", "shared")):
+    for ax, (column, title) in zip(axes, panels):
         for key in keys:
             pts = [p for p in points if p["renderer"] == key]
-            errors = [p["rel_own" if against == "own" else "rel_shared"] for p in pts]
+            errors = [p[column] for p in pts]
             ax.loglog([p["render_seconds"] for p in pts], errors, "o-", color=colours.get(key), ms=4,
                       label=labels.get(key, key))
             for p, e in zip(pts, errors):
                 if p["spp"] in (1, 16, spps[-1]):
                     ax.annotate(f'{p["spp"]}', (p["render_seconds"], e), textcoords="offset points",
                                 xytext=(3, 3), fontsize=7, color=colours.get(key))
-        for target in TARGETS:
+        for target in targets:
             ax.axhline(target, color="0.6", lw=0.8, ls=":")
         ax.set_xlabel("render time, s (minimum of repeats; labels: spp)")
         ax.grid(True, which="both", alpha=0.3)
-        ax.set_title("each against its own converged reference" if against == "own"
-                     else "all against phyir's converged reference", fontsize=9)
+        ax.set_title(title, fontsize=9)
     axes[0].set_ylabel("relative RMSE")
     axes[0].legend(fontsize=8)
     cpu = next((line.split(": ", 1)[1] for line in machine.splitlines() if line.startswith("cpu:")), "")
@@ -303,25 +338,29 @@ def analyse(args):
     fig.savefig(os.path.join(args.figures, f"cycles_{name}.png"), dpi=100)
     plt.close(fig)
 
-    # Figure 2: the converged images and the differences.
+    # Figure 2: the converged images (top) and Cycles / phyir luminance, blurred over 5x5
+    # pixels so that the bias shows rather than the references' noise (bottom).
     exposure = -math.log2(max(np.percentile(refs["ours"], 99), 1e-6))
-    panels = [("phyir", refs["ours"])]
-    for m in modes:
-        panels.append((labels[f"cycles_{m}"], refs[f"cycles_{m}"]))
-    for m in modes:
-        d = refs[f"cycles_{m}"].mean(axis=2) / np.maximum(refs["ours"].mean(axis=2), 1e-4)
-        panels.append((f"{labels[f'cycles_{m}']} / phyir, luminance", d))
-    fig, axes = plt.subplots(len(panels), 1, figsize=(5.2, 2.8 * len(panels) * 0.62))
-    for ax, (title, img) in zip(axes, panels):
-        if img.ndim == 3:
-            ax.imshow(preview(img, exposure), interpolation="nearest")
+    fig, axes = plt.subplots(2, len(keys), figsize=(4.2 * len(keys), 4.6), squeeze=False)
+    luminance = {k: blur(refs[k] @ np.array([0.2126, 0.7152, 0.0722]), 2) for k in keys}
+    for col, key in enumerate(keys):
+        axes[0, col].imshow(preview(refs[key], exposure), interpolation="nearest")
+        axes[0, col].set_title(f"{labels.get(key, key)}, {reference_spp[key]} spp", fontsize=8)
+        if key == "ours":
+            axes[1, col].axis("off")
+            axes[1, col].text(0.02, 0.5, f"exposure {exposure:+.2f} stops, sRGB\n"
+                              "below: Cycles / phyir luminance,\n5x5 box-blurred",
+                              fontsize=8, va="center", transform=axes[1, col].transAxes)
         else:
-            shown = ax.imshow(img, cmap="RdBu_r", vmin=0.7, vmax=1.3, interpolation="nearest")
-            fig.colorbar(shown, ax=ax, fraction=0.025, pad=0.01)
-        ax.set_title(title, fontsize=8)
-        ax.axis("off")
+            shown = axes[1, col].imshow(luminance[key] / np.maximum(luminance["ours"], 1e-6), cmap="RdBu_r",
+                                        vmin=0.8, vmax=1.2, interpolation="nearest")
+            fig.colorbar(shown, ax=axes[1, col], fraction=0.024, pad=0.01)
+            axes[1, col].set_title(f"{labels.get(key, key)} / phyir", fontsize=8)
+        for row in range(2):
+            axes[row, col].set_xticks([])
+            axes[row, col].set_yticks([])
     fig.tight_layout()
-    fig.savefig(os.path.join(args.figures, f"cycles_{name}_images.png"), dpi=100)
+    fig.savefig(os.path.join(args.figures, f"cycles_{name}_images.png"), dpi=80)
     plt.close(fig)
 
     # Console summary.
@@ -330,7 +369,7 @@ def analyse(args):
         if s["clock"] == "render_seconds":
             t = "not reached" if s["seconds"] is None else f'{s["seconds"]:.2f} s'
             r = "" if s["ratio_to_phyir"] is None else f' ({s["ratio_to_phyir"]:.2f}x phyir)'
-            print(f'  {s["renderer"]:18s} vs {s["reference"]:5s} reference: {s["target"]:.0%} in {t}{r}')
+            print(f'  {s["renderer"]:18s} vs {s["reference"]:21s} reference: {s["target"]:.0%} in {t}{r}')
     for key, a in agreement.items():
         print(f'  converged {key} vs phyir: relative RMSE {a["relative_rmse"]:.4f} '
               f'(noise alone ~{a["expected_from_noise"]:.4f}), mean ratio {np.round(a["mean_ratio_rgb"], 4)}')
@@ -349,6 +388,7 @@ def main():
     an.add_argument("--spp-list", required=True)
     an.add_argument("--repeats", type=int, default=2)
     an.add_argument("--modes", default="principled,ue4")
+    an.add_argument("--targets", default=DEFAULT_TARGETS, help="relative RMSE levels to time")
     an.add_argument("--reference-spp", required=True, help="ours=4096,cycles_principled=4096,...")
     args = parser.parse_args()
     if args.command == "camera":

@@ -5,7 +5,7 @@
 #
 #   scripts/cycles/compare.sh [--preset mini] [--scene-seed 1] [--width 256] [--height 128]
 #       [--spp-list 1,2,4,8,16,32,64,128,256] [--reference-spp 4096] [--cycles-reference-spp 4096[,4096]]
-#       [--repeats 2] [--threads 2] [--modes principled,ue4] [--reference EXR]
+#       [--repeats 2] [--threads 2] [--modes principled,ue4] [--reference EXR] [--targets 0.5,0.3,0.2]
 #       [--runs /tmp/phyir-cycles/mini] [--figures docs/figures] [--name mini]
 #
 # --cycles-reference-spp takes one value per Cycles mode (the last one repeats).
@@ -24,7 +24,7 @@ PYTHON=/usr/bin/python3   # Debian's, with numpy, matplotlib and OpenImageIO
 
 preset=mini scene_seed=1 width=256 height=128
 spp_list=1,2,4,8,16,32,64,128,256 reference_spp=4096 cycles_reference_spp=4096
-repeats=2 threads=2 modes=principled,ue4 reference="" runs="" figures="$ROOT/docs/figures" name=""
+repeats=2 threads=2 modes=principled,ue4 reference="" targets=0.5,0.3,0.2 runs="" figures="$ROOT/docs/figures" name=""
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --preset) preset="$2" ;;
@@ -38,6 +38,7 @@ while [[ $# -gt 0 ]]; do
     --threads) threads="$2" ;;
     --modes) modes="$2" ;;
     --reference) reference="$2" ;;
+    --targets) targets="$2" ;;
     --runs) runs="$2" ;;
     --figures) figures="$2" ;;
     --name) name="$2" ;;
@@ -101,7 +102,7 @@ log "scene $scene, camera at $camera, ${width}x${height}"
   echo "date: $(date -Iseconds)"
   echo "cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ //'), $(nproc) cores"
   echo "load average at start: $(cut -d' ' -f1-3 /proc/loadavg)"
-  echo "phyir: $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)$(git -C "$ROOT" diff --quiet 2>/dev/null || echo ' (modified tree)')"
+  echo "phyir: $PHYIR ($("$PHYIR" --version 2>/dev/null | head -1), built $(date -r "$PHYIR" -Iseconds)); scripts from $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)"
   echo "blender: $("$BLENDER" --version 2>/dev/null | head -1)"
   echo "threads: $threads; ours --max-bounces $ours_bounces, Cycles max_bounces $cycles_bounces"
   echo "spp: $spp_list; references: phyir $reference_spp spp, Cycles ($modes) $cycles_reference_spp spp; repeats $repeats"
@@ -145,4 +146,5 @@ echo "load average at end: $(cut -d' ' -f1-3 /proc/loadavg)" >>"$runs/machine.tx
 
 # 5. Errors, time to equal error, CSV and figures.
 "$PYTHON" "$ROOT/scripts/cycles/compare.py" analyse --runs "$runs" --figures "$figures" --name "$name" \
-  --spp-list "$spp_list" --repeats "$repeats" --modes "$modes" --reference-spp "$reference_spps"
+  --spp-list "$spp_list" --repeats "$repeats" --modes "$modes" --reference-spp "$reference_spps" \
+  --targets "$targets"

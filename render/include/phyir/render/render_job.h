@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "phyir/render/camera.h"
+#include "phyir/render/probe_renderer.h"
 #include "phyir/render/render_view.h"
 
 namespace phyir::render {
@@ -28,6 +29,11 @@ struct RenderJob {
   float environment_scale = 1.0f;
   float exposure = 0.0f;                     // stops, for color.png only
   std::string view = "Standard";             // OCIO view for color.png
+  // Per-pixel light probes (docs/probes.md): rendered after the view, only when asked, from
+  // streams of their own (color.exr is the same with or without them). Their seed and path
+  // settings are the view's (`settings`); the fields of `probe` for those are ignored.
+  bool probes = false;
+  ProbeSettings probe;
 };
 
 // Throws phyir::Error for bad input (names the file / flag / value). Returns render.json.

@@ -1,0 +1,265 @@
+// phyir bench probes: what per-pixel light probes cost and how wrong they are, per mode and
+// setting, against a converged reference (docs/probes.md has the method and the results).
+//
+// The reference is the unbiased path mode at --reference-spp on a random subset of
+// --reference-probes valid probes, rendered as two independent halves so that its own noise
+// is measured too (reference_noise = RMSE(half 1 - half 2) / 2, relative like the errors).
+// Each configuration "MODE:SPP[:CACHE_SPP[:CELL_M[:SEED]]]" is then timed and compared on that
+// subset: cache mode renders the full grid (its cache depends on every probe); path mode
+// renders the subset only and its time is scaled to the full grid's probe count (its
+// probes are independent; the row says `extrapolated`).
+#include <sys/resource.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include "commands.h"
+#include "phyir/core/atomic_file.h"
+#include "phyir/core/error.h"
+#include "phyir/core/image_error.h"
+#include "phyir/core/image_io.h"
+#include "phyir/core/log.h"
+#include "phyir/render/effects.h"
+#include "phyir/render/probe_renderer.h"
+#include "phyir/render/render_job.h"
+#include "phyir/render/rng.h"
+#include "phyir/scenes/gltf_loader.h"
+
+namespace phyir::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct BenchProbeFlags {
+  std::string scene;
+  std::string out = "bench-probes";
+  std::string grid = "128x256";
+  std::vector<std::string> res_list = {"16x32"};
+  std::vector<std::string> configs = {"path:4",  "path:16",  "cache:1:32", "cache:2:64",
+                                      "cache:4:64", "cache:4:128", "cache:8:128", "cache:16:256"};
+  int reference_spp = 1024;
+  int reference_probes = 64;
+  int threads = 0;
+  int max_bounces = 8;
+  uint64_t seed = 0;
+  float offset = 0.01f;
+  int width = 512;
+  int height = 256;
+};
+
+struct Config {
+  std::string text;
+  render::ProbeMode mode;
+  int spp;
+  int cache_spp = 128;
+  float cache_cell = 0.05f;
+  uint64_t seed_offset = 0;  // another run of the same setting, to tell noise from bias
+};
+
+Config parse_config(const std::string& text, const render::ProbeSettings& defaults) {
+  Config c{text, render::ProbeMode::kCache, 0, defaults.cache_spp, defaults.cache_cell};
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  for (std::string part; std::getline(in, part, ':');) parts.push_back(part);
+  if (parts.size() < 2 || parts.size() > 5) fail("--configs '{}' is not MODE:SPP[:CACHE_SPP[:CELL_M[:SEED]]]", text);
+  c.mode = render::parse_probe_mode(parts[0]);
+  try {
+    c.spp = std::stoi(parts[1]);
+    if (parts.size() > 2) c.cache_spp = std::stoi(parts[2]);
+    if (parts.size() > 3) c.cache_cell = std::stof(parts[3]);
+    if (parts.size() > 4) c.seed_offset = std::stoull(parts[4]);
+  } catch (const std::exception&) {
+    fail("--configs '{}': SPP, CACHE_SPP and CELL_M must be numbers", text);
+  }
+  return c;
+}
+
+double cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+std::string machine_description() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line, model = "unknown CPU";
+  while (std::getline(cpuinfo, line))
+    if (line.rfind("model name", 0) == 0) {
+      model = line.substr(line.find(':') + 2);
+      break;
+    }
+  return model + ", " + std::to_string(tbb::info::default_concurrency()) + " hardware threads";
+}
+
+// The subset's probes side by side: probe k at columns [k w, (k+1) w).
+Image strip(const Image& mosaic, const render::ProbeLayout& layout, const std::vector<int>& subset) {
+  Image out(layout.res_width * int(subset.size()), layout.res_height, 3);
+  for (size_t k = 0; k < subset.size(); ++k) {
+    const Image probe = render::probe_image(mosaic, layout, subset[k] / layout.grid_width, subset[k] % layout.grid_width);
+    for (int r = 0; r < layout.res_height; ++r)
+      for (int c = 0; c < layout.res_width; ++c)
+        for (int ch = 0; ch < 3; ++ch) out.at(int(k) * layout.res_width + c, r, ch) = probe.at(c, r, ch);
+  }
+  return out;
+}
+
+void run_bench_probes(const BenchProbeFlags& f) {
+  const scenes::Scene scene = scenes::load_gltf(f.scene);
+  const render::RenderScene render_scene(scene);
+  render::RenderJob job;
+  job.width = f.width;
+  job.height = f.height;
+  const render::CameraModel camera = render::job_camera(job, scene, nullptr);
+  const render::Effects effects = render::analyse_effects(scene, false);
+  fs::create_directories(f.out);
+
+  render::ProbeSettings base;
+  render::parse_size(f.grid, "--grid", &base.layout.grid_height, &base.layout.grid_width);
+  base.offset = f.offset;
+  base.path.max_bounces = f.max_bounces;
+  base.progress = false;
+  base.seed = f.seed;
+
+  std::ostringstream csv;
+  csv << "scene,grid,resolution,config,mode,spp,cache_spp,cache_cell_m,probes,seconds,cpu_seconds,extrapolated,"
+         "rays,relative_rmse,rmse,reference_noise,reference_spp,subset_probes,cache_cells,cache_fallbacks\n";
+  nlohmann::json summary = {{"scene", f.scene}, {"machine", machine_description()}, {"grid", f.grid}, {"rows", nlohmann::json::array()}};
+  for (const std::string& res : f.res_list) {
+    render::ProbeSettings s = base;
+    render::parse_size(res, "--res-list", &s.layout.res_height, &s.layout.res_width);
+    s.validate();
+    const std::vector<render::ProbeSite> sites = render::place_probes(render_scene, camera, s.layout, s.offset);
+    std::vector<int> valid;
+    for (size_t p = 0; p < sites.size(); ++p)
+      if (sites[p].valid()) valid.push_back(int(p));
+    int computed = 0;
+    for (const auto& site : sites) computed += site.computed() ? 1 : 0;
+    if (valid.empty()) fail("{}: no valid probe in the {} grid", f.scene, f.grid);
+    // A random subset of valid probes, the same for every configuration.
+    render::Rng pick(0x5eed + f.seed, 3);
+    std::vector<int> subset = valid;
+    const size_t n = std::min(subset.size(), size_t(std::max(f.reference_probes, 1)));
+    for (size_t k = 0; k < n; ++k) std::swap(subset[k], subset[k + pick.next_u32() % (subset.size() - k)]);
+    subset.resize(n);
+    std::sort(subset.begin(), subset.end());
+
+    // Reference: two independent halves, cached on disk by (grid, resolution, spp, seed).
+    const std::string tag = f.grid + "_" + res + "_" + std::to_string(f.reference_spp) + "spp_" +
+                            std::to_string(n) + "probes_seed" + std::to_string(f.seed);
+    Image halves[2];
+    for (int h = 0; h < 2; ++h) {
+      const fs::path path = fs::path(f.out) / ("reference_" + tag + "_half" + std::to_string(h) + ".exr");
+      if (fs::exists(path)) {
+        halves[h] = read_image(path);
+        spdlog::info("reusing {}", path.string());
+        continue;
+      }
+      render::ProbeSettings r = s;
+      r.mode = render::ProbeMode::kPath;
+      r.spp = std::max(f.reference_spp / 2, 1);
+      r.seed = f.seed + 1000 + uint64_t(h);
+      r.progress = true;
+      spdlog::info("reference half {}: {} probes, {}x{} texels, {} spp, path mode", h, n, s.layout.res_height,
+                   s.layout.res_width, r.spp);
+      const render::ProbeOutput out = render::render_probes_at(render_scene, effects, sites, r, subset);
+      halves[h] = strip(out.mosaic, s.layout, subset);
+      write_image(path, halves[h]);
+    }
+    nlohmann::json subset_json = nlohmann::json::array();
+    for (int p : subset) {
+      const render::ProbeSite& site = sites[size_t(p)];
+      subset_json.push_back({{"index", p}, {"i", p / s.layout.grid_width}, {"j", p % s.layout.grid_width},
+                             {"origin", {site.origin.x, site.origin.y, site.origin.z}},
+                             {"normal", {site.normal.x, site.normal.y, site.normal.z}}});
+    }
+    summary["subsets"][res] = {{"reference", "reference_" + tag + "_half{0,1}.exr"}, {"probes", subset_json}};
+    write_file_atomic(fs::path(f.out) / ("subset_" + tag + ".json"), subset_json.dump(1) + "\n");
+    Image reference = halves[0];
+    for (size_t k = 0; k < reference.pixels.size(); ++k) reference.pixels[k] = 0.5f * (halves[0].pixels[k] + halves[1].pixels[k]);
+    const ImageError split = image_error(halves[0], halves[1]);
+    const double reference_noise = split.relative_rmse / 2.0;
+    spdlog::info("reference noise (relative RMSE of the mean of two halves): {:.4f}", reference_noise);
+
+    for (const std::string& text : f.configs) {
+      const Config c = parse_config(text, s);
+      render::ProbeSettings t = s;
+      t.mode = c.mode;
+      t.spp = c.spp;
+      t.cache_spp = c.cache_spp;
+      t.cache_cell = c.cache_cell;
+      t.seed = s.seed + c.seed_offset;
+      t.validate();
+      const bool extrapolated = c.mode == render::ProbeMode::kPath;
+      const double cpu_start = cpu_seconds();
+      const render::ProbeOutput out = extrapolated ? render::render_probes_at(render_scene, effects, sites, t, subset)
+                                                   : render::render_probes_at(render_scene, effects, sites, t);
+      double cpu = cpu_seconds() - cpu_start;
+      double seconds = out.stats.total_seconds;
+      double rays = double(out.stats.counters.rays);
+      if (extrapolated) {
+        const double scale = double(computed) / double(n);
+        seconds *= scale;
+        cpu *= scale;
+        rays *= scale;
+      }
+      const Image measured = strip(out.mosaic, s.layout, subset);
+      const ImageError e = image_error(measured, reference);
+      std::string name = text;
+      std::replace(name.begin(), name.end(), ':', '-');
+      write_image(fs::path(f.out) / ("strip_" + f.grid + "_" + res + "_" + name + ".exr"), measured);
+      spdlog::info("{} {} {:>14}: {:8.2f} s ({:8.2f} s CPU){}, relative RMSE {:.4f} (reference noise {:.4f})", f.grid, res,
+                   text, seconds, cpu, extrapolated ? " extrapolated" : "", e.relative_rmse, reference_noise);
+      csv << fs::path(f.scene).stem().string() << ',' << f.grid << ',' << res << ',' << text << ','
+          << render::probe_mode_name(c.mode) << ',' << c.spp << ',' << c.cache_spp << ',' << c.cache_cell << ','
+          << computed << ',' << seconds << ',' << cpu << ',' << (extrapolated ? 1 : 0) << ',' << rays << ','
+          << e.relative_rmse << ',' << e.rmse << ',' << reference_noise << ',' << f.reference_spp << ',' << n << ','
+          << out.stats.cache_cells << ',' << out.stats.cache_fallbacks << '\n';
+      summary["rows"].push_back({{"resolution", res}, {"config", text}, {"seconds", seconds}, {"cpu_seconds", cpu},
+                                 {"extrapolated", extrapolated}, {"relative_rmse", e.relative_rmse},
+                                 {"reference_noise", reference_noise}, {"stats", out.stats.to_json()}});
+      // Keep what was measured so far, in case the run is interrupted.
+      write_file_atomic(fs::path(f.out) / "probes.csv", csv.str());
+    }
+  }
+  const fs::path csv_path = fs::path(f.out) / "probes.csv";
+  write_file_atomic(csv_path, csv.str());
+  write_file_atomic(fs::path(f.out) / "probes.json", summary.dump(2) + "\n");
+  write_file_atomic(fs::path(f.out) / "machine.txt", machine_description() + "\n");
+  const fs::path script = fs::path(PHYIR_SOURCE_ROOT) / "scripts" / "plot_probes.py";
+  const std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + csv_path.string() + "' '" +
+                          (fs::path(f.out) / "probes.png").string() + "'";
+  if (std::system(cmd.c_str()) != 0) spdlog::warn("plot not written: {} failed (python3-matplotlib missing?)", script.string());
+  spdlog::info("wrote {}", csv_path.string());
+}
+
+}  // namespace
+
+void add_bench_probes_command(CLI::App& bench) {
+  auto f = std::make_shared<BenchProbeFlags>();
+  auto* cmd = bench.add_subcommand("probes", "light probes: relative RMSE against a converged reference versus seconds, per mode and setting");
+  cmd->add_option("scene", f->scene, "glTF scene to measure on")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--out", f->out, "folder for probes.csv, probes.png, probes.json and the cached references")->capture_default_str();
+  cmd->add_option("--grid", f->grid, "probe grid HxW the times are measured on")->capture_default_str();
+  cmd->add_option("--res-list", f->res_list, "probe resolutions hxw")->delimiter(',')->capture_default_str();
+  cmd->add_option("--configs", f->configs, "MODE:SPP[:CACHE_SPP[:CELL_M[:SEED]]] settings to measure (SEED: added to --seed, for repeated runs)")->delimiter(',')->capture_default_str();
+  cmd->add_option("--reference-spp", f->reference_spp, "spp of the converged path-mode reference")->capture_default_str();
+  cmd->add_option("--reference-probes", f->reference_probes, "how many random valid probes the error is measured on")->capture_default_str();
+  cmd->add_option("--threads", f->threads, "worker threads (0 = all cores)")->capture_default_str();
+  cmd->add_option("--max-bounces", f->max_bounces, "path length")->capture_default_str();
+  cmd->add_option("--seed", f->seed, "random seed")->capture_default_str();
+  cmd->add_option("--offset", f->offset, "probe origin offset, metres")->capture_default_str();
+  cmd->callback([f] {
+    const int threads = f->threads > 0 ? f->threads : tbb::info::default_concurrency();
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    run_bench_probes(*f);
+  });
+}
+
+}  // namespace phyir::cli

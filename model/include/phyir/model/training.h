@@ -1,0 +1,121 @@
+#pragma once
+// The torch-free public API of phyir_model: training stages and inference as plain structs
+// and functions, so the CLI (and anything else) compiles without LibTorch's headers.
+// Network, rendering layer and losses: model/src (private, torch types). Docs: docs/model.md.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace phyir::model {
+
+// The four stages of the paper's appendix B.1.
+enum class Stage { kGMNet, kLNet, kJoint, kGSNet };
+Stage parse_stage(const std::string& name);  // gmnet | lnet | joint | gsnet; throws phyir::Error
+std::string stage_name(Stage stage);
+
+// Resolutions and sample counts. Paper: input 256x512, rendering 128x256, probes 16x32,
+// 512 diffuse / 256 specular samples. Defaults are smaller so CPU training is practical.
+struct ModelConfig {
+  int input_height = 128, input_width = 256;   // GMNet / GSNet input (multiples of 32)
+  int render_height = 32, render_width = 64;   // LNet output grid and rendering layer (multiples of 16)
+  int probe_height = 8, probe_width = 16;      // per-pixel probe size
+  int diffuse_samples = 64, specular_samples = 32;
+  int guided_radius = 2;                       // GSNet's guided filter radius (paper: 2)
+  int width_divisor = 1;                       // divides every channel count: 1 = the paper's
+                                               // networks; 2 or 4 for quick experiments and tests
+};
+
+// Loss weights (the betas of eqs. 5 and 12).
+struct LossWeights {
+  double base_color = 1.0, roughness = 1.0, metalness = 1.0, depth = 1.0;
+  double normal = 0.1, gradient = 0.1;
+  double probe = 1.0, coherence = 1.0, render = 1.0;
+};
+
+// Appendix B.1's learning rate, batch size, epochs and loss weights for a stage.
+struct StageDefaults {
+  double learning_rate;
+  int batch_size;
+  int paper_epochs;
+  LossWeights weights;
+};
+StageDefaults stage_defaults(Stage stage);
+
+struct TrainOptions {
+  std::string data_dir;     // a dataset (manifest.json, docs/dataset.md) or a folder of view folders
+  std::string split = "train";  // the manifest's split to train on (empty: every view)
+  std::string out_dir;      // checkpoint.pt, train_log.csv/json, loss_curve.png
+  Stage stage = Stage::kGMNet;
+  ModelConfig config;       // ignored when `init` or `resume` gives one (the checkpoint's wins)
+  int epochs = 1;
+  double learning_rate = 0.0;  // 0: the stage's default
+  int batch_size = 0;          // 0: the stage's default
+  bool custom_weights = false; // false: the stage's default weights
+  LossWeights weights;
+  uint64_t seed = 1;
+  int threads = 1;             // torch intra-op threads (set explicitly; torch's default is 1 here)
+  std::string init;            // checkpoint whose networks this stage starts from (earlier stage)
+  std::string encoder_weights; // optional ResNet-18 encoder weights (torch::save of the encoder)
+  bool resume = false;         // continue out_dir/checkpoint.pt exactly where it stopped
+  int64_t max_steps = 0;       // stop after this many optimiser steps in total (0: run all epochs)
+  int64_t checkpoint_every = 0;  // also checkpoint every N steps (0: at the end of each epoch only)
+  int max_views = 0;           // use only the first N views (0: all)
+  bool progress = true;        // one line per step with live loss values
+  std::string plot_script;     // scripts/plot_training.py; empty: no loss-curve PNG
+};
+
+struct TrainSummary {
+  int64_t steps = 0;           // optimiser steps done in total (including before a resume)
+  int epochs_done = 0;
+  double first_loss = 0.0;     // mean loss of the first epoch run in this call
+  double last_loss = 0.0;      // mean loss of the last epoch run in this call
+  std::vector<double> epoch_losses;  // mean loss per epoch run in this call
+  std::string checkpoint;
+  std::string plot;            // loss-curve PNG, empty if not written
+};
+
+// Runs one stage. Throws phyir::Error on bad data, bad options, or a non-finite loss (the
+// message names the step and the loss components; the last checkpoint stays valid).
+TrainSummary train(const TrainOptions& options);
+
+struct InferOptions {
+  std::string checkpoint;
+  std::string input;        // panorama .png (LDR, as input.png) or .exr (HDR: tone-mapped first)
+  std::string out_dir;
+  int threads = 1;
+  uint64_t seed = 1;        // the rendering layer's Monte-Carlo samples
+  double exposure = 0.0;    // stops, for an .exr input
+};
+
+// Writes depth.exr, normal.exr, basecolor.exr, roughness.exr, metalness.exr (input
+// resolution), probes.exr (mosaic), probe_mask.exr, rerender.exr (rendering resolution),
+// input.png and infer.json, in the renderer's conventions.
+void infer(const InferOptions& options);
+
+// The rendering layer on ground truth: a view folder's own maps and probes (probes.exr,
+// probe_mask.exr from `phyir render --probes`) re-rendered and compared with its color.exr,
+// at the probe grid's resolution (maps area-resized to it) over the pixels that see an opaque,
+// non-emissive surface with a valid probe.
+struct RenderCheckOptions {
+  std::string view_dir;
+  std::string out_dir;        // rerender.exr, rerender_diffuse.exr, rerender_specular.exr, check.json; empty: none
+  int diffuse_samples = 512;  // the paper's counts
+  int specular_samples = 256;
+  uint64_t seed = 1;
+  int threads = 1;
+};
+struct RenderCheckResult {
+  int width = 0, height = 0;  // the probe grid (= rendering resolution)
+  int64_t pixels = 0;         // pixels compared
+  double mse = 0.0;           // mean over pixels and channels of (I - I~)^2
+  double relative_mse = 0.0;  // sum (I - I~)^2 / sum I^2
+  double mean_color = 0.0;    // mean of I over the compared pixels and channels
+  double mean_abs_error = 0.0;
+  double mean_rerender = 0.0; // mean of I~ (bias check: compare with mean_color)
+};
+RenderCheckResult check_render_layer(const RenderCheckOptions& options);
+
+// Sets torch's intra-op thread count (commands call it before any work).
+void set_threads(int threads);
+
+}  // namespace phyir::model

@@ -1,0 +1,215 @@
+// Loading view folders into tensors at the network's resolutions.
+#include "data.h"
+
+#include <algorithm>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+
+#include "nets.h"
+#include "phyir/core/colour.h"
+#include "phyir/core/error.h"
+#include "phyir/core/image_io.h"
+
+namespace F = torch::nn::functional;
+namespace fs = std::filesystem;
+
+namespace phyir::model {
+
+namespace {
+
+bool is_view_folder(const fs::path& p) {
+  return fs::is_regular_file(p / "color.exr") || fs::is_regular_file(p / "input.png");
+}
+
+// [C,H,W] from a file, or an undefined tensor when the file is absent and optional.
+torch::Tensor read_chw(const fs::path& path, bool required) {
+  if (!fs::is_regular_file(path)) {
+    if (required) fail("{}: missing (a view folder needs color.exr, depth.exr, normal.exr, basecolor.exr, "
+                       "roughness.exr, metalness.exr)", path.string());
+    return {};
+  }
+  return image_to_tensor(read_image(path));
+}
+
+torch::Tensor channels(const torch::Tensor& x, int c, const fs::path& what) {
+  if (x.size(0) == c) return x;
+  if (x.size(0) > c) return x.narrow(0, 0, c);
+  if (x.size(0) == 1) return x.expand({c, x.size(1), x.size(2)}).contiguous();
+  fail("{}: has {} channels, expected {}", what.string(), x.size(0), c);
+}
+
+torch::Tensor to_size(const torch::Tensor& chw, int h, int w) {
+  return resize(chw.unsqueeze(0), h, w).squeeze(0);
+}
+
+// A mask resized by area stays 1 only where every covered pixel was 1.
+torch::Tensor mask_to_size(const torch::Tensor& chw, int h, int w) {
+  return (to_size(chw.narrow(0, 0, 1), h, w) > 0.999).to(torch::kFloat);
+}
+
+}  // namespace
+
+torch::Tensor image_to_tensor(const phyir::Image& image) {
+  torch::Tensor t = torch::from_blob(const_cast<float*>(image.pixels.data()),
+                                     {image.height, image.width, image.channels}, torch::kFloat);
+  return t.permute({2, 0, 1}).clone();
+}
+
+void write_tensor_image(const fs::path& path, const torch::Tensor& chw_in,
+                        const std::vector<std::string>& channel_names) {
+  const torch::Tensor chw = chw_in.detach().to(torch::kFloat).contiguous();
+  const int C = static_cast<int>(chw.size(0)), H = static_cast<int>(chw.size(1)), W = static_cast<int>(chw.size(2));
+  phyir::Image image(W, H, C);
+  const torch::Tensor hwc = chw.permute({1, 2, 0}).contiguous();
+  std::copy(hwc.data_ptr<float>(), hwc.data_ptr<float>() + hwc.numel(), image.pixels.begin());
+  write_image(path, image, channel_names);
+}
+
+torch::Tensor resize(const torch::Tensor& x, int height, int width) {
+  if (x.size(2) == height && x.size(3) == width) return x;
+  if (x.size(2) >= height && x.size(3) >= width)
+    return F::adaptive_avg_pool2d(x, F::AdaptiveAvgPool2dFuncOptions({height, width}));
+  return F::interpolate(x, F::InterpolateFuncOptions()
+                               .size(std::vector<int64_t>{height, width})
+                               .mode(torch::kBilinear)
+                               .align_corners(false));
+}
+
+torch::Tensor resample_probes(const torch::Tensor& mosaic, int grid_h, int grid_w, int Hr, int Wr, int h, int w) {
+  const int hp = static_cast<int>(mosaic.size(1)) / grid_h, wp = static_cast<int>(mosaic.size(2)) / grid_w;
+  torch::Tensor probes = mosaic_to_probes(mosaic.unsqueeze(0), hp, wp).squeeze(0);  // [Hg,Wg,hp,wp,3]
+  if (hp != h || wp != w) {
+    torch::Tensor imgs = probes.reshape({grid_h * grid_w, hp, wp, 3}).permute({0, 3, 1, 2});
+    imgs = resize(imgs, h, w);
+    probes = imgs.permute({0, 2, 3, 1}).reshape({grid_h, grid_w, h, w, 3});
+  }
+  if (grid_h != Hr || grid_w != Wr) {
+    // The probe of the grid cell containing each target pixel centre.
+    const torch::Tensor rows = ((torch::arange(Hr, torch::kDouble) + 0.5) * grid_h / Hr).floor().to(torch::kLong);
+    const torch::Tensor cols = ((torch::arange(Wr, torch::kDouble) + 0.5) * grid_w / Wr).floor().to(torch::kLong);
+    probes = probes.index_select(0, rows).index_select(1, cols);
+  }
+  return probes.contiguous();
+}
+
+std::vector<fs::path> find_view_folders(const fs::path& root, const std::string& split) {
+  if (!fs::is_directory(root)) fail("{}: not a folder", root.string());
+  std::vector<fs::path> out;
+  const fs::path manifest = root / "manifest.json";
+  if (fs::is_regular_file(manifest)) {
+    nlohmann::json m;
+    try {
+      std::ifstream in(manifest);
+      m = nlohmann::json::parse(in);
+    } catch (const std::exception& e) {
+      fail("{}: not valid JSON ({})", manifest.string(), e.what());
+    }
+    if (!m.contains("views") || !m["views"].is_array()) fail("{}: no \"views\" array", manifest.string());
+    for (const auto& v : m["views"]) {
+      if (!split.empty() && v.value("split", "") != split) continue;
+      if (!v.contains("dir")) fail("{}: a view without \"dir\"", manifest.string());
+      out.push_back(root / v["dir"].get<std::string>());
+    }
+    if (out.empty()) fail("{}: no views in split '{}'", manifest.string(), split);
+    return out;
+  }
+  if (is_view_folder(root)) return {root};
+  std::function<void(const fs::path&, int)> scan = [&](const fs::path& dir, int depth) {
+    for (const auto& e : fs::directory_iterator(dir)) {
+      if (!e.is_directory() || e.path().filename().string().rfind(".tmp-", 0) == 0) continue;
+      if (is_view_folder(e.path())) out.push_back(e.path());
+      else if (depth < 3) scan(e.path(), depth + 1);
+    }
+  };
+  scan(root, 1);
+  std::sort(out.begin(), out.end());
+  if (out.empty()) fail("{}: no view folders (folders holding color.exr or input.png)", root.string());
+  return out;
+}
+
+ViewTensors load_view(const fs::path& dir, const ModelConfig& c) {
+  ViewTensors v;
+  v.name = dir.filename().string();
+  const int Hi = c.input_height, Wi = c.input_width, Hr = c.render_height, Wr = c.render_width;
+  torch::Tensor color = read_chw(dir / "color.exr", false);
+  torch::Tensor input = read_chw(dir / "input.png", false);
+  if (!input.defined()) {
+    if (!color.defined()) fail("{}: neither input.png nor color.exr", dir.string());
+    // No LDR input: tone-map color.exr as the dataset does (OpenColorIO, sRGB Standard view).
+    input = image_to_tensor(linear_to_display(read_image(dir / "color.exr"), 0.0f, "Standard"));
+  }
+  v.image = to_size(channels(input, 3, dir / "input.png"), Hi, Wi).clamp(0.0, 1.0);
+  if (!color.defined()) fail("{}: missing color.exr (the re-render target)", (dir / "color.exr").string());
+  v.color_lo = to_size(channels(color, 3, dir / "color.exr"), Hr, Wr);
+  v.depth = to_size(channels(read_chw(dir / "depth.exr", true), 1, dir / "depth.exr"), Hi, Wi);
+  v.normal = F::normalize(to_size(channels(read_chw(dir / "normal.exr", true), 3, dir / "normal.exr"), Hi, Wi),
+                          F::NormalizeFuncOptions().dim(0).eps(1e-6));
+  v.base_color = to_size(channels(read_chw(dir / "basecolor.exr", true), 3, dir / "basecolor.exr"), Hi, Wi);
+  v.roughness = to_size(channels(read_chw(dir / "roughness.exr", true), 1, dir / "roughness.exr"), Hi, Wi);
+  v.metalness = to_size(channels(read_chw(dir / "metalness.exr", true), 1, dir / "metalness.exr"), Hi, Wi);
+  torch::Tensor geometry = read_chw(dir / "mask_geometry.exr", false);
+  if (!geometry.defined()) geometry = (read_chw(dir / "depth.exr", true).narrow(0, 0, 1) > 0).to(torch::kFloat);
+  v.mask = mask_to_size(geometry, Hi, Wi);
+  torch::Tensor render_mask = mask_to_size(geometry, Hr, Wr);
+  for (const char* name : {"mask_emissive.exr", "mask_transparent.exr"}) {
+    const torch::Tensor m = read_chw(dir / name, false);
+    if (!m.defined()) continue;
+    torch::Tensor excluded = (to_size(m.narrow(0, 0, 1), Hr, Wr) > 0.0).to(torch::kFloat);
+    // color.exr is box-filtered over each pixel, the AOVs come from the pixel centre: a pixel
+    // next to a light can hold part of the light's radiance while its AOVs describe the
+    // surface beside it. Leave those out too (3x3 dilation, wrapping in u).
+    if (std::string(name) == "mask_emissive.exr")
+      excluded = F::max_pool2d(cirpad(excluded.unsqueeze(0), 1, 1), F::MaxPool2dFuncOptions(3).stride(1)).squeeze(0);
+    render_mask = render_mask * (1.0 - excluded);
+  }
+  v.render_mask = render_mask;
+  const torch::Tensor mosaic = read_chw(dir / "probes.exr", false);
+  if (mosaic.defined()) {
+    torch::Tensor pmask = read_chw(dir / "probe_mask.exr", false);
+    // The probe grid is probe_mask.exr's size, or else the colour image's.
+    const int gh = static_cast<int>(pmask.defined() ? pmask.size(1) : color.size(1));
+    const int gw = static_cast<int>(pmask.defined() ? pmask.size(2) : color.size(2));
+    if (mosaic.size(1) % gh != 0 || mosaic.size(2) % gw != 0)
+      fail("{}: {}x{} is not a grid of {}x{} probes", (dir / "probes.exr").string(), mosaic.size(2),
+           mosaic.size(1), gw, gh);
+    v.probes = resample_probes(channels(mosaic, 3, dir / "probes.exr"), gh, gw, Hr, Wr, c.probe_height,
+                               c.probe_width);
+    if (!pmask.defined()) pmask = torch::ones({1, gh, gw});
+    v.probe_mask = (resample_probes(channels(pmask.narrow(0, 0, 1), 3, dir / "probe_mask.exr"), gh, gw, Hr, Wr, 1, 1)
+                        .select(4, 0)
+                        .reshape({1, Hr, Wr}) > 0.5)
+                       .to(torch::kFloat) *
+                   render_mask;
+  }
+  for (const torch::Tensor* t : {&v.image, &v.depth, &v.normal, &v.base_color, &v.roughness, &v.metalness, &v.color_lo})
+    if (!torch::isfinite(*t).all().item<bool>()) fail("{}: non-finite values in the maps", dir.string());
+  return v;
+}
+
+Batch make_batch(const std::vector<ViewTensors>& views, const std::vector<size_t>& idx) {
+  auto stack = [&](torch::Tensor ViewTensors::*member) {
+    std::vector<torch::Tensor> parts;
+    for (size_t i : idx) {
+      const torch::Tensor& t = views[i].*member;
+      if (!t.defined()) return torch::Tensor();
+      parts.push_back(t);
+    }
+    return torch::stack(parts, 0);
+  };
+  Batch b;
+  b.image = stack(&ViewTensors::image);
+  b.depth = stack(&ViewTensors::depth);
+  b.normal = stack(&ViewTensors::normal);
+  b.base_color = stack(&ViewTensors::base_color);
+  b.roughness = stack(&ViewTensors::roughness);
+  b.metalness = stack(&ViewTensors::metalness);
+  b.mask = stack(&ViewTensors::mask);
+  b.color_lo = stack(&ViewTensors::color_lo);
+  b.render_mask = stack(&ViewTensors::render_mask);
+  b.probes = stack(&ViewTensors::probes);
+  b.probe_mask = stack(&ViewTensors::probe_mask);
+  return b;
+}
+
+}  // namespace phyir::model

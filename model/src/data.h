@@ -1,0 +1,56 @@
+#pragma once
+// Training data: a folder of view folders as written by the dataset generator (issue 5) and
+// `phyir render`, loaded into memory at the network's resolutions. Private header.
+#include <torch/torch.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "phyir/core/image.h"
+#include "phyir/model/training.h"
+
+namespace phyir::model {
+
+// One view at the network's resolutions. Input-resolution maps are [C, Hi, Wi]; rendering-
+// resolution ones [C, Hr, Wr]; probes [Hr, Wr, h, w, 3] linear radiance.
+struct ViewTensors {
+  std::string name;
+  torch::Tensor image;       // LDR input (input.png, sRGB-encoded, [0,1])
+  torch::Tensor depth, normal, base_color, roughness, metalness;
+  torch::Tensor mask;        // 1 where a surface is seen (mask_geometry)
+  torch::Tensor color_lo;    // HDR colour (color.exr) at the rendering resolution
+  torch::Tensor render_mask; // surface, not emissive, not transparent, at the rendering resolution
+  torch::Tensor probes;      // undefined when the view has no probes.exr
+  torch::Tensor probe_mask;  // [1, Hr, Wr]
+};
+
+struct Batch {
+  torch::Tensor image, depth, normal, base_color, roughness, metalness, mask;
+  torch::Tensor color_lo, render_mask, probes, probe_mask;  // probes undefined if any view lacks them
+};
+
+// The view folders of a dataset. With root/manifest.json (docs/dataset.md): the manifest's
+// views of `split` (train, val, test; empty = all), in manifest order. Without: every folder
+// (root itself, or up to three levels down) that holds color.exr or input.png, sorted by path.
+std::vector<std::filesystem::path> find_view_folders(const std::filesystem::path& root,
+                                                     const std::string& split = "");
+
+ViewTensors load_view(const std::filesystem::path& folder, const ModelConfig& config);
+
+Batch make_batch(const std::vector<ViewTensors>& views, const std::vector<size_t>& indices);
+
+// Image <-> tensor [C, H, W].
+torch::Tensor image_to_tensor(const phyir::Image& image);
+void write_tensor_image(const std::filesystem::path& path, const torch::Tensor& chw,
+                        const std::vector<std::string>& channel_names = {});
+
+// Resizes [N,C,H,W] by area averaging (down) or bilinear interpolation (up).
+torch::Tensor resize(const torch::Tensor& x, int height, int width);
+
+// Resamples a probe mosaic (probes.exr, [3, Hg*hp, Wg*wp] on a Hg x Wg grid) to probes on an
+// Hr x Wr grid of h x w texels: each probe is area-resized, the grid is sampled at the
+// nearest probe. Returns [Hr, Wr, h, w, 3].
+torch::Tensor resample_probes(const torch::Tensor& mosaic, int grid_h, int grid_w, int Hr, int Wr, int h, int w);
+
+}  // namespace phyir::model

@@ -1,0 +1,107 @@
+#pragma once
+// Renders the per-pixel light probes of one view (layout and placement: probe_grid.h;
+// user documentation, the modes and the measured cost of each: docs/probes.md).
+//
+// Each texel is the incident radiance at the probe's origin averaged over the texel's solid
+// angle: `spp` directions per texel, stratified and uniform in solid angle inside it
+// (probe_texel_direction), each one's radiance estimated by
+//  - ProbeMode::kPath: the path tracer, exactly as a camera ray of color.exr (unbiased; the
+//    reference the other mode is measured against);
+//  - ProbeMode::kCache: the direction's first hit x is found by one ray; its emission is
+//    added exactly; the radiance x reflects towards the probe is
+//      f_d(x) E(x)                     diffuse: E from the view's RadianceCache
+//    + specular(x)                     sampled: next-event estimation on the emitters and
+//                                      one GGX-sampled ray (power-heuristic MIS), the ray's
+//                                      hit y giving its emission plus the radiance y reflects:
+//                                      recursively for glossy y (roughness below
+//                                      glossy_roughness, up to kMaxSpecularDepth), otherwise
+//                                      (f_d(y) + specular albedo(y)/pi) E(y) from the cache;
+//    glass at x is path traced; on rough dielectrics (walls) the specular term is kept in a
+//    fraction of the samples only, weighted by its inverse (Russian roulette, unbiased).
+//    Texels whose first hits include an emitter, glass or a glossy surface ("hard" texels:
+//    small bright features such as a light's edge or its highlight) are re-estimated from
+//    hard_spp_factor times more fresh directions.
+// Random numbers: sample s of texel t of probe p draws from streams keyed by
+// (seed, p, t, s) (PathTracer::path_key of a probe seed), the cache's from (seed, cell,
+// sample); so probes.exr is bit-identical for a seed whatever the thread count. Non-finite
+// samples are counted and zeroed.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "phyir/core/image.h"
+#include "phyir/render/effects.h"
+#include "phyir/render/path_tracer.h"
+#include "phyir/render/probe_grid.h"
+#include "phyir/render/render_scene.h"
+
+namespace phyir::render {
+
+enum class ProbeMode { kPath, kCache };
+
+ProbeMode parse_probe_mode(const std::string& name);  // "path" | "cache"
+std::string probe_mode_name(ProbeMode mode);
+
+struct ProbeSettings {
+  ProbeLayout layout;
+  int spp = 16;                   // directions per texel
+  ProbeMode mode = ProbeMode::kCache;
+  float offset = 0.01f;           // metres off the surface, along its shading normal
+  uint64_t seed = 0;
+  PathSettings path;              // max_bounces counts scattering after the probe ray's hit
+  // kCache only.
+  float cache_cell = 0.05f;       // metres
+  int cache_spp = 128;            // irradiance estimates per cache cell
+  int hard_spp_factor = 8;        // hard texels (lights, glass, glossy) get this many times spp
+  float glossy_roughness = 0.3f;  // secondary hits smoother than this are traced on
+  bool progress = true;
+
+  void validate() const;  // throws phyir::Error naming the flag
+  nlohmann::json to_json() const;
+};
+
+struct ProbeStats {
+  double place_seconds = 0.0;
+  double cache_seconds = 0.0;  // discovery + fill
+  double shade_seconds = 0.0;
+  double total_seconds = 0.0;
+  PathCounters counters;          // every ray of the probes (placement excluded)
+  uint64_t placement_rays = 0;
+  uint64_t probes = 0, valid = 0, nothing = 0, emitter = 0, transparent = 0;
+  uint64_t computed_probes = 0;   // probes actually rendered (all but kNothing, or a subset)
+  uint64_t supersampled_texels = 0;
+  uint64_t cache_cells = 0, cache_fill_samples = 0, cache_fallbacks = 0;
+  nlohmann::json to_json() const;
+};
+
+struct ProbeOutput {
+  ProbeLayout layout;
+  std::vector<ProbeSite> sites;  // row-major, H x W
+  Image mosaic;                  // (H h) x (W w) RGB radiance
+  Image position;                // H x W, X,Y,Z: probe origins (0 where nothing is seen)
+  Image normal;                  // H x W, X,Y,Z: the normal each origin is offset along
+  Image mask;                    // H x W, Y: 1 for valid probes
+  ProbeStats stats;
+};
+
+// Places and renders every probe of the view.
+ProbeOutput render_probes(const RenderScene& scene, const CameraModel& camera, const Effects& effects,
+                          const ProbeSettings& settings);
+
+// Renders probes at given sites (`sites` row-major for settings.layout). With `subset`
+// non-empty only those probe indices are rendered (the others stay 0); their values are
+// the same as in a full render for kPath (kCache builds its cache from the subset only).
+ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, std::vector<ProbeSite> sites,
+                             const ProbeSettings& settings, const std::vector<int>& subset = {});
+
+// The h x w probe (i, j) cut out of a mosaic.
+Image probe_image(const Image& mosaic, const ProbeLayout& layout, int i, int j);
+
+// Directional albedo of the specular lobe alone (f_s of eq. 14, no f_d) for F0 = 0 and
+// F0 = 1: albedo(F0) = F0 a.x + (1 - F0) a.y, the Fresnel term being linear in F0. From a
+// table over (n.v, R) filled once by stratified GGX sampling, bilinear in between.
+glm::vec2 specular_albedo_terms(float NoV, float roughness);
+
+}  // namespace phyir::render

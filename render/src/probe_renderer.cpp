@@ -1,0 +1,639 @@
+#include "phyir/render/probe_renderer.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <array>
+#include <chrono>
+#include <memory>
+
+#include "phyir/core/error.h"
+#include "phyir/core/progress.h"
+#include "phyir/core/safe_math.h"
+#include "phyir/render/brdf.h"
+#include "phyir/render/equirect.h"
+#include "phyir/render/frame.h"
+#include "phyir/render/radiance_cache.h"
+#include "phyir/render/ray_offset.h"
+#include "phyir/render/rng.h"
+#include "phyir/render/sampling.h"
+
+namespace phyir::render {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Specular bounces followed before a hit is handed to the cache regardless of roughness
+// (a mirror facing a mirror would otherwise recurse to max_bounces).
+constexpr int kMaxSpecularDepth = 3;
+
+// Directions per texel for the emission seen in texels a light may cover, in units of spp
+// (64 x 4 = 256 at the default spp: a light edge crossing a texel is then found to ~1%).
+constexpr int kEmissionSppFactor = 64;
+
+// Sample ids: a texel's samples are 0 .. spp (1 + hard_spp_factor + kEmissionSppFactor) - 1; these two
+// keep the discovery ray and the strata permutations on streams of their own.
+constexpr uint64_t kDiscoverySample = uint64_t(1) << 40;
+constexpr uint64_t kStrataStream = uint64_t(1) << 41;
+
+// Streams of the cache-mode shading, per specular depth (distinct from the path tracer's
+// purposes 1..5 and the cache's 101..103).
+enum Purpose : uint64_t {
+  kSpecularLight = 201,
+  kSpecularLobe = 202,
+  kLookup = 203,
+  kGlassContinuation = 204,
+  kSpecularRoulette = 205
+};
+
+// The specular lobe is estimated with probability min(1, kSpecularKeepScale x its share of
+// the albedo): a wall with a 7% specular share keeps it in 28% of the samples; a lobe with
+// a quarter of the albedo or more (glossy floors, metals) in every sample. Floor: 1/8, so
+// no sample is weighted by more than 8.
+constexpr float kSpecularKeepScale = 4.0f;
+
+Rng shading_rng(uint64_t key, int depth, Purpose purpose) {
+  return Rng(mix64(key ^ mix64(uint64_t(purpose) * 64 + uint64_t(depth))), purpose);
+}
+uint64_t derived_key(uint64_t key, int depth, Purpose purpose) {
+  return mix64(key ^ mix64(uint64_t(purpose) * 64 + uint64_t(depth) + 7));
+}
+
+// The path tracer's rule (path_tracer.cpp): the shading normal unless the viewer is below it.
+Frame shading_frame(const SurfaceInteraction& si, const glm::vec3& wo_world) {
+  if (glm::dot(si.shading_normal, wo_world) > 0.0f) return Frame(si.shading_normal);
+  return Frame(si.geometric_normal);
+}
+
+BrdfParams clamped(const BrdfParams& p) {
+  return {glm::clamp(p.base_color, glm::vec3(0.0f), glm::vec3(1.0f)), clamp01(p.roughness), clamp01(p.metalness)};
+}
+
+// f_s alone: the BRDF minus its Lambert term (the same code as the integrator's f_r).
+glm::vec3 specular_eval(const BrdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {
+  return glm::max(brdf_eval(p, wo, wi) - Fd_Lambert(p.base_color, p.metalness), glm::vec3(0.0f));
+}
+
+// Density of GGX half-vector sampling (eq. 18, specular lobe alone) in wi.
+float specular_pdf(const glm::vec3& wo, const glm::vec3& wi, float alpha) {
+  if (!(wo.z >= kMinCosine) || !(wi.z >= kMinCosine)) return 0.0f;
+  const glm::vec3 s = wo + wi;
+  const float len = std::sqrt(glm::dot(s, s));
+  if (!(len > 0.0f)) return 0.0f;
+  const float NoH = s.z / len;
+  const float VoH = 0.5f * len;  // as brdf.cpp computes it
+  return D_GGX(NoH, alpha) * NoH / (4.0f * VoH);
+}
+
+CachePoint cache_point(const SurfaceInteraction& si, const glm::vec3& shading_normal) {
+  return CachePoint{si.position, shading_normal, si.geometric_normal};
+}
+
+// Everything one thread needs to estimate probe texels.
+class TexelEstimator {
+ public:
+  TexelEstimator(const RenderScene& scene, const Effects& effects, const ProbeSettings& settings,
+                 const RadianceCache* cache)
+      : scene_(scene), settings_(settings), cache_(cache), full_(scene, effects, settings.path) {
+    for (int d = 0; d <= kMaxSpecularDepth; ++d) {
+      PathSettings s = settings.path;
+      s.max_bounces = std::max(settings.path.max_bounces - d, 0);
+      tracers_[d] = std::make_unique<PathTracer>(scene, effects, s);
+    }
+  }
+
+  // What sample() returns: all of the radiance, or the emission seen first (lights, and the
+  // environment where nothing is hit) or everything else, for estimating the two with
+  // different sample counts.
+  enum class Part { kAll, kEmission, kRest };
+
+  // Radiance arriving at ray.origin from -ray.direction (cache mode: `part` of it).
+  glm::vec3 sample(const Ray& ray, uint64_t key, Part part, bool* saw_hard, PathCounters* c) const {
+    if (settings_.mode == ProbeMode::kPath) return full_.radiance(ray, key, c);
+    SurfaceInteraction si;
+    ++c->rays;
+    if (!scene_.trace(ray, &si)) return part == Part::kRest ? glm::vec3(0.0f) : miss(ray.direction);
+    const glm::vec3 Le = si.emits ? si.emission : glm::vec3(0.0f);
+    if (part == Part::kEmission) return Le;
+    // The texel sees something small and bright or hard to sample: a light, glass, or a
+    // glossy surface (whose highlights are small images of the lights).
+    if (si.emits || si.transmission > 0.0f || si.brdf.roughness < settings_.glossy_roughness) *saw_hard = true;
+    const glm::vec3 L = part == Part::kAll ? Le : glm::vec3(0.0f);
+    if (settings_.path.max_bounces < 1) return L;
+    if (si.transmission > 0.0f) {  // glass: path traced whole (its emission at full weight)
+      const glm::vec3 all = full_.radiance(ray, key, c);
+      return part == Part::kAll ? all : glm::max(all - Le, glm::vec3(0.0f));
+    }
+    return L + reflected(si, -ray.direction, 0, key, c);
+  }
+
+ private:
+  glm::vec3 miss(const glm::vec3& direction) const {
+    return scene_.environment() ? scene_.environment()->radiance(direction) : glm::vec3(0.0f);
+  }
+
+  // Radiance the (opaque) surface at si reflects towards wo_world; `depth` = its scattering
+  // event's index counted from the probe's first hit.
+  glm::vec3 reflected(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key,
+                      PathCounters* c) const {
+    const Frame frame = shading_frame(si, wo_world);
+    const glm::vec3 wo = frame.to_local(wo_world);
+    if (!(wo.z >= kMinCosine)) return glm::vec3(0.0f);
+    const BrdfParams p = clamped(si.brdf);
+    glm::vec3 L(0.0f);
+    const glm::vec3 fd = Fd_Lambert(p.base_color, p.metalness);
+    if (max_component(fd) > 0.0f)
+      L += fd * cache_->irradiance(cache_point(si, frame.n), derived_key(key, depth, kLookup), c);
+    // Where the specular lobe carries a small share of the reflection (rough dielectrics:
+    // walls, ceilings), it is estimated in only a fraction of the samples, each weighted by
+    // its inverse (Russian roulette: unbiased, and two rays saved in most samples).
+    const float specular_share = specular_fraction(p, wo.z);
+    const float keep = std::clamp(kSpecularKeepScale * specular_share, 0.125f, 1.0f);
+    if (keep < 1.0f) {
+      Rng rng = shading_rng(key, depth, kSpecularRoulette);
+      if (!(rng.next_float() < keep)) return L;
+      return L + specular(si, frame, wo, p, depth, key, c) / keep;
+    }
+    return L + specular(si, frame, wo, p, depth, key, c);
+  }
+
+  // Luminance share of the specular lobe in the surface's directional albedo at n.v.
+  static float specular_fraction(const BrdfParams& p, float NoV) {
+    const glm::vec2 terms = specular_albedo_terms(NoV, p.roughness);
+    const glm::vec3 F0 = specular_F0(p.base_color, p.metalness);
+    const float s = luminance(F0 * terms.x + (glm::vec3(1.0f) - F0) * terms.y);
+    const float d = luminance(p.base_color * (1.0f - p.metalness));
+    return s + d > 0.0f ? s / (s + d) : 1.0f;
+  }
+
+  // Where the path ends in the cache: diffuse from E exactly, specular as if the incident
+  // radiance were uniform over the lobe, i.e. specular albedo x E / pi.
+  glm::vec3 terminal(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key,
+                     PathCounters* c) const {
+    const Frame frame = shading_frame(si, wo_world);
+    const float NoV = glm::dot(frame.n, wo_world);
+    if (!(NoV >= kMinCosine)) return glm::vec3(0.0f);
+    const BrdfParams p = clamped(si.brdf);
+    const glm::vec2 terms = specular_albedo_terms(NoV, p.roughness);
+    const glm::vec3 F0 = specular_F0(p.base_color, p.metalness);
+    const glm::vec3 albedo = F0 * terms.x + (glm::vec3(1.0f) - F0) * terms.y;
+    const glm::vec3 E = cache_->irradiance(cache_point(si, frame.n), derived_key(key, depth, kLookup), c);
+    return (Fd_Lambert(p.base_color, p.metalness) + albedo * kInvPi) * E;
+  }
+
+  glm::vec3 specular(const SurfaceInteraction& si, const Frame& frame, const glm::vec3& wo, const BrdfParams& p,
+                     int depth, uint64_t key, PathCounters* c) const {
+    const bool mirror = is_mirror(p.roughness);
+    const float alpha = p.roughness * p.roughness;
+    const bool emitters = !scene_.emitters().empty();
+    glm::vec3 L(0.0f);
+
+    // Next-event estimation through the specular lobe.
+    if (emitters && !mirror) {
+      Rng rng = shading_rng(key, depth, kSpecularLight);
+      const float u_select = rng.next_float();
+      const glm::vec2 u_point = rng.next_2d();
+      EmitterSample ls;
+      if (scene_.emitters().sample(si.position, u_select, u_point, &ls) && ls.pdf > 0.0f &&
+          max_component(ls.radiance) > 0.0f) {
+        const glm::vec3 wi = frame.to_local(ls.wi);
+        const glm::vec3 fs = specular_eval(p, wo, wi);
+        if (wi.z > 0.0f && glm::dot(ls.wi, si.geometric_normal) > 0.0f && max_component(fs) > 0.0f) {
+          Ray shadow{spawn_origin(si.position, si.geometric_normal, ls.wi), ls.wi};
+          shadow.tmax = ls.distance * (1.0f - 1e-4f);
+          ++c->rays;
+          if (!scene_.accelerator().occluded(shadow)) {
+            const float w = power_heuristic(ls.pdf, specular_pdf(wo, wi, alpha));
+            L += fs * ls.radiance * (wi.z * w / ls.pdf);
+          }
+        }
+      }
+    }
+
+    // One direction from the lobe.
+    glm::vec3 wi, weight;
+    float pdf = 0.0f;
+    if (mirror) {
+      const float k = (p.roughness + 1.0f) * (p.roughness + 1.0f) / 8.0f;  // eq. 17
+      const float G1 = G1_SmithSchlick(wo.z, k);
+      wi = glm::vec3(-wo.x, -wo.y, wo.z);
+      weight = F_SchlickSG(specular_F0(p.base_color, p.metalness), wo.z) * (G1 * G1);
+    } else {
+      Rng rng = shading_rng(key, depth, kSpecularLobe);
+      const glm::vec3 h = sample_ggx_half_vector(rng.next_2d(), alpha);
+      wi = safe_normalize(2.0f * glm::dot(wo, h) * h - wo, glm::vec3(0.0f, 0.0f, -1.0f));
+      pdf = specular_pdf(wo, wi, alpha);
+      if (!(pdf > 0.0f)) return L;
+      weight = specular_eval(p, wo, wi) * (wi.z / pdf);
+    }
+    if (!(max_component(weight) > 0.0f)) return L;
+    const glm::vec3 wi_world = frame.to_world(wi);
+    if (glm::dot(wi_world, si.geometric_normal) <= 0.0f) return L;  // leaks below the surface: dropped, as the integrator does
+    const Ray ray{spawn_origin(si.position, si.geometric_normal, wi_world), wi_world};
+    SurfaceInteraction y;
+    ++c->rays;
+    if (!scene_.trace(ray, &y)) return L + weight * miss(wi_world);
+    const glm::vec3 Le = y.emits ? y.emission : glm::vec3(0.0f);
+    if (y.emits) {
+      const float w = (emitters && !mirror)
+                          ? power_heuristic(pdf, scene_.emitters().pdf(si.position, y.mesh, y.triangle, y.position))
+                          : 1.0f;
+      L += weight * Le * w;
+    }
+    const int next = depth + 1;
+    if (next >= settings_.path.max_bounces) return L;
+    if (y.transmission > 0.0f) {
+      // Glass: the path tracer from here (it re-adds y's emission at full weight: removed).
+      const glm::vec3 Lt = tracers_[std::min(next, kMaxSpecularDepth)]->radiance(
+                               ray, derived_key(key, depth, kGlassContinuation), c) - Le;
+      return L + weight * glm::max(Lt, glm::vec3(0.0f));
+    }
+    if (y.brdf.roughness < settings_.glossy_roughness && next < kMaxSpecularDepth)
+      return L + weight * reflected(y, -wi_world, next, key, c);
+    return L + weight * terminal(y, -wi_world, next, key, c);
+  }
+
+  const RenderScene& scene_;
+  const ProbeSettings& settings_;
+  const RadianceCache* cache_;
+  PathTracer full_;  // kPath, and glass at a first hit
+  std::array<std::unique_ptr<PathTracer>, kMaxSpecularDepth + 1> tracers_;  // max_bounces - d
+};
+
+// The emissive triangles of the scene, to find the texels of a probe in which a light can
+// appear before any sample is taken: those texels are the ones whose partial coverage of a
+// very bright surface dominates the error, and a few stratified samples can miss a sliver
+// of light entirely (a ceiling panel seen edge-on from a probe on the ceiling).
+class EmitterFootprints {
+ public:
+  explicit EmitterFootprints(const scenes::Scene& scene) {
+    for (const scenes::Mesh& mesh : scene.meshes) {
+      if (mesh.material < 0 || size_t(mesh.material) >= scene.materials.size()) continue;
+      const scenes::Material& material = scene.materials[size_t(mesh.material)];
+      if (!material.is_emissive()) continue;
+      for (const glm::uvec3& t : mesh.triangles) {
+        if (t.x >= mesh.positions.size() || t.y >= mesh.positions.size() || t.z >= mesh.positions.size()) continue;
+        Triangle tri{{mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]}, glm::vec3(0.0f), material.double_sided};
+        const glm::vec3 n = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
+        if (!(glm::dot(n, n) > 0.0f) || !is_finite(n)) continue;
+        tri.normal = glm::normalize(n);
+        triangles_.push_back(tri);
+      }
+    }
+  }
+
+  bool empty() const { return triangles_.empty(); }
+
+  // Sets flags[row * w + col] for every texel of an h x w probe at `origin` that a
+  // front-facing emissive triangle may cover, occlusion ignored: the texel box of points
+  // sampled densely along its edges, grown by one texel, or the whole cap when the
+  // triangle surrounds a pole.
+  void mark(const glm::vec3& origin, int h, int w, std::vector<uint8_t>* flags) const {
+    constexpr int kEdgeSamples = 16;
+    std::vector<float> us;
+    for (const Triangle& tri : triangles_) {
+      if (!tri.two_sided && !(glm::dot(tri.normal, origin - tri.p[0]) > 0.0f)) continue;  // its back
+      us.clear();
+      float vmin = 1.0f, vmax = 0.0f;
+      for (int e = 0; e < 3; ++e)
+        for (int k = 0; k < kEdgeSamples; ++k) {
+          const glm::vec3 q = glm::mix(tri.p[e], tri.p[(e + 1) % 3], float(k) / kEdgeSamples);
+          const glm::vec3 d = q - origin;
+          const float len = glm::length(d);
+          if (!(len > 0.0f)) continue;
+          const glm::vec2 uv = equirect_uv(d / len);
+          us.push_back(uv.x);
+          vmin = std::min(vmin, uv.y);
+          vmax = std::max(vmax, uv.y);
+        }
+      if (us.empty()) continue;
+      const bool up = surrounds(tri, origin, glm::vec3(0, 1, 0)), down = surrounds(tri, origin, glm::vec3(0, -1, 0));
+      const int r0 = up ? 0 : std::max(int(vmin * h) - 1, 0);
+      const int r1 = down ? h - 1 : std::min(int(vmax * h) + 1, h - 1);
+      // The columns: the circle of u minus its largest empty gap.
+      std::sort(us.begin(), us.end());
+      float gap = us.front() + 1.0f - us.back();
+      float start = us.front(), end = us.back();
+      for (size_t k = 1; k < us.size(); ++k)
+        if (us[k] - us[k - 1] > gap) gap = us[k] - us[k - 1], start = us[k], end = us[k - 1];
+      int c0 = int(std::floor(start * w)) - 1, c1 = int(std::floor(end * w)) + 1;
+      if (c1 < c0) c1 += w;
+      const bool all_columns = up || down || c1 - c0 + 1 >= w;
+      if (all_columns) c0 = 0, c1 = w - 1;
+      for (int r = r0; r <= r1; ++r)
+        for (int c = c0; c <= c1; ++c) (*flags)[size_t(r) * w + size_t(((c % w) + w) % w)] = 1;
+    }
+  }
+
+ private:
+  struct Triangle {
+    glm::vec3 p[3];
+    glm::vec3 normal;
+    bool two_sided;
+  };
+  // Whether the ray from `o` along `d` crosses the triangle (Moller-Trumbore).
+  static bool surrounds(const Triangle& t, const glm::vec3& o, const glm::vec3& d) {
+    const glm::vec3 e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0];
+    const glm::vec3 pv = glm::cross(d, e2);
+    const float det = glm::dot(e1, pv);
+    if (std::abs(det) < 1e-12f) return false;
+    const glm::vec3 tv = o - t.p[0];
+    const float a = glm::dot(tv, pv) / det;
+    if (a < 0.0f || a > 1.0f) return false;
+    const glm::vec3 qv = glm::cross(tv, e1);
+    const float b = glm::dot(d, qv) / det;
+    if (b < 0.0f || a + b > 1.0f) return false;
+    return glm::dot(e2, qv) / det > 0.0f;
+  }
+  std::vector<Triangle> triangles_;
+};
+
+struct SpecularAlbedoTable {
+  static constexpr int kSize = 32;  // nodes over n.v in [0,1] and R in [0,1]
+  std::vector<glm::vec2> terms;     // (F0 = 1, F0 = 0), n.v-major
+
+  SpecularAlbedoTable() : terms(size_t(kSize) * kSize) {
+    constexpr int kStrata = 32;  // 32 x 32 stratified GGX samples per node
+    const BrdfParams white{glm::vec3(1.0f), 0.0f, 1.0f}, black{glm::vec3(0.0f), 0.0f, 1.0f};
+    for (int i = 0; i < kSize; ++i) {
+      const float NoV = std::max(float(i) / (kSize - 1), 1e-3f);
+      const glm::vec3 wo(std::sqrt(1.0f - NoV * NoV), 0.0f, NoV);
+      for (int j = 0; j < kSize; ++j) {
+        const float R = float(j) / (kSize - 1);
+        glm::dvec2 sum(0.0);
+        if (is_mirror(R)) {
+          const float k = (R + 1.0f) * (R + 1.0f) / 8.0f;
+          const float G1 = G1_SmithSchlick(NoV, k);
+          sum = glm::dvec2(F_SchlickSG(glm::vec3(1.0f), NoV).x, F_SchlickSG(glm::vec3(0.0f), NoV).x) * double(G1 * G1);
+        } else {
+          BrdfParams w = white, b = black;
+          w.roughness = b.roughness = R;
+          for (int s = 0; s < kStrata * kStrata; ++s) {
+            const glm::vec2 u((s % kStrata + 0.5f) / kStrata, (s / kStrata + 0.5f) / kStrata);
+            const glm::vec3 h = sample_ggx_half_vector(u, R * R);
+            const glm::vec3 wi = safe_normalize(2.0f * glm::dot(wo, h) * h - wo, glm::vec3(0, 0, -1));
+            const float pdf = specular_pdf(wo, wi, R * R);
+            if (!(pdf > 0.0f)) continue;
+            sum += glm::dvec2(brdf_eval(w, wo, wi).x, brdf_eval(b, wo, wi).x) * double(wi.z / pdf);
+          }
+          sum /= double(kStrata * kStrata);
+        }
+        terms[size_t(i) * kSize + j] = glm::vec2(sum);
+      }
+    }
+  }
+
+  glm::vec2 lookup(float NoV, float R) const {
+    const float x = clamp01(NoV) * (kSize - 1), y = clamp01(R) * (kSize - 1);
+    const int i = std::min(int(x), kSize - 2), j = std::min(int(y), kSize - 2);
+    const float fx = x - i, fy = y - j;
+    auto at = [&](int a, int b) { return terms[size_t(a) * kSize + b]; };
+    return (1 - fx) * ((1 - fy) * at(i, j) + fy * at(i, j + 1)) + fx * ((1 - fy) * at(i + 1, j) + fy * at(i + 1, j + 1));
+  }
+};
+
+}  // namespace
+
+glm::vec2 specular_albedo_terms(float NoV, float roughness) {
+  static const SpecularAlbedoTable table;
+  return table.lookup(NoV, roughness);
+}
+
+ProbeMode parse_probe_mode(const std::string& name) {
+  if (name == "path") return ProbeMode::kPath;
+  if (name == "cache") return ProbeMode::kCache;
+  fail("--probe-mode '{}' is not one of: cache (the default, shared irradiance cache), path (unbiased reference)", name);
+}
+
+std::string probe_mode_name(ProbeMode mode) { return mode == ProbeMode::kPath ? "path" : "cache"; }
+
+void ProbeSettings::validate() const {
+  layout.validate();
+  if (spp <= 0 || spp > 1 << 20) fail("--probe-spp {} must be between 1 and 2^20", spp);
+  // Below 0.1 mm the origin is within a few float ulps (and ray offsets) of room-scale
+  // geometry; above 1 m it is no longer "at" the surface.
+  if (!(offset >= 1e-4f && offset <= 1.0f)) fail("--probe-offset {} must be between 1e-4 and 1 metre", offset);
+  if (!(cache_cell >= 1e-3f && cache_cell <= 10.0f)) fail("--probe-cache-cell {} must be between 1e-3 and 10 metres", cache_cell);
+  if (cache_spp <= 0 || cache_spp > 1 << 20) fail("--probe-cache-spp {} must be between 1 and 2^20", cache_spp);
+  if (hard_spp_factor < 1 || hard_spp_factor > 1024) fail("hard-texel spp factor {} must be between 1 and 1024", hard_spp_factor);
+}
+
+nlohmann::json ProbeSettings::to_json() const {
+  nlohmann::json j = {{"grid", {layout.grid_height, layout.grid_width}},
+                      {"resolution", {layout.res_height, layout.res_width}},
+                      {"mosaic", {layout.mosaic_height(), layout.mosaic_width()}},
+                      {"spp", spp},
+                      {"mode", probe_mode_name(mode)},
+                      {"origin_offset_m", offset},
+                      {"seed", seed},
+                      {"max_bounces", path.max_bounces}};
+  if (mode == ProbeMode::kCache) {
+    j["cache_cell_m"] = cache_cell;
+    j["cache_spp"] = cache_spp;
+    j["hard_spp_factor"] = hard_spp_factor;
+    j["glossy_roughness"] = glossy_roughness;
+  }
+  return j;
+}
+
+nlohmann::json ProbeStats::to_json() const {
+  return {{"seconds", {{"place", place_seconds}, {"cache", cache_seconds}, {"shade", shade_seconds}, {"total", total_seconds}}},
+          {"rays", counters.rays + placement_rays},
+          {"paths", counters.paths},
+          {"rays_per_second", total_seconds > 0 ? double(counters.rays + placement_rays) / total_seconds : 0.0},
+          {"counts", {{"probes", probes}, {"valid", valid}, {"invalid", probes - valid}, {"nothing", nothing},
+                      {"emitter", emitter}, {"transparent", transparent}, {"computed", computed_probes}}},
+          {"supersampled_texels", supersampled_texels},
+          {"cache", {{"cells", cache_cells}, {"fill_samples", cache_fill_samples}, {"fallback_lookups", cache_fallbacks}}},
+          {"nonfinite_samples_caught", counters.nonfinite_samples}};
+}
+
+Image probe_image(const Image& mosaic, const ProbeLayout& layout, int i, int j) {
+  Image out(layout.res_width, layout.res_height, mosaic.channels);
+  for (int r = 0; r < layout.res_height; ++r)
+    for (int c = 0; c < layout.res_width; ++c)
+      for (int ch = 0; ch < mosaic.channels; ++ch)
+        out.at(c, r, ch) = mosaic.at(j * layout.res_width + c, i * layout.res_height + r, ch);
+  return out;
+}
+
+ProbeOutput render_probes(const RenderScene& scene, const CameraModel& camera, const Effects& effects,
+                          const ProbeSettings& settings) {
+  settings.validate();
+  const auto start = Clock::now();
+  std::vector<ProbeSite> sites = place_probes(scene, camera, settings.layout, settings.offset);
+  const double place_seconds = seconds_since(start);
+  ProbeOutput out = render_probes_at(scene, effects, std::move(sites), settings);
+  out.stats.place_seconds = place_seconds;
+  out.stats.placement_rays = 2 * uint64_t(settings.layout.probe_count());  // placement + gap check
+  out.stats.total_seconds += place_seconds;
+  return out;
+}
+
+ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, std::vector<ProbeSite> sites,
+                             const ProbeSettings& settings, const std::vector<int>& subset) {
+  settings.validate();
+  const ProbeLayout& layout = settings.layout;
+  if (sites.size() != size_t(layout.probe_count()))
+    fail("{} probe sites given for a {}x{} grid", sites.size(), layout.grid_height, layout.grid_width);
+  const auto start = Clock::now();
+  ProbeOutput out;
+  out.layout = layout;
+  out.sites = std::move(sites);
+  out.mosaic = Image(layout.mosaic_width(), layout.mosaic_height(), 3);
+  out.position = Image(layout.grid_width, layout.grid_height, 3);
+  out.normal = Image(layout.grid_width, layout.grid_height, 3);
+  out.mask = Image(layout.grid_width, layout.grid_height, 1);
+  ProbeStats& stats = out.stats;
+
+  std::vector<int> todo;
+  for (int p = 0; p < layout.probe_count(); ++p) {
+    const ProbeSite& s = out.sites[size_t(p)];
+    const int i = p / layout.grid_width, j = p % layout.grid_width;
+    ++stats.probes;
+    switch (s.status) {
+      case ProbeStatus::kValid: ++stats.valid; break;
+      case ProbeStatus::kNothing: ++stats.nothing; break;
+      case ProbeStatus::kEmitter: ++stats.emitter; break;
+      case ProbeStatus::kTransparent: ++stats.transparent; break;
+    }
+    if (!s.computed()) continue;
+    for (int c = 0; c < 3; ++c) {
+      out.position.at(j, i, c) = s.origin[c];
+      out.normal.at(j, i, c) = s.normal[c];
+    }
+    out.mask.at(j, i) = s.valid() ? 1.0f : 0.0f;
+    if (subset.empty()) todo.push_back(p);
+  }
+  for (int p : subset) {
+    if (p < 0 || p >= layout.probe_count()) fail("probe index {} outside the {}x{} grid", p, layout.grid_height, layout.grid_width);
+    if (out.sites[size_t(p)].computed()) todo.push_back(p);
+  }
+  stats.computed_probes = todo.size();
+
+  const uint64_t probe_seed = mix64(settings.seed ^ 0x70726f6265ull);  // "probe": apart from color.exr's streams
+  const int texels = layout.texels_per_probe();
+  auto texel_id = [&](int probe, int texel) { return uint64_t(probe) * uint64_t(texels) + uint64_t(texel); };
+  tbb::enumerable_thread_specific<PathCounters> local;
+
+  // The cache: discovery from one direction per texel, then the fill.
+  std::unique_ptr<RadianceCache> cache;
+  if (settings.mode == ProbeMode::kCache) {
+    const auto cache_start = Clock::now();
+    RadianceCacheSettings cs;
+    cs.cell_size = settings.cache_cell;
+    cs.samples_per_cell = settings.cache_spp;
+    cs.seed = mix64(settings.seed ^ 0x6361636865ull);  // "cache"
+    cs.progress = settings.progress;
+    cache = std::make_unique<RadianceCache>(scene, effects, settings.path, cs);
+    tbb::enumerable_thread_specific<RadianceCache::Collector> collectors;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, todo.size(), 8), [&](const tbb::blocked_range<size_t>& r) {
+      RadianceCache::Collector& collector = collectors.local();
+      PathCounters& c = local.local();
+      for (size_t k = r.begin(); k < r.end(); ++k) {
+        const int p = todo[k];
+        const glm::vec3 origin = out.sites[size_t(p)].origin;
+        for (int t = 0; t < texels; ++t) {
+          const uint64_t key = PathTracer::path_key(probe_seed, texel_id(p, t), kDiscoverySample);
+          Rng rng(key, 0);
+          const Ray ray{origin, probe_texel_direction(t / layout.res_width, t % layout.res_width, layout.res_height,
+                                                      layout.res_width, rng.next_2d())};
+          SurfaceInteraction si;
+          ++c.rays;
+          if (scene.trace(ray, &si) && !(si.transmission > 0.0f))
+            collector.offer(*cache, cache_point(si, si.shading_normal), mix64(key));
+        }
+      }
+    });
+    std::vector<const RadianceCache::Collector*> list;
+    for (const auto& collector : collectors) list.push_back(&collector);
+    PathCounters fill_counters;
+    cache->build(list, &fill_counters);
+    stats.counters += fill_counters;
+    stats.cache_cells = cache->cell_count();
+    stats.cache_fill_samples = cache->fill_samples();
+    stats.cache_seconds = seconds_since(cache_start);
+  }
+
+  // The probes.
+  const auto shade_start = Clock::now();
+  const TexelEstimator estimator(scene, effects, settings, cache.get());
+  const EmitterFootprints footprints(scene.scene());
+  const bool adaptive = settings.mode == ProbeMode::kCache && settings.hard_spp_factor > 1;
+  std::atomic<uint64_t> supersampled{0};
+  Progress progress("probes", todo.size(), "probes", settings.progress);
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, todo.size(), 4),
+      [&](const tbb::blocked_range<size_t>& r) {
+        PathCounters& c = local.local();
+        std::vector<glm::vec2> strata;
+        std::vector<uint8_t> lit(static_cast<size_t>(texels));
+        uint64_t extra = 0;
+        for (size_t k = r.begin(); k < r.end(); ++k) {
+          const int p = todo[k];
+          const int i = p / layout.grid_width, j = p % layout.grid_width;
+          const glm::vec3 origin = out.sites[size_t(p)].origin;
+          std::fill(lit.begin(), lit.end(), uint8_t(0));
+          if (adaptive) footprints.mark(origin, layout.res_height, layout.res_width, &lit);
+          for (int t = 0; t < texels; ++t) {
+            const int row = t / layout.res_width, col = t % layout.res_width;
+            // `count` fresh samples from sample id `first` on, stratified over the texel.
+            using Part = TexelEstimator::Part;
+            auto estimate = [&](int first, int count, Part part, bool* saw_hard) {
+              Rng permutation(PathTracer::path_key(probe_seed, texel_id(p, t), kStrataStream + uint64_t(first)), 0);
+              stratified_square(count, permutation, &strata);
+              glm::dvec3 sum(0.0);
+              for (int s = 0; s < count; ++s) {
+                const uint64_t key = PathTracer::path_key(probe_seed, texel_id(p, t), uint64_t(first + s));
+                const Ray ray{origin, probe_texel_direction(row, col, layout.res_height, layout.res_width, strata[size_t(s)])};
+                glm::vec3 L = estimator.sample(ray, key, part, saw_hard, &c);
+                if (!is_finite(L)) {
+                  ++c.nonfinite_samples;
+                  L = glm::vec3(0.0f);
+                }
+                sum += glm::dvec3(L);
+              }
+              return glm::vec3(sum / double(count));
+            };
+            // Hard texels (the first samples met a light, glass or a glossy surface) are
+            // estimated again from hard_spp_factor x spp fresh samples. Texels a light may
+            // cover (EmitterFootprints) are hard from the start, and the emission seen
+            // first there is estimated apart, from kEmissionSppFactor x spp more directions
+            // (one ray each): partial coverage of a light is the largest error otherwise.
+            // No decision looks at the samples it selects, so none biases the value.
+            const int spp = settings.spp, hard_spp = spp * settings.hard_spp_factor;
+            bool hard = lit[size_t(t)] != 0;
+            glm::vec3 value(0.0f);
+            if (!hard) value = estimate(0, spp, Part::kAll, &hard);
+            if (hard && adaptive) {
+              bool unused = false;
+              if (lit[size_t(t)]) {
+                value = estimate(spp, hard_spp, Part::kRest, &unused) +
+                        estimate(spp + hard_spp, spp * kEmissionSppFactor, Part::kEmission, &unused);
+              } else {
+                value = estimate(spp, hard_spp, Part::kAll, &unused);
+              }
+              ++extra;
+            }
+            for (int ch = 0; ch < 3; ++ch) out.mosaic.at(j * layout.res_width + col, i * layout.res_height + row, ch) = value[ch];
+          }
+        }
+        supersampled += extra;
+        progress.advance(r.size());
+      },
+      tbb::simple_partitioner());
+  progress.finish();
+  for (const PathCounters& c : local) stats.counters += c;
+  stats.supersampled_texels = supersampled.load();
+  if (cache) stats.cache_fallbacks = cache->fallbacks();
+  stats.shade_seconds = seconds_since(shade_start);
+  stats.total_seconds = seconds_since(start);
+  return out;
+}
+
+}  // namespace phyir::render

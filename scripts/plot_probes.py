@@ -1,0 +1,63 @@
+#!/usr/bin/python3
+"""Plots `phyir bench probes` results: relative RMSE against a converged reference versus
+seconds for the whole probe grid, one series per (mode, probe resolution).
+
+    /usr/bin/python3 scripts/plot_probes.py probes.csv probes.png [more.csv ...]
+
+Extra CSV files (e.g. several scenes) are drawn on the same axes, their scene in the label.
+"""
+import csv
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def main():
+    if len(sys.argv) < 3:
+        sys.exit(__doc__)
+    paths = [sys.argv[1]] + sys.argv[3:]
+    rows = []
+    for path in paths:
+        with open(path) as f:
+            rows += list(csv.DictReader(f))
+    if not rows:
+        sys.exit(f"plot_probes.py: no rows in {paths}")
+    scenes = sorted({r["scene"] for r in rows})
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    series = {}
+    for r in rows:
+        key = (r["scene"], r["mode"], r["resolution"], r["grid"])
+        series.setdefault(key, []).append(r)
+    markers = {"path": "s", "cache": "o"}
+    for (scene, mode, res, grid), points in sorted(series.items()):
+        points.sort(key=lambda r: float(r["seconds"]))
+        x = [float(r["seconds"]) for r in points]
+        y = [float(r["relative_rmse"]) for r in points]
+        label = f"{mode}, {grid} grid of {res} probes"
+        if len(scenes) > 1:
+            label = f"{scene}: {label}"
+        if mode == "path":
+            label += " (time extrapolated)"
+        ax.plot(x, y, marker=markers.get(mode, "x"), linestyle="-" if mode == "cache" else "--", label=label)
+        for r, xi, yi in zip(points, x, y):
+            tag = f"{r['spp']} spp" + (f"/{r['cache_spp']}" if mode == "cache" else "")
+            ax.annotate(tag, (xi, yi), textcoords="offset points", xytext=(4, 3), fontsize=7)
+    noise = max(float(r["reference_noise"]) for r in rows)
+    ax.axhline(0.05, color="tab:red", linewidth=0.8, linestyle=":", label="target: 5% relative RMSE")
+    ax.axvline(120, color="tab:red", linewidth=0.8, linestyle="-.", label="target: 2 minutes")
+    ax.axhline(noise, color="gray", linewidth=0.8, linestyle=":", label=f"reference noise ({noise:.3f})")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("seconds for the whole grid (wall clock, 2 threads)")
+    ax.set_ylabel("relative RMSE vs converged reference (valid probes)")
+    ax.set_title("Per-pixel light probes: error versus time (" + ", ".join(scenes) + ")")
+    ax.grid(True, which="both", linewidth=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(sys.argv[2], dpi=130)
+
+
+main()
