@@ -5,6 +5,7 @@
 
 #include "phyir/core/error.h"
 #include "phyir/core/log.h"
+#include "phyir/core/pcg32.h"
 #include "phyir/core/safe_math.h"
 #include "phyir/dataset/checksum.h"
 
@@ -15,23 +16,8 @@ namespace {
 // Two scene-provided viewpoints closer than this are one.
 constexpr float kDuplicateDistance = 1e-3f;
 
-// A counter-based stream: value n is splitmix64(key + n). Keyed by SHA-256 of the name, so
-// it is the same on every platform (no std:: distributions).
-class Stream {
- public:
-  explicit Stream(uint64_t key) : key_(key) {}
-  float next() {
-    uint64_t x = key_ + 0x9E3779B97F4A7C15ull * ++counter_;
-    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-    x ^= x >> 31;
-    return static_cast<float>(x >> 40) * 0x1p-24f;  // 24 bits: exact floats in [0, 1)
-  }
-
- private:
-  uint64_t key_;
-  uint64_t counter_ = 0;
-};
+// PCG32 stream id of viewpoint sampling (any constant; streams keep uses apart).
+constexpr uint64_t kViewpointStream = 0x76696577ull;  // "view"
 
 glm::vec3 fibonacci_direction(int i, int n) {
   const float golden_angle = kPi * (3.0f - std::sqrt(5.0f));
@@ -130,7 +116,8 @@ std::vector<Viewpoint> plan_viewpoints(const scenes::Scene& scene, const std::st
 
   const scenes::Bounds& b = scene.bounds;
   if (b.empty()) fail("{}: the scene is empty; no viewpoint can be sampled", scene_name);
-  Stream stream(hash64(fmt::format("phyir-dataset viewpoints|{}|{}", seed, scene_name)));
+  // The toolkit's PCG32, seeded from SHA-256 of (seed, scene name): the same on every platform.
+  Pcg32 rng(hash64(fmt::format("phyir-dataset viewpoints|{}|{}", seed, scene_name)), kViewpointStream);
   const glm::vec3 lo(b.min.x + rules.clearance, b.min.y + rules.min_height, b.min.z + rules.clearance);
   const glm::vec3 hi(b.max.x - rules.clearance, b.min.y + rules.max_height, b.max.z - rules.clearance);
   if (lo.x > hi.x || lo.z > hi.z)
@@ -140,7 +127,9 @@ std::vector<Viewpoint> plan_viewpoints(const scenes::Scene& scene, const std::st
     bool found = false;
     for (int attempt = 0; attempt < rules.attempts && !found; ++attempt) {
       // Three draws per attempt whatever happens, so each attempt's point is fixed.
-      const float ux = stream.next(), uy = stream.next(), uz = stream.next();
+      const float ux = rng.next_float();  // separate statements: argument order is unspecified
+      const float uy = rng.next_float();
+      const float uz = rng.next_float();
       const glm::vec3 p(round_to_mm(lo.x + (hi.x - lo.x) * ux), round_to_mm(lo.y + (hi.y - lo.y) * uy),
                         round_to_mm(lo.z + (hi.z - lo.z) * uz));
       const float spacing = attempt < rules.attempts / 2 ? rules.min_spacing : 0.5f * rules.min_spacing;

@@ -91,6 +91,13 @@ TEST(Viewpoints, SampledPointsKeepClearHeightAndRoom) {
   for (const auto& [preset, index] : {std::pair{scenes::RoomPreset::Mini, 0}, std::pair{scenes::RoomPreset::Hard, l_shaped},
                                       std::pair{scenes::RoomPreset::Hard, rectangular}}) {
     const Room room = load_room(dir, index, preset, 7);
+    if (room.layout.shell.l_shaped) {  // the notch: inside the bounds, outside the walls
+      const glm::vec2 c = 0.5f * (room.layout.shell.notch_min + room.layout.shell.notch_max);
+      const render::Accelerator accel(room.scene);
+      ClearanceProbe probe;
+      EXPECT_FALSE(is_free_viewpoint(room.scene, accel, glm::vec3(c.x, 1.5f, c.y), rules, &probe));
+      EXPECT_GT(probe.back_faces, 0);
+    }
     const int authored = int(room.scene.cameras.size() + room.scene.candidate_viewpoints.size());
     const auto views = plan_viewpoints(room.scene, "room", authored + 6, 7, rules);
     ASSERT_EQ(int(views.size()), authored + 6);

@@ -9,7 +9,7 @@
 // double-sided material) no closer than `clearance` metres; at most half of them may miss
 // (open scenes). A back-face hit means the point is inside a solid or outside a wall (the
 // notch of an L-shaped room), so it is rejected. Points also keep `min_spacing` from every
-// other viewpoint (halved after half the attempts). Draws come from a stream keyed by
+// other viewpoint (halved after half the attempts). Draws come from the toolkit PCG32 keyed by
 // (seed, scene name), so the plan is deterministic, and the first k of a longer plan are a
 // plan of k.
 #include <cstdint>
