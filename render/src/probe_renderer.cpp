@@ -51,10 +51,12 @@ enum Purpose : uint64_t {
   kSpecularRoulette = 205
 };
 
-// The specular lobe is estimated with probability min(1, kSpecularKeepScale x its share of
-// the albedo): a wall with a 7% specular share keeps it in 28% of the samples; a lobe with
-// a quarter of the albedo or more (glossy floors, metals) in every sample. Floor: 1/8, so
-// no sample is weighted by more than 8.
+// The light reflected at a BRDF-sampled ray's hit is needed for the specular part of the
+// sample's weight only (the diffuse part of the indirect light is the cache's); it is
+// evaluated with probability min(1, kSpecularKeepScale x that part's share of the weight),
+// weighted by the inverse: a wall's cosine-lobe sample (specular share ~2%) evaluates it in
+// 1/8 of the samples (the floor, so no sample is weighted by more than 8), a glossy or
+// metal lobe in every sample.
 constexpr float kSpecularKeepScale = 4.0f;
 
 Rng shading_rng(uint64_t key, int depth, Purpose purpose) {
@@ -138,63 +140,27 @@ class TexelEstimator {
   }
 
   // Radiance the (opaque) surface at si reflects towards wo_world; `depth` = its scattering
-  // event's index counted from the probe's first hit.
+  // event's index counted from the probe's first hit (so it is only called for depth <
+  // max_bounces). Direct light is sampled here for every sample: next-event estimation and
+  // one BRDF-sampled ray (the integrator's own sampling), combined by the power heuristic.
+  // Indirect light: diffuse from the cache, f_d E(x); specular through the same BRDF-sampled
+  // ray (f_s cos / pdf of it times the light its hit y reflects, Russian-rouletted by the
+  // specular share of the sample's weight).
   glm::vec3 reflected(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key,
                       PathCounters* c) const {
     const Frame frame = shading_frame(si, wo_world);
     const glm::vec3 wo = frame.to_local(wo_world);
     if (!(wo.z >= kMinCosine)) return glm::vec3(0.0f);
     const BrdfParams p = clamped(si.brdf);
+    const glm::vec3& ng = si.geometric_normal;
     glm::vec3 L(0.0f);
     const glm::vec3 fd = Fd_Lambert(p.base_color, p.metalness);
     if (max_component(fd) > 0.0f)
       L += fd * cache_->irradiance(cache_point(si, frame.n), derived_key(key, depth, kLookup), c);
-    // Where the specular lobe carries a small share of the reflection (rough dielectrics:
-    // walls, ceilings), it is estimated in only a fraction of the samples, each weighted by
-    // its inverse (Russian roulette: unbiased, and two rays saved in most samples).
-    const float specular_share = specular_fraction(p, wo.z);
-    const float keep = std::clamp(kSpecularKeepScale * specular_share, 0.125f, 1.0f);
-    if (keep < 1.0f) {
-      Rng rng = shading_rng(key, depth, kSpecularRoulette);
-      if (!(rng.next_float() < keep)) return L;
-      return L + specular(si, frame, wo, p, depth, key, c) / keep;
-    }
-    return L + specular(si, frame, wo, p, depth, key, c);
-  }
-
-  // Luminance share of the specular lobe in the surface's directional albedo at n.v.
-  static float specular_fraction(const BrdfParams& p, float NoV) {
-    const glm::vec2 terms = specular_albedo_terms(NoV, p.roughness);
-    const glm::vec3 F0 = specular_F0(p.base_color, p.metalness);
-    const float s = luminance(F0 * terms.x + (glm::vec3(1.0f) - F0) * terms.y);
-    const float d = luminance(p.base_color * (1.0f - p.metalness));
-    return s + d > 0.0f ? s / (s + d) : 1.0f;
-  }
-
-  // Where the path ends in the cache: diffuse from E exactly, specular as if the incident
-  // radiance were uniform over the lobe, i.e. specular albedo x E / pi.
-  glm::vec3 terminal(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key,
-                     PathCounters* c) const {
-    const Frame frame = shading_frame(si, wo_world);
-    const float NoV = glm::dot(frame.n, wo_world);
-    if (!(NoV >= kMinCosine)) return glm::vec3(0.0f);
-    const BrdfParams p = clamped(si.brdf);
-    const glm::vec2 terms = specular_albedo_terms(NoV, p.roughness);
-    const glm::vec3 F0 = specular_F0(p.base_color, p.metalness);
-    const glm::vec3 albedo = F0 * terms.x + (glm::vec3(1.0f) - F0) * terms.y;
-    const glm::vec3 E = cache_->irradiance(cache_point(si, frame.n), derived_key(key, depth, kLookup), c);
-    return (Fd_Lambert(p.base_color, p.metalness) + albedo * kInvPi) * E;
-  }
-
-  glm::vec3 specular(const SurfaceInteraction& si, const Frame& frame, const glm::vec3& wo, const BrdfParams& p,
-                     int depth, uint64_t key, PathCounters* c) const {
-    const bool mirror = is_mirror(p.roughness);
-    const float alpha = p.roughness * p.roughness;
     const bool emitters = !scene_.emitters().empty();
-    glm::vec3 L(0.0f);
 
-    // Next-event estimation through the specular lobe.
-    if (emitters && !mirror) {
+    // Next-event estimation on the emitters, full BRDF.
+    if (emitters) {
       Rng rng = shading_rng(key, depth, kSpecularLight);
       const float u_select = rng.next_float();
       const glm::vec2 u_point = rng.next_2d();
@@ -202,60 +168,91 @@ class TexelEstimator {
       if (scene_.emitters().sample(si.position, u_select, u_point, &ls) && ls.pdf > 0.0f &&
           max_component(ls.radiance) > 0.0f) {
         const glm::vec3 wi = frame.to_local(ls.wi);
-        const glm::vec3 fs = specular_eval(p, wo, wi);
-        if (wi.z > 0.0f && glm::dot(ls.wi, si.geometric_normal) > 0.0f && max_component(fs) > 0.0f) {
-          Ray shadow{spawn_origin(si.position, si.geometric_normal, ls.wi), ls.wi};
+        const glm::vec3 f = brdf_eval(p, wo, wi);
+        if (wi.z > 0.0f && glm::dot(ls.wi, ng) > 0.0f && max_component(f) > 0.0f) {
+          Ray shadow{spawn_origin(si.position, ng, ls.wi), ls.wi};
           shadow.tmax = ls.distance * (1.0f - 1e-4f);
           ++c->rays;
           if (!scene_.accelerator().occluded(shadow)) {
-            const float w = power_heuristic(ls.pdf, specular_pdf(wo, wi, alpha));
-            L += fs * ls.radiance * (wi.z * w / ls.pdf);
+            const float w = power_heuristic(ls.pdf, brdf_pdf(p, wo, wi));
+            L += f * ls.radiance * (wi.z * w / ls.pdf);
           }
         }
       }
     }
 
-    // One direction from the lobe.
-    glm::vec3 wi, weight;
-    float pdf = 0.0f;
-    if (mirror) {
-      const float k = (p.roughness + 1.0f) * (p.roughness + 1.0f) / 8.0f;  // eq. 17
-      const float G1 = G1_SmithSchlick(wo.z, k);
-      wi = glm::vec3(-wo.x, -wo.y, wo.z);
-      weight = F_SchlickSG(specular_F0(p.base_color, p.metalness), wo.z) * (G1 * G1);
-    } else {
-      Rng rng = shading_rng(key, depth, kSpecularLobe);
-      const glm::vec3 h = sample_ggx_half_vector(rng.next_2d(), alpha);
-      wi = safe_normalize(2.0f * glm::dot(wo, h) * h - wo, glm::vec3(0.0f, 0.0f, -1.0f));
-      pdf = specular_pdf(wo, wi, alpha);
-      if (!(pdf > 0.0f)) return L;
-      weight = specular_eval(p, wo, wi) * (wi.z / pdf);
-    }
-    if (!(max_component(weight) > 0.0f)) return L;
-    const glm::vec3 wi_world = frame.to_world(wi);
-    if (glm::dot(wi_world, si.geometric_normal) <= 0.0f) return L;  // leaks below the surface: dropped, as the integrator does
-    const Ray ray{spawn_origin(si.position, si.geometric_normal, wi_world), wi_world};
+    // One direction from the BRDF.
+    Rng rng = shading_rng(key, depth, kSpecularLobe);
+    const float u_lobe = rng.next_float();
+    BrdfSample bs;
+    if (!brdf_sample(p, wo, u_lobe, rng.next_2d(), &bs)) return L;
+    const glm::vec3 wi_world = frame.to_world(bs.wi);
+    if (glm::dot(wi_world, ng) <= 0.0f) return L;  // leaks below the surface: dropped, as the integrator does
+    // The part of the sample's weight that belongs to the specular lobe (the diffuse part of
+    // the indirect light comes from the cache).
+    const glm::vec3 weight_specular =
+        bs.delta ? bs.weight : specular_eval(p, wo, bs.wi) * (bs.wi.z / std::max(bs.pdf, kTinyDenominator));
+    const Ray ray{spawn_origin(si.position, ng, wi_world), wi_world};
     SurfaceInteraction y;
     ++c->rays;
-    if (!scene_.trace(ray, &y)) return L + weight * miss(wi_world);
-    const glm::vec3 Le = y.emits ? y.emission : glm::vec3(0.0f);
+    if (!scene_.trace(ray, &y)) return L + weight_specular * miss(wi_world);  // the diffuse share is in E
     if (y.emits) {
-      const float w = (emitters && !mirror)
-                          ? power_heuristic(pdf, scene_.emitters().pdf(si.position, y.mesh, y.triangle, y.position))
+      const float w = (emitters && !bs.delta)
+                          ? power_heuristic(bs.pdf, scene_.emitters().pdf(si.position, y.mesh, y.triangle, y.position))
                           : 1.0f;
-      L += weight * Le * w;
+      L += bs.weight * y.emission * w;
     }
     const int next = depth + 1;
-    if (next >= settings_.path.max_bounces) return L;
+    if (next >= settings_.path.max_bounces || !(max_component(weight_specular) > 0.0f)) return L;
+    const float share = luminance(weight_specular) / std::max(luminance(bs.weight), kTinyDenominator);
+    const float keep = std::clamp(kSpecularKeepScale * share, 0.125f, 1.0f);
+    if (keep < 1.0f && !(shading_rng(key, depth, kSpecularRoulette).next_float() < keep)) return L;
+    const glm::vec3 Le = y.emits ? y.emission : glm::vec3(0.0f);
+    glm::vec3 Ly;
     if (y.transmission > 0.0f) {
       // Glass: the path tracer from here (it re-adds y's emission at full weight: removed).
-      const glm::vec3 Lt = tracers_[std::min(next, kMaxSpecularDepth)]->radiance(
-                               ray, derived_key(key, depth, kGlassContinuation), c) - Le;
-      return L + weight * glm::max(Lt, glm::vec3(0.0f));
+      Ly = glm::max(tracers_[std::min(next, kMaxSpecularDepth)]->radiance(ray, derived_key(key, depth, kGlassContinuation), c) - Le,
+                    glm::vec3(0.0f));
+    } else if (y.brdf.roughness < settings_.glossy_roughness && next < kMaxSpecularDepth) {
+      Ly = reflected(y, -wi_world, next, key, c);
+    } else {
+      Ly = terminal(y, -wi_world, next, key, c);
     }
-    if (y.brdf.roughness < settings_.glossy_roughness && next < kMaxSpecularDepth)
-      return L + weight * reflected(y, -wi_world, next, key, c);
-    return L + weight * terminal(y, -wi_world, next, key, c);
+    return L + weight_specular * Ly / keep;
+  }
+
+  // Where a specular chain ends in the cache: direct light by next-event estimation (light
+  // sampling alone, full BRDF), indirect as (f_d + specular albedo / pi) E, i.e. the
+  // specular lobe treated as if the indirect light arriving were uniform.
+  glm::vec3 terminal(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key,
+                     PathCounters* c) const {
+    const Frame frame = shading_frame(si, wo_world);
+    const glm::vec3 wo = frame.to_local(wo_world);
+    if (!(wo.z >= kMinCosine)) return glm::vec3(0.0f);
+    const BrdfParams p = clamped(si.brdf);
+    glm::vec3 L(0.0f);
+    if (!scene_.emitters().empty()) {
+      Rng rng = shading_rng(key, depth, kSpecularLight);
+      const float u_select = rng.next_float();
+      const glm::vec2 u_point = rng.next_2d();
+      EmitterSample ls;
+      if (scene_.emitters().sample(si.position, u_select, u_point, &ls) && ls.pdf > 0.0f &&
+          max_component(ls.radiance) > 0.0f) {
+        const glm::vec3 wi = frame.to_local(ls.wi);
+        const glm::vec3 f = brdf_eval(p, wo, wi);
+        if (wi.z > 0.0f && glm::dot(ls.wi, si.geometric_normal) > 0.0f && max_component(f) > 0.0f) {
+          Ray shadow{spawn_origin(si.position, si.geometric_normal, ls.wi), ls.wi};
+          shadow.tmax = ls.distance * (1.0f - 1e-4f);
+          ++c->rays;
+          if (!scene_.accelerator().occluded(shadow)) L += f * ls.radiance * (wi.z / ls.pdf);
+        }
+      }
+    }
+    const glm::vec2 terms = specular_albedo_terms(wo.z, p.roughness);
+    const glm::vec3 F0 = specular_F0(p.base_color, p.metalness);
+    const glm::vec3 albedo = F0 * terms.x + (glm::vec3(1.0f) - F0) * terms.y;
+    const glm::vec3 E = cache_->irradiance(cache_point(si, frame.n), derived_key(key, depth, kLookup), c);
+    return L + (Fd_Lambert(p.base_color, p.metalness) + albedo * kInvPi) * E;
   }
 
   const RenderScene& scene_;

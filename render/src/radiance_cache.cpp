@@ -31,7 +31,7 @@ constexpr uint64_t kEmptySlot = ~uint64_t(0);
 constexpr float kGridShift[3] = {0.1234567f, 0.3456789f, 0.2345678f};
 
 // Purposes of the estimator's random streams (distinct from the path tracer's 1..5).
-enum Purpose : uint64_t { kLightPurpose = 101, kFallbackDirection = 102, kFillPermutation = 103 };
+enum Purpose : uint64_t { kFallbackDirection = 102, kFillPermutation = 103 };
 
 Rng purpose_rng(uint64_t key, Purpose purpose) { return Rng(mix64(key ^ mix64(purpose)), purpose); }
 
@@ -153,59 +153,27 @@ glm::vec3 RadianceCache::irradiance(const CachePoint& point, uint64_t key, PathC
 
 glm::vec3 RadianceCache::estimate(const CachePoint& point, const glm::vec2& u, uint64_t key,
                                   PathCounters* counters) const {
+  // Indirect light only: what arrives from surfaces after scattering at least once (the
+  // emission of the surface a direction hits is direct light, sampled per probe sample),
+  // plus the environment. One cosine-distributed direction: cos / pdf = pi.
   if (max_bounces_ < 1) return glm::vec3(0.0f);  // nothing is reflected at all
   const RenderScene& scene = *scene_;
-  const glm::vec3& p = point.position;
   const glm::vec3& ns = point.shading_normal;
   const glm::vec3& ng = point.geometric_normal;
-  const bool emitters = !scene.emitters().empty();
-  glm::vec3 E(0.0f);
-
-  // Next-event estimation on the emitters (weighted against cosine sampling).
-  if (emitters) {
-    Rng rng = purpose_rng(key, kLightPurpose);
-    const float u_select = rng.next_float();
-    const glm::vec2 u_point = rng.next_2d();
-    EmitterSample ls;
-    if (scene.emitters().sample(p, u_select, u_point, &ls) && ls.pdf > 0.0f && max_component(ls.radiance) > 0.0f) {
-      const float cos_theta = glm::dot(ls.wi, ns);
-      if (cos_theta >= kMinCosine && glm::dot(ls.wi, ng) > 0.0f) {
-        Ray shadow{spawn_origin(p, ng, ls.wi), ls.wi};
-        shadow.tmax = ls.distance * (1.0f - 1e-4f);  // stop short of the light itself
-        ++counters->rays;
-        if (!scene.accelerator().occluded(shadow)) {
-          const float w = power_heuristic(ls.pdf, cosine_hemisphere_pdf(cos_theta));
-          E += ls.radiance * (cos_theta * w / ls.pdf);
-        }
-      }
-    }
-  }
-
-  // One cosine-distributed direction: the emitter it hits (weighted), and everything the
-  // path tracer finds beyond it. cos / pdf = pi.
   const Frame frame(ns);
   const glm::vec3 local = sample_cosine_hemisphere(u);
   const glm::vec3 wi = frame.to_world(local);
-  if (!(local.z >= kMinCosine) || glm::dot(wi, ng) <= 0.0f) return is_finite(E) ? E : glm::vec3(0.0f);
-  const Ray ray{spawn_origin(p, ng, wi), wi};
+  if (!(local.z >= kMinCosine) || glm::dot(wi, ng) <= 0.0f) return glm::vec3(0.0f);
+  const Ray ray{spawn_origin(point.position, ng, wi), wi};
   SurfaceInteraction si;
   ++counters->rays;
+  glm::vec3 E(0.0f);
   if (!scene.trace(ray, &si)) {
-    if (scene.environment()) E += kPi * scene.environment()->radiance(wi);
-  } else {
+    if (scene.environment()) E = kPi * scene.environment()->radiance(wi);
+  } else if (max_bounces_ >= 2) {
+    // The tracer adds its first hit's emission (this same si) at full weight: take it out.
     const glm::vec3 Le = si.emits ? si.emission : glm::vec3(0.0f);
-    if (si.emits) {
-      const float w = emitters ? power_heuristic(cosine_hemisphere_pdf(local.z),
-                                                 scene.emitters().pdf(p, si.mesh, si.triangle, si.position))
-                               : 1.0f;
-      E += kPi * w * Le;
-    }
-    if (max_bounces_ >= 2) {
-      // The tracer adds the emission of its first hit (this same si) at full weight: take
-      // it out, it was counted above with its MIS weight.
-      const glm::vec3 L = continuation_.radiance(ray, key, counters) - Le;
-      E += kPi * glm::max(L, glm::vec3(0.0f));
-    }
+    E = kPi * glm::max(continuation_.radiance(ray, key, counters) - Le, glm::vec3(0.0f));
   }
   if (!is_finite(E)) {
     ++counters->nonfinite_samples;

@@ -13,13 +13,14 @@
 // found them), so the kept set does not depend on thread count or order. (2) Fill: each
 // cell's irradiance E = integral of L_i cos over the hemisphere of the shading normal is the
 // mean of `samples_per_cell` one-sample estimates spread over its points (stratified
-// cosine directions per point), each estimate being next-event estimation on the emitters
-// plus one cosine-sampled ray, combined by multiple importance sampling (power heuristic),
-// with the radiance reflected at that ray's hit continued by the path tracer. So E counts
-// paths of up to max_bounces - 1 further scattering events: a lookup at a probe's first hit
-// (scattering event 0) gives exactly the path tracer's path lengths.
+// cosine directions per point). E holds the INDIRECT light only (plus the environment):
+// the radiance that the surface a cosine ray hits reflects, continued by the path tracer;
+// the emission of that surface is direct light, which the probes sample per direction
+// (probe_renderer.h), so the cache never blurs a shadow edge or the bright rim around a
+// light. E counts paths of up to max_bounces - 1 further scattering events: a lookup at a
+// probe's first hit (scattering event 0) gives exactly the path tracer's path lengths.
 //
-// Use. Outgoing diffuse radiance at a point is f_d E (f_d = B (1 - M) / pi, eq. 13), with B
+// Use. Outgoing indirect diffuse radiance at a point is f_d E (f_d = B (1 - M) / pi, eq. 13), with B
 // and M taken at the point itself (textures stay sharp). The cache's approximation is the
 // spatial one: E is averaged over the cell's points (a cell_size-wide box filter over the
 // surface); noise is the fill's, shared by every lookup. A point whose cell was never
