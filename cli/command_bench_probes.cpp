@@ -153,6 +153,15 @@ void run_bench_probes(const BenchProbeFlags& f) {
     // Reference: two independent halves, cached on disk by (grid, resolution, spp, seed).
     const std::string tag = f.grid + "_" + res + "_" + std::to_string(f.reference_spp) + "spp_" +
                             std::to_string(n) + "probes_seed" + std::to_string(f.seed);
+    nlohmann::json subset_json = nlohmann::json::array();
+    for (int p : subset) {
+      const render::ProbeSite& site = sites[size_t(p)];
+      subset_json.push_back({{"index", p}, {"i", p / s.layout.grid_width}, {"j", p % s.layout.grid_width},
+                             {"origin", {site.origin.x, site.origin.y, site.origin.z}},
+                             {"normal", {site.normal.x, site.normal.y, site.normal.z}}});
+    }
+    summary["subsets"][res] = {{"reference", "reference_" + tag + "_half{0,1}.exr"}, {"probes", subset_json}};
+    write_file_atomic(fs::path(f.out) / ("subset_" + tag + ".json"), subset_json.dump(1) + "\n");
     Image halves[2];
     for (int h = 0; h < 2; ++h) {
       const fs::path path = fs::path(f.out) / ("reference_" + tag + "_half" + std::to_string(h) + ".exr");
@@ -172,15 +181,6 @@ void run_bench_probes(const BenchProbeFlags& f) {
       halves[h] = strip(out.mosaic, s.layout, subset);
       write_image(path, halves[h]);
     }
-    nlohmann::json subset_json = nlohmann::json::array();
-    for (int p : subset) {
-      const render::ProbeSite& site = sites[size_t(p)];
-      subset_json.push_back({{"index", p}, {"i", p / s.layout.grid_width}, {"j", p % s.layout.grid_width},
-                             {"origin", {site.origin.x, site.origin.y, site.origin.z}},
-                             {"normal", {site.normal.x, site.normal.y, site.normal.z}}});
-    }
-    summary["subsets"][res] = {{"reference", "reference_" + tag + "_half{0,1}.exr"}, {"probes", subset_json}};
-    write_file_atomic(fs::path(f.out) / ("subset_" + tag + ".json"), subset_json.dump(1) + "\n");
     Image reference = halves[0];
     for (size_t k = 0; k < reference.pixels.size(); ++k) reference.pixels[k] = 0.5f * (halves[0].pixels[k] + halves[1].pixels[k]);
     const ImageError split = image_error(halves[0], halves[1]);

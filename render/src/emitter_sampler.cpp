@@ -64,7 +64,8 @@ EmitterSampler::EmitterSampler(const scenes::Scene& scene) : scene_(&scene) {
       lookup_.push_back(-1);
       if (tri.x >= n || tri.y >= n || tri.z >= n) continue;
       EmissiveTriangle e{static_cast<int>(m), static_cast<int>(t), mesh.positions[tri.x],
-                         mesh.positions[tri.y], mesh.positions[tri.z], glm::vec3(0.0f), 0.0f};
+                         mesh.positions[tri.y], mesh.positions[tri.z], glm::vec3(0.0f), 0.0f,
+                         /*cluster=*/-1, /*pmf_in_cluster=*/0.0f};
       const glm::vec3 c = glm::cross(e.p1 - e.p0, e.p2 - e.p0);
       const float len = glm::length(c);
       // Zero-area (or non-finite) triangles emit nothing and cannot be sampled uniformly.
@@ -72,8 +73,6 @@ EmitterSampler::EmitterSampler(const scenes::Scene& scene) : scene_(&scene) {
         continue;
       e.normal = c / len;
       e.area = 0.5f * len;
-      e.cluster = -1;
-      e.pmf_in_cluster = 0.0f;
       const float weight = e.area * power_density;
       if (!(weight > 0.0f) || !std::isfinite(weight)) continue;
       lookup_.back() = static_cast<int>(triangles_.size());

@@ -4,8 +4,8 @@
 # Method and results: docs/cycles-comparison.md.
 #
 #   scripts/cycles/compare.sh [--preset mini] [--scene-seed 1] [--width 256] [--height 128]
-#       [--spp-list 1,2,4,8,16,32,64,128,256] [--reference-spp 4096] [--cycles-reference-spp 4096[,4096]]
-#       [--repeats 2] [--threads 2] [--modes principled,ue4] [--reference EXR] [--targets 0.5,0.3,0.2]
+#       [--spp-list 1,2,4,8,16,32,64,128,256,512] [--reference-spp 4096] [--cycles-reference-spp 4096[,4096]]
+#       [--repeats 3] [--threads 2] [--modes principled,ue4] [--reference EXR] [--targets 0.5,0.3,0.2,0.1]
 #       [--runs /tmp/phyir-cycles/mini] [--figures docs/figures] [--name mini]
 #
 # --cycles-reference-spp takes one value per Cycles mode (the last one repeats).
@@ -23,8 +23,8 @@ BLENDER="${BLENDER:-blender}"
 PYTHON=/usr/bin/python3   # Debian's, with numpy, matplotlib and OpenImageIO
 
 preset=mini scene_seed=1 width=256 height=128
-spp_list=1,2,4,8,16,32,64,128,256 reference_spp=4096 cycles_reference_spp=4096
-repeats=2 threads=2 modes=principled,ue4 reference="" targets=0.5,0.3,0.2 runs="" figures="$ROOT/docs/figures" name=""
+spp_list=1,2,4,8,16,32,64,128,256,512 reference_spp=4096 cycles_reference_spp=4096
+repeats=3 threads=2 modes=principled,ue4 reference="" targets=0.5,0.3,0.2 runs="" figures="$ROOT/docs/figures" name=""
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --preset) preset="$2" ;;

@@ -7,7 +7,7 @@
 #       [--threads 2] [--runs /tmp/phyir-probe-cycles] [--csv docs/figures/probes_cycles.csv]
 #
 # SUBSET.json is written by `phyir bench probes` (subset_*.json: the probes its error is
-# measured on, with their origins). For the first --probes of them, Cycles renders an
+# measured on, with their origins). For --probes of them, evenly spread, Cycles renders an
 # equirectangular h x w panorama at the probe's origin (scripts/cycles/render_cycles.py:
 # world-aligned like ours, box filter, no denoising or adaptive sampling, unbiased
 # settings, our BRDF's terms with --materials ue4) at each sample count and once at
@@ -51,7 +51,8 @@ log() { echo "[probe_cycles.sh $(date +%H:%M:%S)] $*" >&2; }
 
 origins=$("$PYTHON" -c "
 import json, sys
-for p in json.load(open(sys.argv[1]))[:int(sys.argv[2])]:
+probes, n = json.load(open(sys.argv[1])), int(sys.argv[2])
+for p in probes[::max(1, len(probes) // n)][:n]:  # spread over the subset (it is sorted by index)
     print('{},{:.6f},{:.6f},{:.6f}'.format(p['index'], *p['origin']))
 " "$subset" "$probes")
 
@@ -63,7 +64,7 @@ for line in $origins; do
     [[ -f "$out" && -f "${out%.exr}.json" ]] && continue
     log "probe $index at ($x, $y, $z): $n samples"
     "$BLENDER" -b --factory-startup -noaudio -t "$threads" --python "$ROOT/scripts/cycles/render_cycles.py" -- \
-      --gltf "$scene" --out "$out" --width "$w" --height "$h" --samples "$n" --seed 1 --camera "$x,$y,$z" \
+      --gltf "$scene" --out "$out" --width "$w" --height "$h" --samples "$n" --seed 1 "--camera=$x,$y,$z" \
       --bounces 7 --threads "$threads" --materials ue4 >"${out%.exr}.log" 2>&1 ||
       { echo "probe_cycles.sh: Cycles failed, see ${out%.exr}.log" >&2; exit 1; }
   done

@@ -46,14 +46,14 @@ std::string probe_mode_name(ProbeMode mode);
 
 struct ProbeSettings {
   ProbeLayout layout;
-  int spp = 16;                   // directions per texel
+  int spp = 4;                    // directions per texel (docs/probes.md: the measured default)
   ProbeMode mode = ProbeMode::kCache;
   float offset = 0.01f;           // metres off the surface, along its shading normal
   uint64_t seed = 0;
   PathSettings path;              // max_bounces counts scattering after the probe ray's hit
   // kCache only.
   float cache_cell = 0.05f;       // metres
-  int cache_spp = 128;            // irradiance estimates per cache cell
+  int cache_spp = 64;             // irradiance estimates per cache cell
   int hard_spp_factor = 8;        // hard texels (lights, glass, glossy) get this many times spp
   float glossy_roughness = 0.3f;  // secondary hits smoother than this are traced on
   bool progress = true;
