@@ -24,7 +24,7 @@ PYTHON=/usr/bin/python3   # Debian's, with numpy, matplotlib and OpenImageIO
 
 preset=mini scene_seed=1 width=256 height=128
 spp_list=1,2,4,8,16,32,64,128,256,512 reference_spp=4096 cycles_reference_spp=4096
-repeats=3 threads=2 modes=principled,ue4 reference="" targets=0.5,0.3,0.2 runs="" figures="$ROOT/docs/figures" name=""
+repeats=3 threads=2 modes=principled,ue4 reference="" targets=0.5,0.3,0.2,0.1 runs="" figures="$ROOT/docs/figures" name=""
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --preset) preset="$2" ;;
@@ -76,7 +76,7 @@ render_ours() {  # DIR SPP SEED [extra flags]
   local dir="$1" spp="$2" seed="$3"; shift 3
   [[ -f "$dir/render.json" ]] && return 0
   timed "$dir.time.json" "$PHYIR" render "$scene" --out "$dir" --width "$width" --height "$height" \
-    --spp "$spp" --seed "$seed" --camera "$camera" --max-bounces "$ours_bounces" --threads "$threads" --quiet "$@" >/dev/null
+    --spp "$spp" --seed "$seed" --camera="$camera" --max-bounces "$ours_bounces" --threads "$threads" --quiet "$@" >/dev/null
 }
 
 render_cycles() {  # OUT.exr SPP SEED MODE [extra flags]
@@ -85,7 +85,7 @@ render_cycles() {  # OUT.exr SPP SEED MODE [extra flags]
   timed "${out%.exr}.time.json" "$BLENDER" -b --factory-startup -noaudio -t "$threads" \
     --python "$ROOT/scripts/cycles/render_cycles.py" -- --gltf "$scene" --out "$out" \
     --width "$width" --height "$height" --samples "$spp" --seed "$seed" --bounces "$cycles_bounces" \
-    --camera "$camera" --threads "$threads" --materials "$mode" "$@" >"${out%.exr}.log" 2>&1 ||
+    --camera="$camera" --threads "$threads" --materials "$mode" "$@" >"${out%.exr}.log" 2>&1 ||
     { echo "compare.sh: Cycles failed, see ${out%.exr}.log" >&2; tail -20 "${out%.exr}.log" >&2; exit 1; }
 }
 

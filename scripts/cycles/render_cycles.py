@@ -4,7 +4,7 @@ Run inside Blender, arguments after `--`:
 
     blender -b --factory-startup -noaudio -t 2 --python render_cycles.py -- \
         --gltf room_0.gltf --out cycles.exr --width 256 --height 128 --samples 64 --seed 1 \
-        --camera 0.463,1.694,-0.481 [--bounces 7] [--rotation 90,0,0] [--json cycles.json]
+        --camera=0.463,1.694,-0.481 [--bounces 7] [--rotation 90,0,0] [--json cycles.json]
 
 The output matches `phyir render` as closely as Cycles allows (see docs/cycles-comparison.md):
 - panorama: equirectangular over the full sphere, world-aligned like ours (conventions.md);
@@ -52,7 +52,7 @@ def parse_args():
     p.add_argument("--samples", type=int, default=16)
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--bounces", type=int, default=7, help="Cycles max bounces (ours minus one)")
-    p.add_argument("--camera", required=True, help="x,y,z in glTF coordinates (+Y up)")
+    p.add_argument("--camera", required=True, help="x,y,z in glTF coordinates (+Y up); write --camera=X,Y,Z when X is negative")
     p.add_argument("--rotation", default="90,0,0", help="camera Euler XYZ, degrees (Blender frame)")
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--pattern", default="PROGRESSIVE_MULTI_JITTER",
