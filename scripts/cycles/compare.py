@@ -260,9 +260,9 @@ def analyse(args):
 
     # Time to equal error, on render seconds and on CPU seconds.
     summary = []
-    columns = {"own": "rel_own", "phyir": "rel_shared", "own, lights excluded": "rel_own_no_lights"}
+    columns = {"own": "rel_own", "phyir": "rel_shared", "own_lights_excluded": "rel_own_no_lights"}
     curves = ([(k, "own") for k in keys] + [(k, "phyir") for k in keys if k != "ours"] +
-              [(k, "own, lights excluded") for k in keys])
+              [(k, "own_lights_excluded") for k in keys])
     for key, against in curves:
         pts = [p for p in points if p["renderer"] == key]
         errors = [p[columns[against]] for p in pts]

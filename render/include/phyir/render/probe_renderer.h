@@ -8,19 +8,18 @@
 //  - ProbeMode::kPath: the path tracer, exactly as a camera ray of color.exr (unbiased; the
 //    reference the other mode is measured against);
 //  - ProbeMode::kCache: the direction's first hit x is found by one ray; its emission is
-//    added exactly; the radiance x reflects towards the probe is
-//      f_d(x) E(x)                     diffuse: E from the view's RadianceCache
-//    + specular(x)                     sampled: next-event estimation on the emitters and
-//                                      one GGX-sampled ray (power-heuristic MIS), the ray's
-//                                      hit y giving its emission plus the radiance y reflects:
-//                                      recursively for glossy y (roughness below
-//                                      glossy_roughness, up to kMaxSpecularDepth), otherwise
-//                                      (f_d(y) + specular albedo(y)/pi) E(y) from the cache;
-//    glass at x is path traced; on rough dielectrics (walls) the specular term is kept in a
-//    fraction of the samples only, weighted by its inverse (Russian roulette, unbiased).
-//    Texels whose first hits include an emitter, glass or a glossy surface ("hard" texels:
-//    small bright features such as a light's edge or its highlight) are re-estimated from
-//    hard_spp_factor times more fresh directions.
+//    added exactly; direct light at x is sampled as the integrator does (next-event
+//    estimation plus one BRDF-sampled ray, power-heuristic MIS); indirect diffuse light is
+//    f_d(x) E(x) with E from the view's RadianceCache (indirect irradiance only); indirect
+//    specular light comes through the BRDF-sampled ray: the specular part of its weight
+//    times the light its hit y reflects, followed recursively for glossy y (roughness below
+//    glossy_roughness, up to kMaxSpecularDepth) and otherwise next-event estimation at y
+//    plus (f_d(y) + specular albedo(y)/pi) E(y); on rough dielectrics that evaluation is
+//    Russian-rouletted by the specular share of the weight. Glass at x is path traced.
+//    "Hard" texels are re-estimated from hard_spp_factor x spp fresh directions: those the
+//    scene's emissive triangles can cover (projected onto the probe before sampling; their
+//    directly seen emission is estimated apart from 64 x spp more one-ray directions) and
+//    those whose first spp directions met a light, glass or a glossy surface.
 // Random numbers: sample s of texel t of probe p draws from streams keyed by
 // (seed, p, t, s) (PathTracer::path_key of a probe seed), the cache's from (seed, cell,
 // sample); so probes.exr is bit-identical for a seed whatever the thread count. Non-finite
