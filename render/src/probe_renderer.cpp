@@ -44,8 +44,8 @@ constexpr uint64_t kStrataStream = uint64_t(1) << 41;
 // Streams of the cache-mode shading, per specular depth (distinct from the path tracer's
 // purposes 1..5 and the cache's 101..103).
 enum Purpose : uint64_t {
-  kSpecularLight = 201,
-  kSpecularLobe = 202,
+  kLightSample = 201,
+  kBrdfSample = 202,
   kLookup = 203,
   kGlassContinuation = 204,
   kSpecularRoulette = 205
@@ -161,7 +161,7 @@ class TexelEstimator {
 
     // Next-event estimation on the emitters, full BRDF.
     if (emitters) {
-      Rng rng = shading_rng(key, depth, kSpecularLight);
+      Rng rng = shading_rng(key, depth, kLightSample);
       const float u_select = rng.next_float();
       const glm::vec2 u_point = rng.next_2d();
       EmitterSample ls;
@@ -182,7 +182,7 @@ class TexelEstimator {
     }
 
     // One direction from the BRDF.
-    Rng rng = shading_rng(key, depth, kSpecularLobe);
+    Rng rng = shading_rng(key, depth, kBrdfSample);
     const float u_lobe = rng.next_float();
     BrdfSample bs;
     if (!brdf_sample(p, wo, u_lobe, rng.next_2d(), &bs)) return L;
@@ -232,7 +232,7 @@ class TexelEstimator {
     const BrdfParams p = clamped(si.brdf);
     glm::vec3 L(0.0f);
     if (!scene_.emitters().empty()) {
-      Rng rng = shading_rng(key, depth, kSpecularLight);
+      Rng rng = shading_rng(key, depth, kLightSample);
       const float u_select = rng.next_float();
       const glm::vec2 u_point = rng.next_2d();
       EmitterSample ls;

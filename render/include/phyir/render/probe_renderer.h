@@ -52,7 +52,7 @@ struct ProbeSettings {
   PathSettings path;              // max_bounces counts scattering after the probe ray's hit
   // kCache only.
   float cache_cell = 0.05f;       // metres
-  int cache_spp = 64;             // irradiance estimates per cache cell
+  int cache_spp = 256;            // irradiance estimates per cache cell
   int hard_spp_factor = 8;        // hard texels (lights, glass, glossy) get this many times spp
   float glossy_roughness = 0.3f;  // secondary hits smoother than this are traced on
   bool progress = true;
