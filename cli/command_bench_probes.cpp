@@ -47,6 +47,8 @@ struct BenchProbeFlags {
                                       "path:4",     "path:16",    "path:64"};
   int reference_spp = 16384;  // relative noise 1.2% on the mini room (docs/probes.md)
   int reference_probes = 16;
+  std::vector<int> probe_indices;  // explicit subset instead of a random one (to study one probe)
+  bool subset_only = false;        // cache mode too renders only the subset (its cache then sees only it)
   int threads = 0;
   int max_bounces = 8;
   uint64_t seed = 0;
@@ -146,14 +148,28 @@ void run_bench_probes(const BenchProbeFlags& f) {
     // A random subset of valid probes, the same for every configuration.
     render::Rng pick(0x5eed + f.seed, 3);
     std::vector<int> subset = valid;
-    const size_t n = std::min(subset.size(), size_t(std::max(f.reference_probes, 1)));
+    size_t n = std::min(subset.size(), size_t(std::max(f.reference_probes, 1)));
     for (size_t k = 0; k < n; ++k) std::swap(subset[k], subset[k + pick.next_u32() % (subset.size() - k)]);
     subset.resize(n);
+    if (!f.probe_indices.empty()) {
+      subset.clear();
+      for (int p : f.probe_indices) {
+        if (p < 0 || size_t(p) >= sites.size() || !sites[size_t(p)].valid())
+          fail("--probe-indices: {} is not a valid probe of the {} grid", p, f.grid);
+        subset.push_back(p);
+      }
+      n = subset.size();
+    }
     std::sort(subset.begin(), subset.end());
 
     // Reference: two independent halves, cached on disk by (grid, resolution, spp, seed).
-    const std::string tag = f.grid + "_" + res + "_" + std::to_string(f.reference_spp) + "spp_" +
-                            std::to_string(n) + "probes_seed" + std::to_string(f.seed);
+    std::string which = std::to_string(n) + "probes";
+    if (!f.probe_indices.empty()) {
+      which = "probes";
+      for (int p : subset) which += "-" + std::to_string(p);
+    }
+    const std::string tag = f.grid + "_" + res + "_" + std::to_string(f.reference_spp) + "spp_" + which + "_seed" +
+                            std::to_string(f.seed);
     nlohmann::json subset_json = nlohmann::json::array();
     for (int p : subset) {
       const render::ProbeSite& site = sites[size_t(p)];
@@ -197,7 +213,7 @@ void run_bench_probes(const BenchProbeFlags& f) {
       t.cache_cell = c.cache_cell;
       t.seed = s.seed + c.seed_offset;
       t.validate();
-      const bool extrapolated = c.mode == render::ProbeMode::kPath;
+      const bool extrapolated = c.mode == render::ProbeMode::kPath || f.subset_only;
       const double cpu_start = cpu_seconds();
       const render::ProbeOutput out = extrapolated ? render::render_probes_at(render_scene, effects, sites, t, subset)
                                                    : render::render_probes_at(render_scene, effects, sites, t);
@@ -252,6 +268,8 @@ void add_bench_probes_command(CLI::App& bench) {
   cmd->add_option("--configs", f->configs, "MODE:SPP[:CACHE_SPP[:CELL_M[:SEED]]] settings to measure (SEED: added to --seed, for repeated runs)")->delimiter(',')->capture_default_str();
   cmd->add_option("--reference-spp", f->reference_spp, "spp of the converged path-mode reference")->capture_default_str();
   cmd->add_option("--reference-probes", f->reference_probes, "how many random valid probes the error is measured on")->capture_default_str();
+  cmd->add_option("--probe-indices", f->probe_indices, "measure on these probe indices (i * grid width + j) instead of a random subset")->delimiter(',');
+  cmd->add_flag("--subset-only", f->subset_only, "cache mode renders only the measured probes too (a study aid: its cache then sees only them; times extrapolated)");
   cmd->add_option("--threads", f->threads, "worker threads (0 = all cores)")->capture_default_str();
   cmd->add_option("--max-bounces", f->max_bounces, "path length")->capture_default_str();
   cmd->add_option("--seed", f->seed, "random seed")->capture_default_str();

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "phyir/core/safe_math.h"
+#include "phyir/render/emitter_visibility.h"
 #include "phyir/render/material_eval.h"
 
 namespace phyir::render {
@@ -41,7 +42,7 @@ Geometry solid_angle_pdf(float pmf, float area, const glm::vec3& normal, const g
 
 }  // namespace
 
-EmitterSampler::EmitterSampler(const scenes::Scene& scene) : scene_(&scene) {
+EmitterSampler::EmitterSampler(const scenes::Scene& scene, const Accelerator* occluders) : scene_(&scene) {
   first_of_mesh_.assign(scene.meshes.size(), -1);
   std::vector<float> weights;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -75,6 +76,10 @@ EmitterSampler::EmitterSampler(const scenes::Scene& scene) : scene_(&scene) {
       e.area = 0.5f * len;
       const float weight = e.area * power_density;
       if (!(weight > 0.0f) || !std::isfinite(weight)) continue;
+      if (occluders && emits_only_into_solids(scene, *occluders, e.p0, e.p1, e.p2, e.normal, material.double_sided)) {
+        ++enclosed_;
+        continue;
+      }
       lookup_.back() = static_cast<int>(triangles_.size());
       triangles_.push_back(e);
       weights.push_back(weight);
@@ -83,9 +88,9 @@ EmitterSampler::EmitterSampler(const scenes::Scene& scene) : scene_(&scene) {
   build_clusters(weights);
   distribution_ = Distribution1D(std::move(weights));
   if (!triangles_.empty())
-    spdlog::debug("emitter sampler: {} emissive triangles in {} clusters ({}), total power {}",
+    spdlog::debug("emitter sampler: {} emissive triangles in {} clusters ({}), total power {}; {} enclosed left out",
                   triangles_.size(), clusters_.size(), spatial_ ? "spatial selection" : "power selection",
-                  total_power());
+                  total_power(), enclosed_);
 }
 
 void EmitterSampler::build_clusters(const std::vector<float>& weights) {
@@ -205,7 +210,7 @@ bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const gl
       if (target < acc + weights[i]) break;
       acc += weights[i];
     }
-    const float remapped = std::clamp((target - acc) / weights[chosen], 0.0f, 0x1.fffffep-1f);
+    const float remapped = std::clamp((target - acc) / weights[chosen], 0.0f, kOneMinusEpsilon);
     const Cluster& c = clusters_[chosen];
     const int k = c.distribution.sample(remapped);
     if (k < 0) return false;

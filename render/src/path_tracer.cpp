@@ -29,7 +29,7 @@ Frame shading_frame(const SurfaceInteraction& si, const glm::vec3& wo_world) {
 
 template <bool kEmitters, bool kEnvironment, bool kTransmission>
 glm::vec3 trace_path(const RenderScene& scene, const PathSettings& settings, const Ray& camera_ray,
-                     uint64_t path_key, PathCounters* counters) {
+                     uint64_t path_key, const FirstBounceSamples* first, PathCounters* counters) {
   glm::vec3 L(0.0f);
   glm::vec3 beta(1.0f);
   Ray ray = camera_ray;
@@ -90,8 +90,9 @@ glm::vec3 trace_path(const RenderScene& scene, const PathSettings& settings, con
     // Next-event estimation on emissive triangles (non-delta part of the BRDF only).
     if constexpr (kEmitters) {
       Rng rng = bounce_rng(path_key, bounce, kEmitterStream);
-      const float u_select = rng.next_float();
-      const glm::vec2 u_point = rng.next_2d();
+      float u_select = rng.next_float();
+      glm::vec2 u_point = rng.next_2d();
+      if (first && bounce == 0) u_select = first->light_select, u_point = first->light_point;
       EmitterSample ls;
       if (scene.emitters().sample(si.position, u_select, u_point, &ls) && ls.pdf > 0.0f &&
           max_component(ls.radiance) > 0.0f) {
@@ -130,9 +131,11 @@ glm::vec3 trace_path(const RenderScene& scene, const PathSettings& settings, con
 
     // Continue the path by sampling the BRDF.
     Rng rng = bounce_rng(path_key, bounce, kBrdfStream);
-    const float u_lobe = rng.next_float();
+    float u_lobe = rng.next_float();
+    glm::vec2 u_brdf = rng.next_2d();
+    if (first && bounce == 0) u_lobe = first->lobe, u_brdf = first->brdf;
     BrdfSample bs;
-    if (!brdf_sample(si.brdf, wo, u_lobe, rng.next_2d(), &bs)) break;
+    if (!brdf_sample(si.brdf, wo, u_lobe, u_brdf, &bs)) break;
     const glm::vec3 wi_world = frame.to_world(bs.wi);
     // Light leaking through the geometric surface (shading normals) ends the path.
     if (glm::dot(wi_world, si.geometric_normal) <= 0.0f) break;
@@ -173,7 +176,12 @@ PathTracer::PathTracer(const RenderScene& scene, const Effects& effects, const P
 }
 
 glm::vec3 PathTracer::radiance(const Ray& ray, uint64_t path_key, PathCounters* counters) const {
-  return kernel_(*scene_, settings_, ray, path_key, counters);
+  return kernel_(*scene_, settings_, ray, path_key, nullptr, counters);
+}
+
+glm::vec3 PathTracer::radiance(const Ray& ray, uint64_t path_key, const FirstBounceSamples& first,
+                               PathCounters* counters) const {
+  return kernel_(*scene_, settings_, ray, path_key, &first, counters);
 }
 
 uint64_t PathTracer::path_key(uint64_t seed, uint64_t pixel, uint64_t sample) {

@@ -184,6 +184,8 @@ nlohmann::json run_render_job(const RenderJob& job) {
                      {"triangles", scene.triangle_count()},
                      {"materials", scene.materials.size()},
                      {"emissive_triangles", render_scene.emitters().emissive_triangle_count()},
+                     // emit only into closed geometry: left out of light sampling
+                     {"enclosed_emissive_triangles", render_scene.emitters().enclosed_triangle_count()},
                      {"warnings", scene.warnings}};
   report["camera"] = {{"source", camera_description},
                       {"projection", projection_name(camera.projection)},

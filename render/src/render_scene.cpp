@@ -40,7 +40,7 @@ void warn_about_missing_tangents(const scenes::Scene& scene) {
 }  // namespace
 
 RenderScene::RenderScene(const scenes::Scene& scene, std::unique_ptr<EnvironmentLight> environment)
-    : scene_(&scene), accelerator_(scene), emitters_(scene), environment_(std::move(environment)) {
+    : scene_(&scene), accelerator_(scene), emitters_(scene, &accelerator_), environment_(std::move(environment)) {
   warn_about_missing_tangents(scene);
 }
 

@@ -1,6 +1,14 @@
 #pragma once
 // The one place for numeric guards. Every epsilon here says why it has its value;
 // code elsewhere calls these instead of sprinkling its own constants.
+//
+// NaN policy: these functions guard against *legal* inputs that are numerically bad
+// (a cosine of 1 + 1 ulp, a zero-length vector, a pdf of 1e-30). A NaN argument is a bug
+// upstream: it passes through (NaN in, NaN out) so that the path tracer's final
+// is-finite check counts it (RenderStats: nonfinite_samples_caught) instead of hiding it.
+//
+// model/src/safe_math.h mirrors the constants and functions for torch tensors; a test
+// (tests/model/stability_test.cpp) keeps the two equal.
 #include <glm/glm.hpp>
 
 #include <algorithm>
@@ -21,14 +29,35 @@ constexpr float kMinCosine = 1e-4f;
 // pdf of 1e-20 means the sample is impossible, not important).
 constexpr float kTinyDenominator = 1e-20f;
 
+// Squared lengths below this have no usable direction. A vector this short has
+// components around 1e-15, whose squares (1e-30) are still normal floats (the smallest
+// normal is 1.2e-38); much below it the squares go denormal or flush to zero and
+// v / |v| loses its digits or becomes 0/0.
+constexpr float kMinLength2 = 1e-30f;
+
+// The largest float below 1 (1 - 2^-24): random numbers are remapped into [0, 1) with
+// min(u, kOneMinusEpsilon) so that u * n never reaches n (an index one past the end).
+constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
+
+// Shadow rays towards a sampled point on a light stop this fraction short of it
+// (tmax = distance * (1 - kShadowRayShortening)), so the light's own triangle is not
+// reported as the occluder. 1e-4 of the distance is 0.1 mm at 1 m, well above float
+// rounding of the hit distance (~6e-8 relative) and far below any real gap.
+constexpr float kShadowRayShortening = 1e-4f;
+
 inline float safe_sqrt(float x) { return std::sqrt(std::max(x, 0.0f)); }
 inline float safe_acos(float x) { return std::acos(std::clamp(x, -1.0f, 1.0f)); }
 inline float safe_asin(float x) { return std::asin(std::clamp(x, -1.0f, 1.0f)); }
 inline float clamp01(float x) { return std::clamp(x, 0.0f, 1.0f); }
+// A cosine computed from rounded unit vectors can leave [-1, 1] by an ulp.
+inline float clamp_cosine(float x) { return std::clamp(x, -1.0f, 1.0f); }
 
 // a / b, or 0 when |b| is too small to mean anything.
 inline float safe_div(float a, float b) {
   return std::abs(b) > kTinyDenominator ? a / b : 0.0f;
+}
+inline glm::vec3 safe_div(const glm::vec3& a, float b) {
+  return std::abs(b) > kTinyDenominator ? a / b : glm::vec3(0.0f);
 }
 
 inline bool is_finite(float x) { return std::isfinite(x); }
@@ -36,10 +65,13 @@ inline bool is_finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
+// x, or `fallback` when x is NaN or infinite (for values read from files and textures).
+inline float finite_or(float x, float fallback) { return std::isfinite(x) ? x : fallback; }
+
 // Normalises v, falling back to `fallback` for zero-length or non-finite input.
 inline glm::vec3 safe_normalize(const glm::vec3& v, const glm::vec3& fallback) {
   const float len2 = glm::dot(v, v);
-  if (!(len2 > 1e-30f) || !std::isfinite(len2)) return fallback;
+  if (!(len2 > kMinLength2) || !std::isfinite(len2)) return fallback;
   return v / std::sqrt(len2);
 }
 

@@ -12,11 +12,13 @@
 // selection, which keeps the per-sample cost bounded.
 // pdf() returns the solid-angle density of the same strategy for multiple importance
 // sampling. Empty when the scene has no emitters (the integrator then does no light
-// sampling at all).
+// sampling at all). Given the scene's accelerator, triangles that emit only into closed
+// geometry (emitter_visibility.h) are left out: never sampled, pdf 0.
 #include <glm/glm.hpp>
 
 #include <vector>
 
+#include "phyir/render/accelerator.h"
 #include "phyir/render/sampling.h"
 #include "phyir/scenes/scene.h"
 
@@ -39,10 +41,12 @@ class EmitterSampler {
  public:
   static constexpr int kMaxSpatialClusters = 64;
 
-  explicit EmitterSampler(const scenes::Scene& scene);
+  explicit EmitterSampler(const scenes::Scene& scene, const Accelerator* occluders = nullptr);
 
   bool empty() const { return triangles_.empty(); }
   size_t emissive_triangle_count() const { return triangles_.size(); }
+  // Emissive triangles left out because they light only the inside of closed geometry.
+  size_t enclosed_triangle_count() const { return enclosed_; }
   size_t cluster_count() const { return clusters_.size(); }
   float total_power() const { return distribution_.total(); }
 
@@ -90,6 +94,7 @@ class EmitterSampler {
   Distribution1D distribution_;  // by power over all triangles (fallback selection)
   std::vector<Cluster> clusters_;
   bool spatial_ = false;          // clusters used for selection
+  size_t enclosed_ = 0;
 };
 
 }  // namespace phyir::render

@@ -39,6 +39,17 @@ struct PathSettings {
   int roulette_start = 3;       // bounce from which Russian roulette may end paths
 };
 
+// Stratified random numbers for the first scattering event of a camera path (the light
+// sample and the BRDF sample), from pixel_sampler.h: across a pixel's samples they cover
+// their domains evenly, where independent numbers clump. Later bounces use the path's
+// independent streams.
+struct FirstBounceSamples {
+  float light_select = 0.5f;
+  glm::vec2 light_point{0.5f};
+  float lobe = 0.5f;
+  glm::vec2 brdf{0.5f};
+};
+
 class PathTracer {
  public:
   // `effects` selects the kernel; pass analyse_effects(...) normally, all_effects() to
@@ -49,6 +60,8 @@ class PathTracer {
   // path's random streams (derive it with path_key()). Non-finite results are counted
   // and returned as 0.
   glm::vec3 radiance(const Ray& ray, uint64_t path_key, PathCounters* counters) const;
+  // The same, with the first scattering event's random numbers given.
+  glm::vec3 radiance(const Ray& ray, uint64_t path_key, const FirstBounceSamples& first, PathCounters* counters) const;
 
   const Effects& effects() const { return effects_; }
 
@@ -57,7 +70,7 @@ class PathTracer {
 
  private:
   using Kernel = glm::vec3 (*)(const RenderScene&, const PathSettings&, const Ray&, uint64_t,
-                               PathCounters*);
+                               const FirstBounceSamples*, PathCounters*);
   const RenderScene* scene_;
   Effects effects_;
   PathSettings settings_;
