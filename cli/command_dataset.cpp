@@ -1,4 +1,4 @@
-// phyir dataset: generate, verify, merge and slurm (docs/dataset.md, docs/commands/dataset.md).
+// phyir dataset: generate, verify, merge, slurm and stats (docs/dataset.md, docs/commands/dataset.md).
 #include <unistd.h>
 
 #include <cstdio>
@@ -7,8 +7,10 @@
 #include <sstream>
 
 #include "commands.h"
+#include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
 #include "phyir/core/log.h"
+#include "phyir/dataset/dataset_stats.h"
 #include "phyir/dataset/generate.h"
 #include "phyir/dataset/layout.h"
 #include "phyir/dataset/merge.h"
@@ -289,15 +291,54 @@ void add_slurm(CLI::App* dataset) {
   });
 }
 
+void add_stats(CLI::App* dataset) {
+  struct StatsFlags {
+    std::string dir, out, json;
+    dataset::StatsOptions options;
+    dataset::ContactSheetOptions sheet;
+    bool quiet = false;
+  };
+  auto f = std::make_shared<StatsFlags>();
+  auto* cmd = dataset->add_subcommand(
+      "stats", "Summarise a finished dataset: views per split and scene, material mix (metal, mirror, glossy, "
+               "diffuse, emissive, transparent pixels), light levels, render cost; optionally a PNG of sample views");
+  cmd->add_option("dir", f->dir, "dataset folder holding manifest.json")->required();
+  cmd->add_option("--out", f->out, "write a contact sheet of sample views' input.png (PNG)");
+  cmd->add_option("--json", f->json, "also write the summary as JSON");
+  cmd->add_option("--max-views", f->options.max_views,
+                  "read the pixels of at most this many views, evenly spaced (0 = all)")
+      ->capture_default_str();
+  cmd->add_option("--sheet-views", f->sheet.count, "views on the contact sheet")->capture_default_str();
+  cmd->add_option("--sheet-columns", f->sheet.columns, "thumbnails per row")->capture_default_str();
+  cmd->add_option("--thumb-width", f->sheet.thumb_width, "thumbnail width in pixels")->capture_default_str();
+  cmd->add_option("--threads", f->options.threads, "worker threads (0 = all cores)")->capture_default_str();
+  cmd->add_flag("--quiet", f->quiet, "no progress line");
+  cmd->callback([f] {
+    f->options.progress = !f->quiet;
+    const dataset::DatasetStats stats = dataset::compute_dataset_stats(f->dir, f->options);
+    std::printf("%s", dataset::format_stats(stats).c_str());
+    if (!f->json.empty()) {
+      write_file_atomic(f->json, dataset::stats_to_json(stats).dump(2) + "\n");
+      std::printf("wrote %s\n", f->json.c_str());
+    }
+    if (!f->out.empty()) {
+      dataset::write_contact_sheet(f->dir, f->out, f->sheet);
+      std::printf("wrote %s\n", f->out.c_str());
+    }
+    std::fflush(stdout);
+  });
+}
+
 }  // namespace
 
 void add_dataset_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("dataset", "Datasets: generate (resumable, sharded), verify, merge, slurm");
+  auto* cmd = app.add_subcommand("dataset", "Datasets: generate (resumable, sharded), verify, merge, slurm, stats");
   cmd->require_subcommand(1);
   add_generate(cmd);
   add_verify(cmd);
   add_merge(cmd);
   add_slurm(cmd);
+  add_stats(cmd);
 }
 
 }  // namespace phyir::cli

@@ -54,17 +54,27 @@ void Progress::finish() {
   if (g_enabled && enabled_) print(true);
 }
 
-void Progress::print(bool final_line) {
+std::string Progress::status_line(bool final_line) const {
   const uint64_t done = done_.load();
   const double elapsed = elapsed_seconds();
   const double fraction = total_ ? double(done) / double(total_) : 1.0;
   const double rate = elapsed > 0 ? done / elapsed : 0.0;
   const double left = rate > 0 ? (total_ - done) / rate : -1.0;
+  char rate_text[64];
+  if (rate_ == ProgressRate::PerHour)
+    std::snprintf(rate_text, sizeof rate_text, "%.0f %s/hour", 3600.0 * rate, unit_.c_str());
+  else
+    std::snprintf(rate_text, sizeof rate_text, "%.1f %s/s", rate, unit_.c_str());
   char line[256];
-  std::snprintf(line, sizeof line, "%s: %3.0f%% %llu/%llu %s, %.1f %s/s, %s elapsed, %s left",
-                label_.c_str(), 100.0 * fraction, (unsigned long long)done,
-                (unsigned long long)total_, unit_.c_str(), rate, unit_.c_str(),
+  std::snprintf(line, sizeof line, "%s: %3.0f%% %llu/%llu %s, %s, %s elapsed, %s left", label_.c_str(),
+                100.0 * fraction, (unsigned long long)done, (unsigned long long)total_, unit_.c_str(), rate_text,
                 format_seconds(elapsed).c_str(), final_line ? "0s" : format_seconds(left).c_str());
+  return line;
+}
+
+void Progress::print(bool final_line) {
+  const std::string text = status_line(final_line);
+  const char* line = text.c_str();
   if (tty_) {
     std::fprintf(stderr, "\r\033[K%s%s", line, final_line ? "\n" : "");
     std::fflush(stderr);

@@ -363,7 +363,11 @@ GenerateSummary generate_dataset(const GenerateOptions& o) {
   std::atomic<size_t> done{0};
   const auto render_start = Clock::now();
   {
-    Progress progress("dataset", pending.size(), "views", o.progress && ::isatty(STDERR_FILENO));
+    // On a terminal one live line (views done, views/hour, time left); in logs (Slurm) a line
+    // per finished view says the same, since a log line every few seconds would be noise.
+    const bool live = o.progress && ::isatty(STDERR_FILENO);
+    Progress progress("dataset", pending.size(), "views", live);
+    progress.set_rate(ProgressRate::PerHour);
     const size_t in_flight = size_t(o.views_in_flight > 0 ? o.views_in_flight : ctx.threads);
     size_t next = 0;
     tbb::parallel_pipeline(
@@ -394,9 +398,10 @@ GenerateSummary generate_dataset(const GenerateOptions& o) {
               progress.advance();
               const double elapsed = seconds_since(render_start);
               const double per_hour = elapsed > 0 ? 3600.0 * double(n) / elapsed : 0.0;
-              spdlog::info("dataset: {} done in {:.1f} s; {}/{} views, {:.0f} views/hour, {} left", task.id,
-                           seconds_since(view_start), n, pending.size(), per_hour,
-                           format_duration(per_hour > 0 ? 3600.0 * double(pending.size() - n) / per_hour : -1.0));
+              spdlog::log(live ? spdlog::level::debug : spdlog::level::info,
+                          "dataset: {} done in {:.1f} s; {}/{} views, {:.0f} views/hour, {} left", task.id,
+                          seconds_since(view_start), n, pending.size(), per_hour,
+                          format_duration(per_hour > 0 ? 3600.0 * double(pending.size() - n) / per_hour : -1.0));
             }));
   }
   summary.rendered = done;

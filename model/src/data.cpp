@@ -50,6 +50,11 @@ torch::Tensor mask_to_size(const torch::Tensor& chw, int h, int w) {
 
 }  // namespace
 
+torch::Tensor read_mask(const fs::path& path, int height, int width) {
+  const torch::Tensor m = read_chw(path, false);
+  return m.defined() ? mask_to_size(m, height, width) : m;
+}
+
 torch::Tensor image_to_tensor(const phyir::Image& image) {
   torch::Tensor t = torch::from_blob(const_cast<float*>(image.pixels.data()),
                                      {image.height, image.width, image.channels}, torch::kFloat);

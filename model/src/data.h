@@ -40,6 +40,10 @@ ViewTensors load_view(const std::filesystem::path& folder, const ModelConfig& co
 
 Batch make_batch(const std::vector<ViewTensors>& views, const std::vector<size_t>& indices);
 
+// A mask file (mask_*.exr, first channel) as [1, height, width] of 0/1: 1 where every source
+// pixel covered is 1 (as load_view's geometry mask). Undefined when the file does not exist.
+torch::Tensor read_mask(const std::filesystem::path& path, int height, int width);
+
 // Image <-> tensor [C, H, W].
 torch::Tensor image_to_tensor(const phyir::Image& image);
 void write_tensor_image(const std::filesystem::path& path, const torch::Tensor& chw,
