@@ -1,0 +1,34 @@
+#pragma once
+// Baselines that give the numbers context (report rows):
+//  - constant mean: every map is the mean of the ground truth over the valid pixels of the
+//    reference views (the training split; the test split itself when there is no training
+//    view, which the report says), normals the normalised mean normal, the re-render the mean
+//    colour, every probe the per-texel mean of the reference views' valid probes;
+//  - input as base colour: input.png decoded to linear (OpenColorIO) taken as the base colour
+//    (the "no intrinsic decomposition" answer); it predicts nothing else.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "phyir/eval/views.h"
+
+namespace phyir::eval {
+
+struct BaselineStats {
+  std::string source;          // e.g. "train split, 6 views"
+  int views = 0;
+  double basecolor[3] = {0, 0, 0}, roughness = 0, metalness = 0, depth = 0, color[3] = {0, 0, 0};
+  double normal[3] = {0, 1, 0};  // normalised mean
+  std::optional<Image> probe;    // per-texel mean probe (the reference's texel resolution)
+};
+
+// Means over `records` (manifest entries) of the dataset at `root`; `source` describes them.
+BaselineStats compute_baseline_stats(const std::filesystem::path& root, const std::vector<nlohmann::json>& records,
+                                     const std::string& source);
+
+Prediction constant_mean_prediction(const BaselineStats& stats, const GroundTruthView& gt);
+Prediction input_as_basecolor_prediction(const GroundTruthView& gt);
+
+}  // namespace phyir::eval

@@ -1,0 +1,46 @@
+#pragma once
+// What one evaluated view holds: the ground truth (a view folder of `phyir dataset`,
+// docs/dataset.md) and a method's prediction (the files `phyir infer` writes,
+// docs/commands/infer.md; layout in docs/eval.md).
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "phyir/core/image.h"
+#include "phyir/eval/probe_set.h"
+
+namespace phyir::eval {
+
+struct GroundTruthView {
+  std::string id;      // room_0/v003
+  std::string scene;   // room_0
+  std::filesystem::path dir;
+  float exposure_stops = 0.0f;  // input.png's exposure (for tone-mapping previews alike)
+  Image color, input, depth, normal, basecolor, roughness, metalness;
+  Image valid;         // mask_geometry and not mask_emissive and not mask_transparent
+  std::optional<ProbeSet> probes;
+};
+
+// Reads the view `record` (a manifest entry) of the dataset at `root`. Missing or malformed
+// files: phyir::Error naming the file.
+GroundTruthView load_ground_truth(const std::filesystem::path& root, const nlohmann::json& record);
+
+// A prediction; any map may be absent (baselines predict only some). Predictions read from a
+// folder must have the five maps (load_prediction checks); probes and the re-render are optional.
+struct Prediction {
+  std::optional<Image> depth, normal, basecolor, roughness, metalness, rerender;
+  std::optional<ProbeSet> probes;
+  std::vector<std::string> missing;  // optional files that were absent (for the report)
+};
+
+// Reads PRED/<view id>/ (depth.exr, normal.exr, basecolor.exr, roughness.exr, metalness.exr
+// required, all of one size; rerender.exr, probes.exr + probe_mask.exr optional).
+Prediction load_prediction(const std::filesystem::path& dir);
+
+// The files of a prediction folder, for --help and errors.
+const std::vector<std::string>& required_prediction_files();
+
+}  // namespace phyir::eval

@@ -1,0 +1,92 @@
+#include "phyir/eval/baselines.h"
+
+#include <cmath>
+
+#include "phyir/core/colour.h"
+#include "phyir/core/error.h"
+#include "phyir/eval/resample.h"
+
+namespace phyir::eval {
+
+BaselineStats compute_baseline_stats(const std::filesystem::path& root, const std::vector<nlohmann::json>& records,
+                                     const std::string& source) {
+  BaselineStats s;
+  s.source = source;
+  double sums[14] = {0};  // basecolor 3, roughness, metalness, depth, normal 3, color 3, count, depth count
+  Image probe_sum;
+  long probes = 0;
+  for (const nlohmann::json& record : records) {
+    const GroundTruthView v = load_ground_truth(root, record);
+    for (int y = 0; y < v.color.height; ++y)
+      for (int x = 0; x < v.color.width; ++x) {
+        if (v.valid.at(x, y) < 0.5f) continue;
+        for (int c = 0; c < 3; ++c) {
+          sums[c] += v.basecolor.at(x, y, c);
+          sums[6 + c] += v.normal.at(x, y, c);
+          sums[9 + c] += v.color.at(x, y, c);
+        }
+        sums[3] += v.roughness.at(x, y);
+        sums[4] += v.metalness.at(x, y);
+        if (v.depth.at(x, y) > 0.0f) {
+          sums[5] += v.depth.at(x, y);
+          sums[13] += 1.0;
+        }
+        sums[12] += 1.0;
+      }
+    if (v.probes) {
+      if (probe_sum.empty()) probe_sum = Image(v.probes->w, v.probes->h, 3);
+      for (int i = 0; i < v.probes->grid_h; ++i)
+        for (int j = 0; j < v.probes->grid_w; ++j) {
+          if (!v.probes->valid(i, j)) continue;
+          const Image p = at_size(v.probes->probe(i, j), {probe_sum.width, probe_sum.height});
+          for (size_t k = 0; k < p.pixels.size(); ++k) probe_sum.pixels[k] += p.pixels[k];
+          ++probes;
+        }
+    }
+    ++s.views;
+  }
+  const double n = std::max(sums[12], 1.0);
+  for (int c = 0; c < 3; ++c) {
+    s.basecolor[c] = sums[c] / n;
+    s.color[c] = sums[9 + c] / n;
+  }
+  s.roughness = sums[3] / n;
+  s.metalness = sums[4] / n;
+  s.depth = sums[13] > 0 ? sums[5] / sums[13] : 1.0;
+  const double len = std::sqrt(sums[6] * sums[6] + sums[7] * sums[7] + sums[8] * sums[8]);
+  if (len > 1e-9)
+    for (int c = 0; c < 3; ++c) s.normal[c] = sums[6 + c] / len;
+  if (probes > 0) {
+    for (float& v : probe_sum.pixels) v = float(v / double(probes));
+    s.probe = probe_sum;
+  }
+  return s;
+}
+
+Prediction constant_mean_prediction(const BaselineStats& s, const GroundTruthView& gt) {
+  const int w = gt.color.width, h = gt.color.height;
+  auto constant = [&](int channels, const double* values) {
+    Image im(w, h, channels);
+    for (size_t i = 0; i < im.pixels.size(); ++i) im.pixels[i] = float(values[i % channels]);
+    return im;
+  };
+  Prediction p;
+  p.basecolor = constant(3, s.basecolor);
+  p.roughness = constant(1, &s.roughness);
+  p.metalness = constant(1, &s.metalness);
+  p.depth = constant(1, &s.depth);
+  p.normal = constant(3, s.normal);
+  p.rerender = constant(3, s.color);
+  if (s.probe && gt.probes) p.probes = constant_probe_set(*s.probe, gt.probes->grid_h, gt.probes->grid_w);
+  return p;
+}
+
+Prediction input_as_basecolor_prediction(const GroundTruthView& gt) {
+  Prediction p;
+  Image linear = gt.input;
+  srgb_to_linear(linear);
+  p.basecolor = linear;
+  return p;
+}
+
+}  // namespace phyir::eval

@@ -1,0 +1,149 @@
+#include "phyir/eval/evaluate_view.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "phyir/core/error.h"
+#include "phyir/eval/pixel_metrics.h"
+#include "phyir/eval/resample.h"
+
+namespace phyir::eval {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+Image normalised(Image n) {
+  for (int y = 0; y < n.height; ++y)
+    for (int x = 0; x < n.width; ++x) {
+      double s = 0.0;
+      for (int c = 0; c < 3; ++c) s += double(n.at(x, y, c)) * n.at(x, y, c);
+      if (s > 1e-20)
+        for (int c = 0; c < 3; ++c) n.at(x, y, c) = float(n.at(x, y, c) / std::sqrt(s));
+    }
+  return n;
+}
+
+}  // namespace
+
+const std::vector<std::string>& metric_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n = {"basecolor_mse", "normal_deg", "roughness_mse", "metalness_mse", "rerender_mse",
+                                  "depth_mae", "depth_abs_rel", "depth_sq_rel", "depth_rmse", "depth_rmse_log",
+                                  "depth_log10", "depth_delta1", "depth_delta2", "depth_delta3", "probe_ssim"};
+    for (const SphereMaterial& m : sphere_materials()) {
+      n.push_back("relight_" + m.key + "_mae");
+      n.push_back("relight_" + m.key + "_rmse");
+    }
+    for (const char* c : {"pixels_maps", "pixels_rerender", "probes_compared", "relight_positions"}) n.push_back(c);
+    return n;
+  }();
+  return names;
+}
+
+bool higher_is_better(const std::string& metric) {
+  return metric == "probe_ssim" || metric.rfind("depth_delta", 0) == 0;
+}
+
+std::vector<std::pair<int, int>> relight_positions(const Image& valid, int count) {
+  std::vector<std::pair<int, int>> cells, chosen;
+  for (int i = 0; i < valid.height; ++i)
+    for (int j = 0; j < valid.width; ++j)
+      if (valid.at(j, i, 0) > 0.5f) cells.emplace_back(i, j);
+  if (cells.empty() || count <= 0) return chosen;
+  const int n = std::min<int>(count, static_cast<int>(cells.size()));
+  for (int k = 0; k < n; ++k) chosen.push_back(cells[size_t((k + 0.5) * cells.size() / n)]);
+  return chosen;
+}
+
+Metrics evaluate_view(const GroundTruthView& gt, const Prediction& pred, const EvalSettings& settings,
+                      ViewImages* images) {
+  Metrics m;
+  for (const std::string& name : metric_names()) m[name] = kNaN;
+  const Size gt_size{gt.color.width, gt.color.height};
+
+  // Maps: all predicted maps share a size (load_prediction checks); compare at the coarser.
+  const Image* any_map = pred.depth ? &*pred.depth : pred.basecolor ? &*pred.basecolor : pred.normal ? &*pred.normal
+                         : pred.roughness ? &*pred.roughness : pred.metalness ? &*pred.metalness : nullptr;
+  if (any_map) {
+    const Size size = coarser(gt_size, {any_map->width, any_map->height});
+    const Image mask = mask_resize(gt.valid, size.width, size.height);
+    m["pixels_maps"] = double(count_mask(mask));
+    if (pred.basecolor) m["basecolor_mse"] = masked_mse(at_size(*pred.basecolor, size), at_size(gt.basecolor, size), mask);
+    if (pred.roughness) m["roughness_mse"] = masked_mse(at_size(*pred.roughness, size), at_size(gt.roughness, size), mask);
+    if (pred.metalness) m["metalness_mse"] = masked_mse(at_size(*pred.metalness, size), at_size(gt.metalness, size), mask);
+    if (pred.normal)
+      m["normal_deg"] = mean_angular_error_deg(normalised(at_size(*pred.normal, size)),
+                                               normalised(at_size(gt.normal, size)), mask);
+    if (pred.depth) {
+      const DepthMetrics d = depth_metrics(at_size(*pred.depth, size), at_size(gt.depth, size), mask);
+      m["depth_mae"] = d.mae, m["depth_abs_rel"] = d.abs_rel, m["depth_sq_rel"] = d.sq_rel;
+      m["depth_rmse"] = d.rmse, m["depth_rmse_log"] = d.rmse_log, m["depth_log10"] = d.log10;
+      m["depth_delta1"] = d.delta1, m["depth_delta2"] = d.delta2, m["depth_delta3"] = d.delta3;
+    }
+  }
+  if (pred.rerender) {
+    const Size size = coarser(gt_size, {pred.rerender->width, pred.rerender->height});
+    const Image mask = mask_resize(gt.valid, size.width, size.height);
+    m["pixels_rerender"] = double(count_mask(mask));
+    m["rerender_mse"] = masked_mse(at_size(*pred.rerender, size), at_size(gt.color, size), mask);
+  }
+  if (images) {
+    auto show = [&](const std::optional<Image>& p) -> std::optional<Image> {
+      if (!p) return std::nullopt;
+      return area_resize(*p, gt_size.width, gt_size.height);
+    };
+    images->depth = show(pred.depth), images->normal = show(pred.normal), images->basecolor = show(pred.basecolor);
+    images->roughness = show(pred.roughness), images->metalness = show(pred.metalness);
+    images->rerender = show(pred.rerender);
+  }
+
+  // Probes (eq. 7) and relighting (Table 5).
+  if (pred.probes && gt.probes) {
+    const ProbeScore score = probe_ssim(*pred.probes, *gt.probes);
+    m["probe_ssim"] = score.ssim;
+    m["probes_compared"] = double(score.probes);
+    if (settings.relight) {
+      // Positions on the compared grid where both sides are valid.
+      Image both(score.grid_w, score.grid_h, 1);
+      for (int i = 0; i < score.grid_h; ++i)
+        for (int j = 0; j < score.grid_w; ++j) {
+          int pi, pj, gi, gj;
+          nearest_cell(i, j, score.grid_h, score.grid_w, pred.probes->grid_h, pred.probes->grid_w, &pi, &pj);
+          nearest_cell(i, j, score.grid_h, score.grid_w, gt.probes->grid_h, gt.probes->grid_w, &gi, &gj);
+          both.at(j, i) = pred.probes->valid(pi, pj) && gt.probes->valid(gi, gj) ? 1.0f : 0.0f;
+        }
+      const auto positions = relight_positions(both, settings.relight_positions);
+      m["relight_positions"] = double(positions.size());
+      const auto& materials = sphere_materials();
+      for (size_t k = 0; k < materials.size(); ++k) {
+        double abs = 0.0, sq = 0.0;
+        long n = 0;
+        for (size_t p = 0; p < positions.size(); ++p) {
+          const auto [i, j] = positions[p];
+          int pi, pj, gi, gj;
+          nearest_cell(i, j, score.grid_h, score.grid_w, pred.probes->grid_h, pred.probes->grid_w, &pi, &pj);
+          nearest_cell(i, j, score.grid_h, score.grid_w, gt.probes->grid_h, gt.probes->grid_w, &gi, &gj);
+          // Each side lit by its own probe at its own texel resolution; same seed for both.
+          RelitSphere a = relight_sphere(pred.probes->probe(pi, pj), materials[k], settings.sphere);
+          RelitSphere b = relight_sphere(gt.probes->probe(gi, gj), materials[k], settings.sphere);
+          const double pixels = double(count_mask(b.mask)) * 3.0;
+          abs += masked_mae(a.color, b.color, b.mask) * pixels;
+          sq += masked_mse(a.color, b.color, b.mask) * pixels;
+          n += long(pixels);
+          if (images && p == 0) {
+            images->spheres_pred.push_back(std::move(a));
+            images->spheres_gt.push_back(std::move(b));
+          }
+        }
+        if (n > 0) {
+          m["relight_" + materials[k].key + "_mae"] = abs / n;
+          m["relight_" + materials[k].key + "_rmse"] = std::sqrt(sq / n);
+        }
+      }
+    }
+  }
+  return m;
+}
+
+}  // namespace phyir::eval
