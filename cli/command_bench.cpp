@@ -181,6 +181,7 @@ void add_bench_command(CLI::App& app) {
   add_common(thr, *f);
   thr->callback(with_threads(&run_throughput));
   add_bench_probes_command(*bench);
+  add_bench_model_command(*bench);
 }
 
 }  // namespace phyir::cli

@@ -92,8 +92,10 @@ TORCH_MODULE(ConvGN);
 // Input: image + GMNet outputs (3+3+1+3+1+1 = 12 channels) at the rendering resolution
 // (H, W multiples of 16). Output: per-pixel probes in log space, log(1 + L) >= 0 (softplus),
 // [B, H, W, h, w, 3].
+// light_head: the last two layers i128-o128 k3 + ReLU + i128-o(h*w*3) k1 instead of A.2's
+// i128-o512 k3 + ReLU + i512-o(h*w*3) k3 (36x fewer operations there; docs/model.md).
 struct LNetImpl : torch::nn::Module {
-  LNetImpl(int probe_height, int probe_width, int div = 1);
+  LNetImpl(int probe_height, int probe_width, int div = 1, bool light_head = false);
   torch::Tensor forward(const torch::Tensor& input);
   int h, w;
   ConvGN head{nullptr}, e1{nullptr}, e2{nullptr}, e3{nullptr}, e4{nullptr}, e5{nullptr};

@@ -2,6 +2,9 @@
 #include "render_layer.h"
 
 #include <algorithm>
+#include <limits>
+
+#include "render_kernel.h"
 
 namespace phyir::model {
 
@@ -73,11 +76,17 @@ torch::Tensor brdf_eval(const torch::Tensor& base_color_in, const torch::Tensor&
   const torch::Tensor NoV = comp(wo, 2), NoL = comp(wi, 2);
   const torch::Tensor valid = (NoV >= kMinCosine) & (NoL >= kMinCosine);
   const torch::Tensor s = wo + wi;
-  const torch::Tensor len2 = dot3(s, s).clamp_min(1e-20);
+  // wi = -wo (s = 0) has no half vector: there (always an invalid pair, zeroed below) take
+  // h = n. Replacing the denominator before dividing keeps the unused branch finite, so the
+  // final torch::where sends back 0, not 0 * inf = NaN (as safe_div in safe_math.h).
+  const torch::Tensor len2_raw = dot3(s, s);
+  const torch::Tensor has_h = len2_raw > kTinyDenominator;
+  const torch::Tensor len2 = torch::where(has_h, len2_raw, torch::ones_like(len2_raw));
   const torch::Tensor sz = comp(s, 2);
-  const torch::Tensor cos2 = sz * sz / len2;
-  const torch::Tensor sin2 = (comp(s, 0) * comp(s, 0) + comp(s, 1) * comp(s, 1)) / len2;
-  const torch::Tensor VoH = (0.5 * torch::sqrt(len2)).clamp_max(1.0);
+  const torch::Tensor cos2 = torch::where(has_h, sz * sz / len2, torch::ones_like(len2));
+  const torch::Tensor sin2 =
+      torch::where(has_h, (comp(s, 0) * comp(s, 0) + comp(s, 1) * comp(s, 1)) / len2, torch::zeros_like(len2));
+  const torch::Tensor VoH = torch::where(has_h, (0.5 * torch::sqrt(len2)).clamp_max(1.0), torch::zeros_like(len2));
   const torch::Tensor D = ggx_ndf(cos2, sin2, R * R);
   const torch::Tensor F = F_SchlickSG(specular_F0(B, M), VoH);
   const torch::Tensor G = G_SmithSchlick(NoV, NoL, R);
@@ -93,12 +102,11 @@ torch::Tensor brdf_eval(const torch::Tensor& base_color_in, const torch::Tensor&
 torch::Tensor equirect_uv(const torch::Tensor& dir) {
   const torch::Tensor x = comp(dir, 0), y = comp(dir, 1), z = comp(dir, 2);
   // atan2's gradient is 0/0 on the Y axis: there u is arbitrary, take the centre column.
-  const torch::Tensor safe = (x * x + z * z) > 1e-12;
+  const torch::Tensor safe = (x * x + z * z) > kAtan2MinRadius2;
   const torch::Tensor xs = torch::where(safe, x, torch::zeros_like(x));
   const torch::Tensor zs = torch::where(safe, z, -torch::ones_like(z));
   const torch::Tensor u = 0.5 + torch::atan2(xs, -zs) * (0.5 / kPi);
-  // acos' gradient is infinite at +-1: clamp (1e-6 is 0.08 degrees from the pole).
-  const torch::Tensor v = torch::acos(y.clamp(-1.0 + 1e-6, 1.0 - 1e-6)) * (1.0 / kPi);
+  const torch::Tensor v = safe_acos(y) * (1.0 / kPi);  // finite gradient at the poles
   return torch::cat({u, v}, -1);
 }
 
@@ -141,15 +149,16 @@ torch::Tensor sample_probes(const torch::Tensor& probes, const torch::Tensor& di
 
 namespace {
 
-// Renders P pixels: n, v [P,3]; B [P,3]; R, M [P,1]; probes [P,h,w,3]. Returns {diffuse, specular}.
+// Renders P pixels: n, v [P,3]; B [P,3]; R, M [P,1]; probes [P,h,w,3]; uniforms ud [P,Nd,2],
+// us [P,Ns,2] (clamped as render_uniforms clamps them). Returns {diffuse, specular}.
 std::pair<torch::Tensor, torch::Tensor> render_pixels(const torch::Tensor& n_in, const torch::Tensor& v,
                                                       const torch::Tensor& B_in, const torch::Tensor& R_in,
                                                       const torch::Tensor& M_in, const torch::Tensor& probes,
-                                                      const RenderSettings& s) {
+                                                      const torch::Tensor& ud, const torch::Tensor& us) {
   const int64_t P = n_in.size(0);
   const auto opts = n_in.options();
   const torch::Tensor B = B_in.clamp(0.0, 1.0), R = R_in.clamp(0.0, 1.0), M = M_in.clamp(0.0, 1.0);
-  const torch::Tensor n = n_in / torch::sqrt(dot3(n_in, n_in).clamp_min(1e-12));
+  const torch::Tensor n = n_in / torch::sqrt(dot3(n_in, n_in).clamp_min(kNormalMinLength2));
   // Orthonormal basis around n (Duff et al. 2017): |sign + n.z| >= 1, so no division by ~0.
   const torch::Tensor nx = comp(n, 0), ny = comp(n, 1), nz = comp(n, 2);
   const torch::Tensor sign = torch::where(nz >= 0.0, torch::ones_like(nz), -torch::ones_like(nz));
@@ -168,8 +177,8 @@ std::pair<torch::Tensor, torch::Tensor> render_pixels(const torch::Tensor& n_in,
 
   // Diffuse lobe, cosine-weighted samples (eq. 18): f_d L cos / (cos/pi) = B (1 - M) L.
   torch::Tensor diffuse = torch::zeros({P, 3}, opts);
-  if (s.diffuse_samples > 0) {
-    const torch::Tensor u = torch::rand({P, s.diffuse_samples, 2}, opts).clamp(0.0, 1.0 - 1e-7);
+  if (ud.size(1) > 0) {
+    const torch::Tensor& u = ud;
     const torch::Tensor u1 = comp(u, 0), phi = comp(u, 1) * static_cast<float>(2.0 * kPi);
     const torch::Tensor r = torch::sqrt(u1), z = torch::sqrt(1.0 - u1);
     const torch::Tensor l = torch::cat({r * torch::cos(phi), r * torch::sin(phi), z}, -1);
@@ -181,11 +190,11 @@ std::pair<torch::Tensor, torch::Tensor> render_pixels(const torch::Tensor& n_in,
   const torch::Tensor F0 = specular_F0(B, M);
   const torch::Tensor k = schlick_k(R);
   torch::Tensor sampled = torch::zeros({P, 3}, opts);
-  if (s.specular_samples > 0) {
+  if (us.size(1) > 0) {
     // GGX half vectors (eq. 18): cos^2 = (1-u)/d, sin^2 = alpha^2 u/d, d = (1-u) + alpha^2 u
     // (the form of render/sampling.cpp, exact for tiny alpha); u kept inside (0,1) so that
     // every square root has a positive argument and a finite gradient.
-    const torch::Tensor u = torch::rand({P, s.specular_samples, 2}, opts).clamp(1e-6, 1.0 - 1e-6);
+    const torch::Tensor& u = us;
     const torch::Tensor u1 = comp(u, 0), phi = comp(u, 1) * static_cast<float>(2.0 * kPi);
     const torch::Tensor alpha = (R * R).unsqueeze(1);  // [P,1,1]
     const torch::Tensor d = (1.0 - u1) + alpha * alpha * u1;
@@ -214,40 +223,69 @@ std::pair<torch::Tensor, torch::Tensor> render_pixels(const torch::Tensor& n_in,
 
 }  // namespace
 
+namespace {
+
+// The layer's per-pixel tensors: maps [B,C,H,W] -> [P,C], view directions, probes [P,h,w,3].
+struct FlatPixels {
+  int64_t B, H, W, P;
+  torch::Tensor n, v, base, R, M, probes;
+};
+
+FlatPixels flatten(const torch::Tensor& normal, const torch::Tensor& base_color, const torch::Tensor& roughness,
+                   const torch::Tensor& metalness, const torch::Tensor& probes) {
+  FlatPixels f;
+  f.B = normal.size(0);
+  f.H = normal.size(2);
+  f.W = normal.size(3);
+  TORCH_CHECK(probes.dim() == 6 && probes.size(0) == f.B && probes.size(1) == f.H && probes.size(2) == f.W &&
+                  probes.size(5) == 3,
+              "render_layer: probes ", probes.sizes(), " do not match the maps ", normal.sizes());
+  f.P = f.B * f.H * f.W;
+  auto flat = [&](const torch::Tensor& x) { return x.permute({0, 2, 3, 1}).reshape({f.P, x.size(1)}); };
+  f.n = flat(normal);
+  f.base = flat(base_color);
+  f.R = flat(roughness);
+  f.M = flat(metalness);
+  f.v = (-pixel_directions(static_cast<int>(f.H), static_cast<int>(f.W), normal.options()))
+            .unsqueeze(0)
+            .expand({f.B, f.H, f.W, 3})
+            .reshape({f.P, 3});
+  f.probes = probes.reshape({f.P, probes.size(3), probes.size(4), 3});
+  return f;
+}
+
+RenderOutput to_images(const FlatPixels& f, const torch::Tensor& diffuse, const torch::Tensor& specular) {
+  auto image = [&](const torch::Tensor& x) { return x.view({f.B, f.H, f.W, 3}).permute({0, 3, 1, 2}); };
+  RenderOutput out;
+  out.diffuse = image(diffuse);
+  out.specular = image(specular);
+  out.image = out.diffuse + out.specular;
+  return out;
+}
+
+}  // namespace
+
 RenderOutput render_layer(const torch::Tensor& normal, const torch::Tensor& base_color,
                           const torch::Tensor& roughness, const torch::Tensor& metalness,
                           const torch::Tensor& probes, const RenderSettings& settings) {
-  const int64_t B = normal.size(0), H = normal.size(2), W = normal.size(3);
-  TORCH_CHECK(probes.dim() == 6 && probes.size(0) == B && probes.size(1) == H && probes.size(2) == W &&
-                  probes.size(5) == 3,
-              "render_layer: probes ", probes.sizes(), " do not match the maps ", normal.sizes());
-  const int64_t P = B * H * W, h = probes.size(3), w = probes.size(4);
-  auto flat = [&](const torch::Tensor& x) { return x.permute({0, 2, 3, 1}).reshape({P, x.size(1)}); };
-  const torch::Tensor n = flat(normal), Bc = flat(base_color), R = flat(roughness), M = flat(metalness);
-  const torch::Tensor v =
-      (-pixel_directions(static_cast<int>(H), static_cast<int>(W), normal.options()))
-          .unsqueeze(0)
-          .expand({B, H, W, 3})
-          .reshape({P, 3});
-  const torch::Tensor pr = probes.reshape({P, h, w, 3});
-  std::vector<torch::Tensor> diff, spec;
-  const int64_t chunk = std::max<int64_t>(1, settings.max_pixels_per_chunk);
-  for (int64_t start = 0; start < P; start += chunk) {
-    const int64_t len = std::min(chunk, P - start);
-    auto [d, s] = render_pixels(n.narrow(0, start, len), v.narrow(0, start, len), Bc.narrow(0, start, len),
-                                R.narrow(0, start, len), M.narrow(0, start, len), pr.narrow(0, start, len),
-                                settings);
-    diff.push_back(d);
-    spec.push_back(s);
-  }
-  auto image = [&](const std::vector<torch::Tensor>& parts) {
-    return torch::cat(parts, 0).view({B, H, W, 3}).permute({0, 3, 1, 2});
-  };
-  RenderOutput out;
-  out.diffuse = image(diff);
-  out.specular = image(spec);
-  out.image = out.diffuse + out.specular;
-  return out;
+  const FlatPixels f = flatten(normal, base_color, roughness, metalness, probes);
+  // One draw from torch's generator seeds every pixel's stream: torch::manual_seed reproduces
+  // a run, and the generator state saved in a checkpoint resumes it.
+  const uint64_t seed = static_cast<uint64_t>(
+      torch::randint(std::numeric_limits<int64_t>::max(), {1}, torch::TensorOptions().dtype(torch::kLong))
+          .item<int64_t>());
+  const FusedRenderOutput r = render_pixels_fused(f.n, f.v, f.base, f.R, f.M, f.probes, settings.diffuse_samples,
+                                                  settings.specular_samples, seed);
+  return to_images(f, r.diffuse, r.specular);
+}
+
+RenderOutput render_layer_reference(const torch::Tensor& normal, const torch::Tensor& base_color,
+                                    const torch::Tensor& roughness, const torch::Tensor& metalness,
+                                    const torch::Tensor& probes, const torch::Tensor& diffuse_uniforms,
+                                    const torch::Tensor& specular_uniforms) {
+  const FlatPixels f = flatten(normal, base_color, roughness, metalness, probes);
+  auto [d, s] = render_pixels(f.n, f.v, f.base, f.R, f.M, f.probes, diffuse_uniforms, specular_uniforms);
+  return to_images(f, d, s);
 }
 
 // --- Probe warp -------------------------------------------------------------------------------
@@ -264,14 +302,14 @@ torch::Tensor warp_probes(const torch::Tensor& probes_q, const torch::Tensor& de
   // Proxy radius: the view's mean depth, and at least twice the baseline so X_p is inside.
   const torch::Tensor mean_depth = depth_p.mean({1, 2, 3}).detach().view({B, 1, 1});
   const torch::Tensor rho = torch::maximum(mean_depth.expand({B, H * W, 1}).reshape({B * H * W, 1, 1}),
-                                           2.0 * torch::sqrt(dist2.detach() + 1e-12));
+                                           2.0 * safe_sqrt(dist2.detach()));
   const torch::Tensor omega = pixel_directions(static_cast<int>(h), static_cast<int>(w), probes_q.options())
                                   .reshape({1, h * w, 3});
   const torch::Tensor dw = dot3(delta, omega);                        // [P, hw, 1]
-  const torch::Tensor disc = (dw * dw - dist2 + rho * rho).clamp_min(1e-12);  // >= rho^2 - |delta|^2 > 0
-  const torch::Tensor t = -dw + torch::sqrt(disc);
+  const torch::Tensor disc = dw * dw - dist2 + rho * rho;  // >= rho^2 - |delta|^2 > 0
+  const torch::Tensor t = -dw + safe_sqrt(disc);
   const torch::Tensor dir = (delta + t * omega) / rho;  // unit up to rounding
-  const torch::Tensor dirn = dir / torch::sqrt(dot3(dir, dir).clamp_min(1e-12));
+  const torch::Tensor dirn = safe_normalize(dir, omega);
   const torch::Tensor out = sample_probes(probes_q.reshape({B * H * W, h, w, 3}), dirn);
   return out.view({B, H, W, h, w, 3});
 }

@@ -4,12 +4,18 @@
 // Private header (torch types).
 #include <torch/torch.h>
 
+#include "safe_math.h"  // kMinCosine, safe_acos, ... (the torch mirror of core/safe_math.h)
+
 namespace phyir::model {
 
-// Same constants as render/brdf.h and core/safe_math.h (kept equal by a test).
-// Stored as the float values, so float tensors compare exactly as the renderer does.
+// Same constant as render/brdf.h (kept equal by a test), stored as the float value, so float
+// tensors compare exactly as the renderer does.
 constexpr double kMirrorRoughness = static_cast<double>(0.008f);
-constexpr double kMinCosine = static_cast<double>(1e-4f);
+// Below this x^2 + z^2 a direction is on the Y axis for the equirect mapping: atan2's gradient
+// (-z, x) / (x^2 + z^2) would be 0/0 there, so u is taken as the centre column.
+constexpr double kAtan2MinRadius2 = 1e-12;
+// The rendering layer normalises its normal input by sqrt(max(|n|^2, this)).
+constexpr double kNormalMinLength2 = 1e-12;
 
 // --- BRDF terms (appendix A.3), elementwise on broadcastable tensors --------------------------
 torch::Tensor D_GGX(const torch::Tensor& NoH, const torch::Tensor& alpha);     // eq. 15
@@ -44,7 +50,7 @@ torch::Tensor sample_probes(const torch::Tensor& probes, const torch::Tensor& di
 struct RenderSettings {
   int diffuse_samples = 64;   // paper: 512
   int specular_samples = 32;  // paper: 256
-  int64_t max_pixels_per_chunk = 4096;  // bounds memory at high resolutions
+  int64_t max_pixels_per_chunk = 4096;  // unused since the fused kernel (kept for callers)
 };
 
 struct RenderOutput {
@@ -59,10 +65,20 @@ struct RenderOutput {
 // lobe (its estimator reduces to B(1-M) mean L), GGX half vectors for the specular lobe (its
 // estimator F G VoH / (NoV NoH) has D cancelled, so nothing divides by alpha); for
 // R < kMirrorRoughness the specular lobe is the delta reflection with F(NoV) G1(NoV)^2.
-// Random numbers come from torch's default generator (seed it for determinism).
+// Random numbers: one seed drawn from torch's default generator (seed it for determinism),
+// then pixel p's own stream (render_kernel.h), so the thread count does not change the result.
+// Runs the fused kernel (render_kernel.cpp): memory O(pixels) in forward and backward.
 RenderOutput render_layer(const torch::Tensor& normal, const torch::Tensor& base_color,
                           const torch::Tensor& roughness, const torch::Tensor& metalness,
                           const torch::Tensor& probes, const RenderSettings& settings);
+
+// The same estimator composed of torch operations (autograd through every intermediate; O(pixels
+// x samples) memory), from given uniforms (render_uniforms in render_kernel.h): the
+// specification the fused kernel is tested against.
+RenderOutput render_layer_reference(const torch::Tensor& normal, const torch::Tensor& base_color,
+                                    const torch::Tensor& roughness, const torch::Tensor& metalness,
+                                    const torch::Tensor& probes, const torch::Tensor& diffuse_uniforms,
+                                    const torch::Tensor& specular_uniforms);
 
 // --- Probe warp (eq. 8) ---------------------------------------------------------------------
 // Re-projects the probe of pixel q (neighbour) to the 3D position of pixel p. Every probe

@@ -15,6 +15,7 @@
 #include "data.h"
 #include "losses.h"
 #include "nets.h"
+#include "phyir/core/atomic_file.h"
 #include "phyir/core/colour.h"
 #include "phyir/core/error.h"
 #include "phyir/core/image_io.h"
@@ -82,7 +83,8 @@ json config_to_json(const ModelConfig& c) {
           {"render_height", c.render_height}, {"render_width", c.render_width},
           {"probe_height", c.probe_height},   {"probe_width", c.probe_width},
           {"diffuse_samples", c.diffuse_samples}, {"specular_samples", c.specular_samples},
-          {"guided_radius", c.guided_radius}, {"width_divisor", c.width_divisor}};
+          {"guided_radius", c.guided_radius}, {"width_divisor", c.width_divisor},
+          {"lnet_head", c.lnet_head}};
 }
 
 ModelConfig config_from_json(const json& j) {
@@ -97,6 +99,7 @@ ModelConfig config_from_json(const json& j) {
   c.specular_samples = j.at("specular_samples");
   c.guided_radius = j.at("guided_radius");
   c.width_divisor = j.value("width_divisor", 1);
+  c.lnet_head = j.value("lnet_head", std::string("paper"));
   return c;
 }
 
@@ -118,12 +121,14 @@ void check_config(const ModelConfig& c) {
   if (c.guided_radius < 1) fail("guided filter radius must be at least 1");
   if (c.width_divisor != 1 && c.width_divisor != 2 && c.width_divisor != 4)
     fail("width divisor {}: 1 (the paper's network), 2 or 4", c.width_divisor);
+  if (c.lnet_head != "paper" && c.lnet_head != "light")
+    fail("LNet head '{}': paper (appendix A.2) or light (docs/model.md)", c.lnet_head);
 }
 
 // Every network, whatever the stage, so one checkpoint carries the whole model.
 struct Networks {
   explicit Networks(const ModelConfig& c)
-      : gmnet(c.width_divisor), lnet(c.probe_height, c.probe_width, c.width_divisor), gsnet(c.guided_radius) {}
+      : gmnet(c.width_divisor), lnet(c.probe_height, c.probe_width, c.width_divisor, c.lnet_head == "light"), gsnet(c.guided_radius) {}
   GMNet gmnet;
   LNet lnet;
   GSNet gsnet;
@@ -514,6 +519,8 @@ void infer(const InferOptions& o) {
   x = x.narrow(0, 0, 3).unsqueeze(0).contiguous();
   if (x.size(3) != 2 * x.size(2))
     spdlog::warn("{}: {}x{} is not a 2:1 equirect panorama", o.input, x.size(3), x.size(2));
+  const torch::Tensor panorama = x.clamp(0.0, 1.0);
+  const int Hp = static_cast<int>(x.size(2)), Wp = static_cast<int>(x.size(3));
   x = resize(x, cfg.input_height, cfg.input_width).clamp(0.0, 1.0);
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -527,23 +534,30 @@ void infer(const InferOptions& o) {
 
   const fs::path out(o.out_dir);
   fs::create_directories(out);
-  write_tensor_image(out / "input.png", x[0]);
-  write_tensor_image(out / "depth.exr", gm.depth[0], {"Y"});
-  write_tensor_image(out / "normal.exr", gm.normal[0], {"X", "Y", "Z"});
-  write_tensor_image(out / "basecolor.exr", gm.base_color[0], {"R", "G", "B"});
-  write_tensor_image(out / "roughness.exr", gm.roughness[0], {"Y"});
-  write_tensor_image(out / "metalness.exr", gm.metalness[0], {"Y"});
+  // Maps at the panorama's resolution (bilinear up, area down), as the renderer writes its AOVs
+  // at the colour's resolution; normals renormalised after the interpolation.
+  auto full = [&](const torch::Tensor& m) { return resize(m, Hp, Wp); };
+  const torch::Tensor normal_full = torch::nn::functional::normalize(
+      full(gm.normal), torch::nn::functional::NormalizeFuncOptions().dim(1).eps(1e-6));
+  write_tensor_image(out / "input.png", panorama[0]);
+  write_tensor_image(out / "depth.exr", full(gm.depth)[0], {"Y"});
+  write_tensor_image(out / "normal.exr", normal_full[0], {"X", "Y", "Z"});
+  write_tensor_image(out / "basecolor.exr", full(gm.base_color).clamp(0.0, 1.0)[0], {"R", "G", "B"});
+  write_tensor_image(out / "roughness.exr", full(gm.roughness).clamp(0.0, 1.0)[0], {"Y"});
+  write_tensor_image(out / "metalness.exr", full(gm.metalness).clamp(0.0, 1.0)[0], {"Y"});
   write_tensor_image(out / "probes.exr", probes_to_mosaic(torch::expm1(light.log_probes))[0], {"R", "G", "B"});
   write_tensor_image(out / "probe_mask.exr", torch::ones({1, cfg.render_height, cfg.render_width}), {"Y"});
   write_tensor_image(out / "rerender.exr", light.render.image[0], {"R", "G", "B"});
   auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
   json info = {{"checkpoint", o.checkpoint}, {"input", o.input}, {"config", config_to_json(cfg)},
+               {"maps_resolution", {Wp, Hp}}, {"network_input_resolution", {cfg.input_width, cfg.input_height}},
+               {"probe_grid", {cfg.render_width, cfg.render_height}},
                {"trained", meta.at("trained")}, {"guided_filter_applied", use_gs},
                {"conventions", {{"equirect", "row 0 = +Y, centre column = -Z, u = 0.5 + atan2(x,-z)/2pi, v = acos(y)/pi"},
                                 {"depth", "Euclidean distance, metres"}, {"normal", "world space, unit"},
                                 {"probes", "mosaic: probe (i,j) is the h x w world-oriented equirect block at row i*h, col j*w"}}},
                {"timings_ms", {{"gmnet", ms(t0, t1)}, {"gsnet", ms(t1, t2)}, {"lnet_and_render", ms(t2, t3)}}}};
-  std::ofstream(out / "infer.json") << info.dump(2) << "\n";
+  write_file_atomic(out / "infer.json", info.dump(2) + "\n");
   for (const char* m : {"gmnet", "lnet", "gsnet"})
     if (!meta.at("trained").value(m, false)) spdlog::warn("{}: {} was never trained (random weights)", o.checkpoint, m);
   spdlog::info("infer: wrote {} (GMNet {:.0f} ms, GSNet {:.0f} ms, LNet + rendering {:.0f} ms)", out.string(),

@@ -211,7 +211,11 @@ TEST(ModelTrain, LaterStagesRunFromTheGMNetCheckpoint) {
   const fs::path out = scratch("infer");
   pm::InferOptions io;
   io.checkpoint = (s / "checkpoint.pt").string();
-  io.input = (dataset() / "room0" / "view0" / "input.png").string();
+  // A 128x64 panorama (twice the network's 64x32 input): the maps come back at 128x64.
+  const fs::path big = scratch("infer_input") / "pano.png";
+  fs::create_directories(big.parent_path());
+  pm::write_tensor_image(big, torch::rand({3, 64, 128}));
+  io.input = big.string();
   io.out_dir = out.string();
   io.threads = 1;
   pm::infer(io);
@@ -222,8 +226,20 @@ TEST(ModelTrain, LaterStagesRunFromTheGMNetCheckpoint) {
   EXPECT_EQ(probes.width, 32 * 8);
   EXPECT_EQ(probes.height, 16 * 4);
   const phyir::Image depth = phyir::read_image(out / "depth.exr");
-  EXPECT_EQ(depth.width, 64);
+  EXPECT_EQ(depth.width, 128);
+  EXPECT_EQ(depth.height, 64);
   EXPECT_EQ(depth.channels, 1);
+  for (const char* f : {"normal.exr", "basecolor.exr", "roughness.exr", "metalness.exr", "input.png"}) {
+    const phyir::Image m = phyir::read_image(out / f);
+    EXPECT_EQ(m.width, 128) << f;
+    EXPECT_EQ(m.height, 64) << f;
+  }
+  const phyir::Image normal = phyir::read_image(out / "normal.exr");
+  for (size_t i = 0; i + 2 < normal.pixels.size(); i += 3 * 97) {  // unit normals after the upsampling
+    const double len = std::sqrt(normal.pixels[i] * normal.pixels[i] + normal.pixels[i + 1] * normal.pixels[i + 1] +
+                                 normal.pixels[i + 2] * normal.pixels[i + 2]);
+    EXPECT_NEAR(len, 1.0, 1e-4);
+  }
 }
 
 TEST(ModelTrain, NonFiniteLossStopsWithAClearMessage) {

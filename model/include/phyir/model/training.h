@@ -23,6 +23,8 @@ struct ModelConfig {
   int guided_radius = 2;                       // GSNet's guided filter radius (paper: 2)
   int width_divisor = 1;                       // divides every channel count: 1 = the paper's
                                                // networks; 2 or 4 for quick experiments and tests
+  std::string lnet_head = "paper";             // paper (A.2) or light: LNet's last two layers
+                                               // i128-o128 k3, i128-o(h*w*3) k1 (docs/model.md)
 };
 
 // Loss weights (the betas of eqs. 5 and 12).
