@@ -10,6 +10,7 @@ PACKAGES=(
   libtbb-dev libtorch-dev libfmt-dev libspdlog-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev libssl-dev
   python3-numpy python3-matplotlib python3-openimageio python3-skimage
+  clang libfuzzer-14-dev
 )
 # Node.js and npm run the Khronos glTF validator. Machines that already have them from
 # elsewhere (e.g. a newer Node.js) keep theirs: Debian's npm would conflict with it.

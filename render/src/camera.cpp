@@ -37,7 +37,7 @@ Ray CameraModel::generate_ray(const glm::vec2& pixel) const {
   const PerspectiveBasis b = perspective_basis(*this);
   const float sx = (2.0f * pixel.x / width - 1.0f) * b.tan_half_x;
   const float sy = (1.0f - 2.0f * pixel.y / height) * b.tan_half_y;
-  ray.direction = glm::normalize(b.forward + sx * b.right + sy * b.up);
+  ray.direction = safe_normalize(b.forward + sx * b.right + sy * b.up, b.forward);
   return ray;
 }
 

@@ -26,8 +26,7 @@ bool slot_valid(const scenes::Scene& scene, const scenes::TextureSlot& slot) {
 // but one bad texel must not turn a whole render into NaN.
 glm::vec4 finite_or(const glm::vec4& v, float fallback) {
   glm::vec4 r = v;
-  for (int i = 0; i < 4; ++i)
-    if (!std::isfinite(r[i])) r[i] = fallback;
+  for (int i = 0; i < 4; ++i) r[i] = phyir::finite_or(r[i], fallback);
   return r;
 }
 
@@ -56,7 +55,7 @@ float material_alpha(const scenes::Scene& scene, const scenes::Mesh& mesh, const
   if (slot_valid(scene, material.base_color_texture))
     alpha *= sample_slot(scene, mesh, tri, bary, material.base_color_texture, glm::vec4(1.0f)).w;
   if (has_attribute(mesh.colors, mesh)) alpha *= interpolate(mesh.colors, tri, bary).w;
-  return std::isfinite(alpha) ? alpha : 1.0f;
+  return phyir::finite_or(alpha, 1.0f);
 }
 
 glm::vec3 emitted_radiance(const scenes::Scene& scene, const scenes::Mesh& mesh,
@@ -88,18 +87,18 @@ MaterialPoint evaluate_material(const scenes::Scene& scene, const scenes::Mesh& 
     roughness *= mr.y;  // G
     metalness *= mr.z;  // B
   }
-  m.brdf.roughness = std::isfinite(roughness) ? clamp01(roughness) : 1.0f;
-  m.brdf.metalness = std::isfinite(metalness) ? clamp01(metalness) : 0.0f;
+  m.brdf.roughness = clamp01(phyir::finite_or(roughness, 1.0f));
+  m.brdf.metalness = clamp01(phyir::finite_or(metalness, 0.0f));
 
   m.emission = emitted_radiance(scene, mesh, material, tri, bary);
 
   float transmission = material.transmission_factor;
   if (slot_valid(scene, material.transmission_texture))
     transmission *= sample_slot(scene, mesh, tri, bary, material.transmission_texture, glm::vec4(1.0f)).x;  // R
-  m.transmission = std::isfinite(transmission) ? clamp01(transmission) : 0.0f;
+  m.transmission = clamp01(phyir::finite_or(transmission, 0.0f));
   m.ior = (std::isfinite(material.ior) && material.ior >= 1.0f) ? material.ior : 1.5f;
 
-  const float alpha = std::isfinite(base.w) ? base.w : 1.0f;
+  const float alpha = phyir::finite_or(base.w, 1.0f);
   switch (material.alpha_mode) {
     case scenes::AlphaMode::Opaque: m.opacity = 1.0f; break;
     case scenes::AlphaMode::Mask: m.opacity = alpha >= material.alpha_cutoff ? 1.0f : 0.0f; break;
@@ -109,7 +108,7 @@ MaterialPoint evaluate_material(const scenes::Scene& scene, const scenes::Mesh& 
   // Tangent-space normal: (texel * 2 - 1) * (scale, scale, 1) (glTF 2.0, 3.9.3).
   if (slot_valid(scene, material.normal_texture)) {
     const glm::vec4 t = sample_slot(scene, mesh, tri, bary, material.normal_texture, glm::vec4(0.5f, 0.5f, 1.0f, 1.0f));
-    const float scale = std::isfinite(material.normal_scale) ? material.normal_scale : 1.0f;
+    const float scale = phyir::finite_or(material.normal_scale, 1.0f);
     m.normal_ts = (glm::vec3(t) * 2.0f - glm::vec3(1.0f)) * glm::vec3(scale, scale, 1.0f);
     m.has_normal_map = true;
   }

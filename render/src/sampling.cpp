@@ -106,7 +106,7 @@ int Distribution1D::sample(float u, float* pmf, float* remapped) const {
   if (pmf) *pmf = weights_[index] / total_;
   if (remapped) {
     const float width = cdf_[index + 1] - cdf_[index];
-    *remapped = width > 0.0f ? std::min((u - cdf_[index]) / width, 0x1.fffffep-1f) : 0.0f;
+    *remapped = width > 0.0f ? std::min((u - cdf_[index]) / width, kOneMinusEpsilon) : 0.0f;
   }
   return index;
 }

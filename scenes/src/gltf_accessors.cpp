@@ -160,8 +160,10 @@ struct CheckedAccessor {
 };
 
 // Without a bufferView an accessor costs no file bytes, so its count is bounded here
-// instead: a few bytes of JSON must not allocate gigabytes.
-constexpr size_t kMaxElementsWithoutBufferView = size_t{1} << 26;
+// instead: a few bytes of JSON must not allocate gigabytes. 2^24 (16.7M) elements is as
+// many vertices as the largest single meshes we know of; as VEC3 floats that is 200 MB,
+// twice over once baked (at 2^26 a 300-byte file made the loader take over 2 GB).
+constexpr size_t kMaxElementsWithoutBufferView = size_t{1} << 24;
 
 CheckedAccessor check_accessor(const GltfContext& ctx, int index, const std::string& role) {
   if (!in_range(index, ctx.model.accessors.size()))

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "gltf_values.h"
 #include "phyir/core/safe_math.h"
 
 namespace phyir::scenes::gltf {
@@ -25,8 +26,8 @@ Camera make_camera(const GltfContext& ctx, const NodeInstance& instance) {
 
   if (source.type == "orthographic") {
     camera.perspective = false;
-    camera.znear = static_cast<float>(source.orthographic.znear);
-    camera.zfar = static_cast<float>(source.orthographic.zfar);
+    camera.znear = to_finite_float(source.orthographic.znear).value_or(0.0f);
+    camera.zfar = to_finite_float(source.orthographic.zfar).value_or(0.0f);
     ctx.warn(
         "{} (on {}) is orthographic: kept with perspective=false; renderers that need a perspective "
         "camera skip it",
@@ -37,10 +38,13 @@ Camera make_camera(const GltfContext& ctx, const NodeInstance& instance) {
   const tinygltf::PerspectiveCamera& p = source.perspective;
   if (!(p.yfov > 0.0 && p.yfov < kPi)) ctx.fail("{} yfov {} is outside (0, pi)", where, p.yfov);
   camera.yfov = static_cast<float>(p.yfov);
-  camera.aspect_ratio =
-      std::isfinite(p.aspectRatio) && p.aspectRatio > 0.0 ? static_cast<float>(p.aspectRatio) : 0.0f;
-  if (std::isfinite(p.znear) && p.znear > 0.0) camera.znear = static_cast<float>(p.znear);
-  camera.zfar = std::isfinite(p.zfar) && p.zfar > camera.znear ? static_cast<float>(p.zfar) : 0.0f;
+  // Values outside float's range (JSON allows 1e300) count as absent.
+  const float aspect = to_finite_float(p.aspectRatio).value_or(0.0f);
+  camera.aspect_ratio = aspect > 0.0f ? aspect : 0.0f;
+  const float znear = to_finite_float(p.znear).value_or(0.0f);
+  if (znear > 0.0f) camera.znear = znear;
+  const float zfar = to_finite_float(p.zfar).value_or(0.0f);
+  camera.zfar = zfar > camera.znear ? zfar : 0.0f;
   return camera;
 }
 

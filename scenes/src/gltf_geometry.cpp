@@ -1,5 +1,7 @@
 #include "gltf_geometry.h"
 
+#include <cmath>
+#include <limits>
 #include <utility>
 
 #include "phyir/core/safe_math.h"
@@ -14,6 +16,16 @@ namespace {
 glm::dmat3 cofactor(const glm::dmat3& m) {
   return glm::dmat3(glm::cross(m[1], m[2]), glm::cross(m[2], m[0]), glm::cross(m[0], m[1]));
 }
+
+// double -> float without undefined behaviour: a finite double beyond float's range (a
+// hostile transform such as scale 1e300) becomes +-infinity, which the loader then reports.
+float to_float(double x) {
+  if (std::abs(x) <= static_cast<double>(std::numeric_limits<float>::max()) || std::isnan(x))
+    return static_cast<float>(x);
+  return std::copysign(std::numeric_limits<float>::infinity(), static_cast<float>(x > 0.0 ? 1.0 : -1.0));
+}
+
+glm::vec3 to_vec3(const glm::dvec3& v) { return glm::vec3(to_float(v.x), to_float(v.y), to_float(v.z)); }
 
 template <typename T>
 std::vector<T> unshare(const std::vector<T>& attribute, const std::vector<glm::uvec3>& triangles) {
@@ -35,16 +47,16 @@ Mesh bake_to_world(const PrimitiveData& local, const glm::dmat4& world) {
 
   Mesh mesh;
   mesh.positions.reserve(local.positions.size());
-  for (const glm::vec3& p : local.positions) mesh.positions.emplace_back(world * glm::dvec4(p, 1.0));
+  for (const glm::vec3& p : local.positions) mesh.positions.push_back(to_vec3(glm::dvec3(world * glm::dvec4(p, 1.0))));
   mesh.normals.reserve(local.normals.size());
   for (const glm::vec3& n : local.normals)
     mesh.normals.push_back(
-        safe_normalize(glm::vec3(normal_matrix * glm::dvec3(n)), glm::vec3(0.0f, 0.0f, 1.0f)));
+        safe_normalize(to_vec3(normal_matrix * glm::dvec3(n)), glm::vec3(0.0f, 0.0f, 1.0f)));
   // Without file normals the file's tangents must be ignored (glTF 2.0 3.7.2.1).
   if (!local.normals.empty()) {
     mesh.tangents.reserve(local.tangents.size());
     for (const glm::vec4& t : local.tangents) {
-      const glm::vec3 xyz = safe_normalize(glm::vec3(linear * glm::dvec3(t)), glm::vec3(1.0f, 0.0f, 0.0f));
+      const glm::vec3 xyz = safe_normalize(to_vec3(linear * glm::dvec3(t)), glm::vec3(1.0f, 0.0f, 0.0f));
       mesh.tangents.emplace_back(xyz, mirrored ? -t.w : t.w);
     }
   }

@@ -1,6 +1,7 @@
 // load_gltf: the stages in order. Each stage lives in its own gltf_*.cpp.
 #include "phyir/scenes/gltf_loader.h"
 
+#include <cmath>
 #include <map>
 #include <optional>
 
@@ -102,11 +103,23 @@ class InstanceBaker {
       const std::optional<PrimitiveData>& data = primitive(mesh_index, static_cast<int>(p));
       if (!data) continue;
       Mesh mesh = bake_to_world(*data, instance.world);
+      check_finite_positions(mesh, mesh_index, static_cast<int>(p), instance.node);
       mesh.name =
           fmt::format("{}/{}", source.name.empty() ? fmt::format("mesh{}", mesh_index) : source.name, p);
       mesh.material = material_index(source.primitives[p].material, mesh_index, static_cast<int>(p));
       add_tangents_for_normal_map(mesh, mesh_index, static_cast<int>(p));
       scene_.meshes.push_back(std::move(mesh));
+    }
+  }
+
+  // Finite file positions can still overflow floats once transformed (scale 1e300).
+  void check_finite_positions(const Mesh& mesh, int mesh_index, int primitive, int node) const {
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+      const glm::vec3& v = mesh.positions[i];
+      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+        ctx_.fail("{} placed by {} has vertex {} at ({}, {}, {}): the node transforms overflow 32-bit floats",
+                  primitive_label(ctx_, mesh_index, primitive), label("node", node, ctx_.model.nodes), i, v.x, v.y,
+                  v.z);
     }
   }
 

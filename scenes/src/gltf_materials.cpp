@@ -146,8 +146,10 @@ class MaterialConverter {
   }
 
   float checked_number(double value, const char* property) {
-    if (!std::isfinite(value)) ctx_.fail("{} {} is not a finite number", where_, property);
-    return static_cast<float>(value);
+    // Beyond float's range (JSON allows 1e300) the conversion would be undefined: refused too.
+    const std::optional<float> f = to_finite_float(value);
+    if (!f) ctx_.fail("{} {} is not a finite number ({})", where_, property, value);
+    return *f;
   }
 
   std::vector<double> checked_numbers(const std::vector<double>& values, size_t count, const char* property) {

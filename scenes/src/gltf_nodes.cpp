@@ -41,6 +41,22 @@ std::vector<int> scene_roots(const GltfContext& ctx, int scene) {
   std::vector<int> roots;
   for (size_t i = 0; i < is_child.size(); ++i)
     if (!is_child[i]) roots.push_back(static_cast<int>(i));
+  // Without a scene every node must hang below a root; one that cannot be reached from any
+  // root lies on (or below) a cycle of children and would silently vanish.
+  std::vector<bool> reached(ctx.model.nodes.size(), false);
+  std::vector<int> stack = roots;
+  while (!stack.empty()) {
+    const int node = stack.back();
+    stack.pop_back();
+    if (reached[static_cast<size_t>(node)]) continue;
+    reached[static_cast<size_t>(node)] = true;
+    for (int child : ctx.model.nodes[static_cast<size_t>(node)].children)
+      if (in_range(child, reached.size()) && !reached[static_cast<size_t>(child)]) stack.push_back(child);
+  }
+  for (size_t i = 0; i < reached.size(); ++i)
+    if (!reached[i])
+      ctx.fail("{} is on a cycle of children (the file has no scene, and its nodes do not form a tree)",
+               label("node", static_cast<int>(i), ctx.model.nodes));
   return roots;
 }
 

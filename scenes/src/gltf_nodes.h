@@ -17,7 +17,7 @@ struct NodeInstance {
 int default_scene_index(const GltfContext& ctx);
 
 // The root nodes to draw: the default scene's nodes or, with no scenes at all, every node
-// that is nobody's child.
+// that is nobody's child (then failing if some node is reachable from none: a cycle).
 std::vector<int> scene_roots(const GltfContext& ctx, int scene);
 
 // Every node reachable from `roots`, depth first, with its world transform. Fails on a

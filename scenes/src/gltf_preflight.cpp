@@ -43,8 +43,9 @@ const json& array_member(const json& object, const char* key) {
 json parse_json(const GltfFile& file, const Diagnostics& diagnostics) {
   try {
     return json::parse(file.json.begin(), file.json.end());
-  } catch (const json::parse_error& e) {
-    // Drop nlohmann's "[json.exception.parse_error.101] " prefix; keep line and column.
+  } catch (const json::exception& e) {
+    // parse_error, and out_of_range for numbers beyond double such as 1e999. Drop
+    // nlohmann's "[json.exception.parse_error.101] " prefix; keep line and column.
     std::string what = e.what();
     const auto bracket = what.find("] ");
     diagnostics.fail("invalid JSON: {}", bracket == std::string::npos ? what : what.substr(bracket + 2));
@@ -150,6 +151,13 @@ void check_images(const json& doc, const GltfFile& file, const std::vector<uint6
     std::error_code ec;
     if (!fs::is_regular_file(path, ec))
       diagnostics.fail("image {} uri '{}' not found (looked for {})", i, uri, path.string());
+    // tinygltf reads image files whole; a URI naming e.g. /proc/kcore (a "regular file" of
+    // 128 TiB) must not be read. 1 GiB is ten times the largest 16k PNG we know of.
+    constexpr uint64_t kMaxImageFileBytes = uint64_t{1} << 30;
+    const uint64_t size = fs::file_size(path, ec);
+    if (ec || size > kMaxImageFileBytes)
+      diagnostics.fail("image {} uri '{}' is {} bytes, more than an image file may be (1 GiB)", i, uri,
+                       ec ? 0 : size);
   }
 }
 

@@ -1,11 +1,38 @@
 #include "gltf_textures.h"
 
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <array>
+
 #include "phyir/core/colour.h"
 #include "phyir/core/image_io.h"
 
 namespace phyir::scenes::gltf {
 
 namespace {
+
+// Decoded textures are float RGBA-or-fewer: at most 2^28 values (1 GiB), e.g. 8192 x 8192
+// RGBA or 16384 x 16384 grey. A PNG header may claim 1,000,000 x 1,000,000 pixels in a few
+// bytes; the limit is checked on the header, before anything is allocated.
+constexpr uint64_t kMaxTextureValues = uint64_t{1} << 28;
+
+// Width, height and channels from the encoded image's header (nothing decoded), or zeros when
+// OIIO cannot open it (the decoder then reports why). Same format sniffing as
+// read_image_from_memory.
+std::array<uint64_t, 3> encoded_image_size(const std::vector<unsigned char>& bytes) {
+  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
+  const bool jpeg = bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8;
+  auto in = OIIO::ImageInput::open(jpeg ? "in-memory.jpg" : "in-memory.png", nullptr, &reader);
+  if (!in) {
+    OIIO::geterror();  // clear the message: read_image_from_memory produces its own
+    return {0, 0, 0};
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  auto non_negative = [](int v) { return static_cast<uint64_t>(std::max(v, 0)); };
+  return {non_negative(spec.width), non_negative(spec.height), non_negative(spec.nchannels)};
+}
 
 WrapMode wrap_mode(const GltfContext& ctx, int sampler, int gl_wrap) {
   switch (gl_wrap) {
@@ -96,6 +123,10 @@ const Image& TextureTable::decoded_image(int index) {
   const tinygltf::Image& image = ctx_.model.images[static_cast<size_t>(index)];
   const std::string what = fmt::format("{}: {}", ctx_.file(), label("image", index, ctx_.model.images));
   if (image.image.empty()) phyir::fail("{} has no data (uri '{}')", what, image.uri.substr(0, 200));
+  const auto [width, height, channels] = encoded_image_size(image.image);
+  if (width * height * channels > kMaxTextureValues)  // each <= 2^31: no overflow
+    phyir::fail("{} is {} x {} pixels x {} channels, more than a texture may hold (2^28 values, 1 GiB as float)",
+                what, width, height, channels);
   return images_.emplace(index, read_image_from_memory(image.image, what)).first->second;
 }
 

@@ -1,6 +1,7 @@
 #include "gltf_values.h"
 
 #include <cmath>
+#include <limits>
 
 namespace phyir::scenes::gltf {
 
@@ -8,12 +9,15 @@ namespace {
 
 std::optional<float> as_finite_float(const tinygltf::Value& value) {
   if (!value.IsNumber()) return std::nullopt;
-  const double v = value.GetNumberAsDouble();
-  if (!std::isfinite(v)) return std::nullopt;
-  return static_cast<float>(v);
+  return to_finite_float(value.GetNumberAsDouble());
 }
 
 }  // namespace
+
+std::optional<float> to_finite_float(double v) {
+  if (!std::isfinite(v) || std::abs(v) > static_cast<double>(std::numeric_limits<float>::max())) return std::nullopt;
+  return static_cast<float>(v);
+}
 
 const tinygltf::Value* member(const tinygltf::Value& object, const std::string& key) {
   return object.IsObject() && object.Has(key) ? &object.Get(key) : nullptr;

@@ -10,6 +10,10 @@
 
 namespace phyir::scenes::gltf {
 
+// `v` as a float when it is finite and inside float's range, else nullopt (converting a
+// larger double to float is undefined behaviour, and JSON allows 1e300).
+std::optional<float> to_finite_float(double v);
+
 // The member `key` of `object`, or nullptr when `object` is not an object or lacks it.
 const tinygltf::Value* member(const tinygltf::Value& object, const std::string& key);
 
