@@ -41,7 +41,7 @@ void run(const GenerateOptions& options) {
   const scenes::RoomPreset preset = scenes::parse_room_preset(options.preset);
   if (options.count < 1) fail("--count must be at least 1, got {}", options.count);
   const std::filesystem::path out(options.out);
-  std::filesystem::create_directories(out);
+  ensure_writable_directory(out);
 
   nlohmann::json rooms = nlohmann::json::array();
   {

@@ -54,4 +54,16 @@ std::string read_file(const fs::path& path) {
   return ss.str();
 }
 
+void ensure_writable_directory(const fs::path& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) fail("{}: cannot create the output folder: {}", dir.string(), ec.message());
+  if (!fs::is_directory(dir, ec)) fail("{}: the output path exists and is not a folder", dir.string());
+  const fs::path probe = dir / (".phyir-write-test-" + std::to_string(::getpid()));
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+  if (fd < 0) fail("{}: cannot write in the output folder: {}", dir.string(), std::strerror(errno));
+  ::close(fd);
+  fs::remove(probe, ec);
+}
+
 }  // namespace phyir

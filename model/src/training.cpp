@@ -161,6 +161,9 @@ json read_meta(torch::serialize::InputArchive& archive, const std::string& path)
 }
 
 // Loads networks (and optionally the optimiser and RNG state) from a checkpoint.
+// c10 messages carry a C++ backtrace after their first line.
+std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
+
 json load_checkpoint(const std::string& path, Networks* nets, torch::optim::Optimizer* opt, bool rng) {
   if (!fs::is_regular_file(path)) fail("{}: checkpoint not found", path);
   torch::serialize::InputArchive archive;
@@ -175,13 +178,21 @@ json load_checkpoint(const std::string& path, Networks* nets, torch::optim::Opti
              {"gmnet", nets->gmnet.get()}, {"lnet", nets->lnet.get()}, {"gsnet", nets->gsnet.get()}}) {
       torch::serialize::InputArchive sub;
       if (!archive.try_read(name, sub)) fail("{}: no '{}' network", path, name);
-      module->load(sub);
+      try {
+        module->load(sub);
+      } catch (const std::exception& e) {
+        fail("{}: its '{}' network does not fit this configuration ({})", path, name, first_line(e.what()));
+      }
     }
   }
   if (opt) {
     torch::serialize::InputArchive sub;
     if (!archive.try_read("optimizer", sub)) fail("{}: no optimiser state to resume from", path);
-    opt->load(sub);
+    try {
+      opt->load(sub);
+    } catch (const std::exception& e) {
+      fail("{}: its optimiser state does not fit this stage ({})", path, first_line(e.what()));
+    }
   }
   if (rng) {
     torch::Tensor state;
@@ -277,6 +288,10 @@ TrainSummary train(const TrainOptions& o) {
   if (o.resume && !fs::is_regular_file(ckpt_path)) fail("--resume: {} not found", ckpt_path.string());
   // A resumed run keeps its learning rate, batch size and weights unless they are given again.
   const json resumed = o.resume ? load_checkpoint(ckpt_path.string(), nullptr, nullptr, false) : json();
+  // Before any state is loaded: another stage's optimiser has other parameter groups.
+  if (o.resume && resumed.value("stage", std::string()) != sname)
+    fail("--resume: {} is a '{}' checkpoint, not '{}' (start the stage with --init {} instead)", ckpt_path.string(),
+         resumed.value("stage", std::string("?")), sname, ckpt_path.string());
   const double lr = o.learning_rate > 0 ? o.learning_rate
                     : o.resume           ? resumed.at("learning_rate").get<double>()
                                          : defaults.learning_rate;

@@ -70,6 +70,8 @@ glm::vec3 trace_path(const RenderScene& scene, const PathSettings& settings, con
         if (rng.next_float() < si.transmission) {
           // Geometric normal faces the ray; `entering` when the ray hit the front face.
           const Frame frame(si.geometric_normal);
+          // An IOR of 1 (or less) is no interface: keep eta just above 1 so the Fresnel
+          // and refraction formulas stay defined (glTF allows ior = 1 as a special case).
           const float eta = std::max(si.ior, 1.0f + 1e-4f);
           const DielectricSample ds =
               sample_dielectric(frame.to_local(wo_world), eta, si.front_face, si.brdf.base_color, rng.next_float());
@@ -100,7 +102,7 @@ glm::vec3 trace_path(const RenderScene& scene, const PathSettings& settings, con
         const glm::vec3 f = brdf_eval(si.brdf, wo, wi);
         if (wi.z > 0.0f && glm::dot(ls.wi, si.geometric_normal) > 0.0f && max_component(f) > 0.0f) {
           Ray shadow{spawn_origin(si.position, si.geometric_normal, ls.wi), ls.wi};
-          shadow.tmax = ls.distance * (1.0f - 1e-4f);  // stop short of the light itself
+          shadow.tmax = ls.distance * (1.0f - kShadowRayShortening);  // stop short of the light itself
           ++counters->rays;
           if (!scene.accelerator().occluded(shadow)) {
             const float w = power_heuristic(ls.pdf, brdf_pdf(si.brdf, wo, wi));

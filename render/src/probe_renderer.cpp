@@ -171,7 +171,7 @@ class TexelEstimator {
         const glm::vec3 f = brdf_eval(p, wo, wi);
         if (wi.z > 0.0f && glm::dot(ls.wi, ng) > 0.0f && max_component(f) > 0.0f) {
           Ray shadow{spawn_origin(si.position, ng, ls.wi), ls.wi};
-          shadow.tmax = ls.distance * (1.0f - 1e-4f);
+          shadow.tmax = ls.distance * (1.0f - kShadowRayShortening);
           ++c->rays;
           if (!scene_.accelerator().occluded(shadow)) {
             const float w = power_heuristic(ls.pdf, brdf_pdf(p, wo, wi));
@@ -191,7 +191,7 @@ class TexelEstimator {
     // The part of the sample's weight that belongs to the specular lobe (the diffuse part of
     // the indirect light comes from the cache).
     const glm::vec3 weight_specular =
-        bs.delta ? bs.weight : specular_eval(p, wo, bs.wi) * (bs.wi.z / std::max(bs.pdf, kTinyDenominator));
+        bs.delta ? bs.weight : specular_eval(p, wo, bs.wi) * safe_div(bs.wi.z, bs.pdf);
     const Ray ray{spawn_origin(si.position, ng, wi_world), wi_world};
     SurfaceInteraction y;
     ++c->rays;
@@ -204,7 +204,7 @@ class TexelEstimator {
     }
     const int next = depth + 1;
     if (next >= settings_.path.max_bounces || !(max_component(weight_specular) > 0.0f)) return L;
-    const float share = luminance(weight_specular) / std::max(luminance(bs.weight), kTinyDenominator);
+    const float share = safe_div(luminance(weight_specular), luminance(bs.weight));
     const float keep = std::clamp(kSpecularKeepScale * share, 0.125f, 1.0f);
     if (keep < 1.0f && !(shading_rng(key, depth, kSpecularRoulette).next_float() < keep)) return L;
     const glm::vec3 Le = y.emits ? y.emission : glm::vec3(0.0f);
@@ -242,7 +242,7 @@ class TexelEstimator {
         const glm::vec3 f = brdf_eval(p, wo, wi);
         if (wi.z > 0.0f && glm::dot(ls.wi, si.geometric_normal) > 0.0f && max_component(f) > 0.0f) {
           Ray shadow{spawn_origin(si.position, si.geometric_normal, ls.wi), ls.wi};
-          shadow.tmax = ls.distance * (1.0f - 1e-4f);
+          shadow.tmax = ls.distance * (1.0f - kShadowRayShortening);
           ++c->rays;
           if (!scene_.accelerator().occluded(shadow)) L += f * ls.radiance * (wi.z / ls.pdf);
         }

@@ -145,6 +145,7 @@ CameraModel job_camera(const RenderJob& job, const scenes::Scene& scene, std::st
 
 nlohmann::json run_render_job(const RenderJob& job) {
   validate(job);
+  ensure_writable_directory(job.out_dir);
   const auto total_start = Clock::now();
   const int threads = job.threads > 0 ? job.threads : tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);

@@ -43,7 +43,7 @@ const json& array_member(const json& object, const char* key) {
 json parse_json(const GltfFile& file, const Diagnostics& diagnostics) {
   try {
     return json::parse(file.json.begin(), file.json.end());
-  } catch (const json::exception& e) {
+  } catch (const std::exception& e) {  // json::exception; std:: so no RTTI mismatch between builds can let one through
     // parse_error, and out_of_range for numbers beyond double such as 1e999. Drop
     // nlohmann's "[json.exception.parse_error.101] " prefix; keep line and column.
     std::string what = e.what();

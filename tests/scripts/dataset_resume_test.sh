@@ -9,13 +9,7 @@
 # exits 1; a re-run renders only that view again and the dataset is whole and identical.
 #   $1 = phyir binary, $2 = scratch folder (emptied).
 set -euo pipefail
-phyir=$1
-work=$2
-rm -rf "$work"
-mkdir -p "$work"
-cd "$work"
-die() { echo "FAIL: $*" >&2; exit 1; }
-trap 'echo "FAIL: line $LINENO: $BASH_COMMAND" >&2' ERR
+source "$(dirname "${BASH_SOURCE[0]}")/lib/prologue.sh"
 
 "$phyir" --log-level warn scenes generate --out rooms --count 2 --seed 1 --preset mini
 args=(dataset generate --scenes rooms --preset tiny --views-per-scene 3 --threads 2 --quiet)

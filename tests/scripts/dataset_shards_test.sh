@@ -8,13 +8,7 @@
 # writes no manifest then.
 #   $1 = phyir binary, $2 = scratch folder (emptied).
 set -euo pipefail
-phyir=$1
-work=$2
-rm -rf "$work"
-mkdir -p "$work"
-cd "$work"
-die() { echo "FAIL: $*" >&2; exit 1; }
-trap 'echo "FAIL: line $LINENO: $BASH_COMMAND" >&2' ERR
+source "$(dirname "${BASH_SOURCE[0]}")/lib/prologue.sh"
 
 "$phyir" --log-level warn scenes generate --out rooms --count 2 --seed 4 --preset mini
 args=(--log-level warn dataset generate --scenes rooms --preset tiny --views-per-scene 3 --quiet)

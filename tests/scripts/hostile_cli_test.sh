@@ -82,11 +82,8 @@ expect_failure unknown_command "A subcommand is required" "$phyir" nonsense
 echo "bad command-line values: refused"
 
 # --- 3. output folders that cannot be written ---------------------------------------------------
-# Known gap (render/src/render_job.cpp, not this test's to fix): these reach main() as a
-# std::filesystem error ("phyir: internal error: filesystem error: cannot create directories:
-# Not a directory [plain_file/out]", exit 2) after the render, instead of a phyir::Error
-# before it. The message does name the folder and the problem, so only that is checked here.
-allow_internal=1
+# Checked before any work (ensure_writable_directory): a clear message naming the folder,
+# exit 1, nothing rendered.
 echo "a file, not a folder" > plain_file
 expect_failure out_under_a_file "plain_file" "$phyir" $(r --out plain_file/out --camera 0,0.5,1)
 [ ! -e plain_file/out ] || die "render created something under a regular file"
@@ -94,7 +91,6 @@ expect_failure out_is_a_file "plain_file" "$phyir" $(r --out plain_file --camera
 grep -q "a file, not a folder" plain_file || die "render overwrote a regular file given as --out"
 expect_failure out_in_proc "/proc/phyir_out" "$phyir" $(r --out /proc/phyir_out --camera 0,0.5,1)
 expect_failure generate_out_under_a_file "plain_file" "$phyir" scenes generate --out plain_file/rooms --count 1 --preset mini
-allow_internal=
 echo "unwritable output folders: refused"
 
 # --- 4. a damaged dataset ---------------------------------------------------------------------

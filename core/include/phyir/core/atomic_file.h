@@ -17,6 +17,10 @@ void commit_file(const std::filesystem::path& temporary, const std::filesystem::
 // Writes `contents` to `path` atomically. Throws phyir::Error naming the path on failure.
 void write_file_atomic(const std::filesystem::path& path, const std::string& contents);
 
+// Creates `dir` if needed and checks a file can be written in it, so that a command fails
+// before hours of work rather than after; throws phyir::Error naming the folder.
+void ensure_writable_directory(const std::filesystem::path& dir);
+
 // Reads a whole file; throws phyir::Error naming the path when it cannot.
 std::string read_file(const std::filesystem::path& path);
 
