@@ -6,13 +6,13 @@
 #include <tbb/info.h>
 
 #include <cstdlib>
-#include <fstream>
 #include <memory>
 #include <sstream>
 
 #include "commands.h"
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
+#include "phyir/core/machine.h"
 #include "phyir/core/image_io.h"
 #include "phyir/core/log.h"
 #include "phyir/render/render_job.h"
@@ -37,17 +37,6 @@ struct BenchFlags {
   int repeats = 3;
   uint64_t seed = 0;
 };
-
-std::string machine_description() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string line, model = "unknown CPU";
-  while (std::getline(cpuinfo, line))
-    if (line.rfind("model name", 0) == 0) {
-      model = line.substr(line.find(':') + 2);
-      break;
-    }
-  return model + ", " + std::to_string(tbb::info::default_concurrency()) + " hardware threads";
-}
 
 struct Loaded {
   scenes::Scene scene;

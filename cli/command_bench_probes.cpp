@@ -8,20 +8,19 @@
 // subset: cache mode renders the full grid (its cache depends on every probe); path mode
 // renders the subset only and its time is scaled to the full grid's probe count (its
 // probes are independent; the row says `extrapolated`).
-#include <sys/resource.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
-#include <fstream>
 #include <memory>
 #include <sstream>
 
 #include "commands.h"
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
+#include "phyir/core/machine.h"
 #include "phyir/core/image_error.h"
 #include "phyir/core/image_io.h"
 #include "phyir/core/log.h"
@@ -82,23 +81,6 @@ Config parse_config(const std::string& text, const render::ProbeSettings& defaul
     fail("--configs '{}': SPP, CACHE_SPP and CELL_M must be numbers", text);
   }
   return c;
-}
-
-double cpu_seconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
-std::string machine_description() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string line, model = "unknown CPU";
-  while (std::getline(cpuinfo, line))
-    if (line.rfind("model name", 0) == 0) {
-      model = line.substr(line.find(':') + 2);
-      break;
-    }
-  return model + ", " + std::to_string(tbb::info::default_concurrency()) + " hardware threads";
 }
 
 // The subset's probes side by side: probe k at columns [k w, (k+1) w).
@@ -214,10 +196,10 @@ void run_bench_probes(const BenchProbeFlags& f) {
       t.seed = s.seed + c.seed_offset;
       t.validate();
       const bool extrapolated = c.mode == render::ProbeMode::kPath || f.subset_only;
-      const double cpu_start = cpu_seconds();
+      const double cpu_start = process_cpu_seconds();
       const render::ProbeOutput out = extrapolated ? render::render_probes_at(render_scene, effects, sites, t, subset)
                                                    : render::render_probes_at(render_scene, effects, sites, t);
-      double cpu = cpu_seconds() - cpu_start;
+      double cpu = process_cpu_seconds() - cpu_start;
       double seconds = out.stats.total_seconds;
       double rays = double(out.stats.counters.rays);
       if (extrapolated) {

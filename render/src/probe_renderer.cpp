@@ -160,26 +160,7 @@ class TexelEstimator {
     const bool emitters = !scene_.emitters().empty();
 
     // Next-event estimation on the emitters, full BRDF.
-    if (emitters) {
-      Rng rng = shading_rng(key, depth, kLightSample);
-      const float u_select = rng.next_float();
-      const glm::vec2 u_point = rng.next_2d();
-      EmitterSample ls;
-      if (scene_.emitters().sample(si.position, u_select, u_point, &ls) && ls.pdf > 0.0f &&
-          max_component(ls.radiance) > 0.0f) {
-        const glm::vec3 wi = frame.to_local(ls.wi);
-        const glm::vec3 f = brdf_eval(p, wo, wi);
-        if (wi.z > 0.0f && glm::dot(ls.wi, ng) > 0.0f && max_component(f) > 0.0f) {
-          Ray shadow{spawn_origin(si.position, ng, ls.wi), ls.wi};
-          shadow.tmax = ls.distance * (1.0f - kShadowRayShortening);
-          ++c->rays;
-          if (!scene_.accelerator().occluded(shadow)) {
-            const float w = power_heuristic(ls.pdf, brdf_pdf(p, wo, wi));
-            L += f * ls.radiance * (wi.z * w / ls.pdf);
-          }
-        }
-      }
-    }
+    if (emitters) L += direct_light(si, frame, wo, p, depth, key, /*mis=*/true, c);
 
     // One direction from the BRDF.
     Rng rng = shading_rng(key, depth, kBrdfSample);
@@ -231,28 +212,37 @@ class TexelEstimator {
     if (!(wo.z >= kMinCosine)) return glm::vec3(0.0f);
     const BrdfParams p = clamped(si.brdf);
     glm::vec3 L(0.0f);
-    if (!scene_.emitters().empty()) {
-      Rng rng = shading_rng(key, depth, kLightSample);
-      const float u_select = rng.next_float();
-      const glm::vec2 u_point = rng.next_2d();
-      EmitterSample ls;
-      if (scene_.emitters().sample(si.position, u_select, u_point, &ls) && ls.pdf > 0.0f &&
-          max_component(ls.radiance) > 0.0f) {
-        const glm::vec3 wi = frame.to_local(ls.wi);
-        const glm::vec3 f = brdf_eval(p, wo, wi);
-        if (wi.z > 0.0f && glm::dot(ls.wi, si.geometric_normal) > 0.0f && max_component(f) > 0.0f) {
-          Ray shadow{spawn_origin(si.position, si.geometric_normal, ls.wi), ls.wi};
-          shadow.tmax = ls.distance * (1.0f - kShadowRayShortening);
-          ++c->rays;
-          if (!scene_.accelerator().occluded(shadow)) L += f * ls.radiance * (wi.z / ls.pdf);
-        }
-      }
-    }
+    // Light sampling alone: no BRDF-sampled ray at a chain's end competes for the emitters.
+    if (!scene_.emitters().empty()) L += direct_light(si, frame, wo, p, depth, key, /*mis=*/false, c);
     const glm::vec2 terms = specular_albedo_terms(wo.z, p.roughness);
     const glm::vec3 F0 = specular_F0(p.base_color, p.metalness);
     const glm::vec3 albedo = F0 * terms.x + (glm::vec3(1.0f) - F0) * terms.y;
     const glm::vec3 E = cache_->irradiance(cache_point(si, frame.n), derived_key(key, depth, kLookup), c);
     return L + (Fd_Lambert(p.base_color, p.metalness) + albedo * kInvPi) * E;
+  }
+
+  // One next-event estimate on the emitters of the light reflected towards wo through the
+  // full BRDF; `mis`: weighted by the power heuristic against the BRDF-sampled ray of the
+  // same event.
+  glm::vec3 direct_light(const SurfaceInteraction& si, const Frame& frame, const glm::vec3& wo, const BrdfParams& p,
+                         int depth, uint64_t key, bool mis, PathCounters* c) const {
+    Rng rng = shading_rng(key, depth, kLightSample);
+    const float u_select = rng.next_float();
+    const glm::vec2 u_point = rng.next_2d();
+    EmitterSample ls;
+    if (!scene_.emitters().sample(si.position, u_select, u_point, &ls) || !(ls.pdf > 0.0f) ||
+        !(max_component(ls.radiance) > 0.0f))
+      return glm::vec3(0.0f);
+    const glm::vec3 wi = frame.to_local(ls.wi);
+    const glm::vec3 f = brdf_eval(p, wo, wi);
+    const glm::vec3& ng = si.geometric_normal;
+    if (!(wi.z > 0.0f) || !(glm::dot(ls.wi, ng) > 0.0f) || !(max_component(f) > 0.0f)) return glm::vec3(0.0f);
+    Ray shadow{spawn_origin(si.position, ng, ls.wi), ls.wi};
+    shadow.tmax = ls.distance * (1.0f - kShadowRayShortening);
+    ++c->rays;
+    if (scene_.accelerator().occluded(shadow)) return glm::vec3(0.0f);
+    const float w = mis ? power_heuristic(ls.pdf, brdf_pdf(p, wo, wi)) : 1.0f;
+    return f * ls.radiance * (wi.z * w / ls.pdf);
   }
 
   const RenderScene& scene_;
