@@ -39,6 +39,30 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
+  } catch (const CLI::RequiredError& e) {
+    // CLI11 says only "A subcommand is required" when a word is not a command: name it.
+    CLI::App* current = &app;
+    std::string path = "phyir";
+    for (int i = 1; i < argc; ++i) {
+      const std::string word = argv[i];
+      if (word.empty() || word[0] == '-' || (i > 1 && std::string(argv[i - 1]) == "--log-level")) continue;
+      CLI::App* next = nullptr;
+      std::string names;
+      for (CLI::App* sub : current->get_subcommands({})) {
+        if (sub->get_name() == word) next = sub;
+        names += (names.empty() ? "" : ", ") + sub->get_name();
+      }
+      if (next) {
+        current = next;
+        path += " " + word;
+        continue;
+      }
+      if (names.empty()) break;  // a positional argument of a command: not ours to judge
+      std::fprintf(stderr, "phyir: error: '%s' is not a command of '%s' (commands: %s; see %s --help)\n",
+                   word.c_str(), path.c_str(), names.c_str(), path.c_str());
+      return 1;
+    }
+    return app.exit(e, std::cout, std::cerr);
   } catch (const CLI::ParseError& e) {
     return app.exit(e, std::cout, std::cerr);
   } catch (const phyir::Error& e) {

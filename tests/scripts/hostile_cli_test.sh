@@ -78,7 +78,7 @@ bad_render probe_mode_unknown "probe" --probes --probe-mode magic
 expect_failure scene_missing "no_such_scene.gltf" "$phyir" render no_such_scene.gltf --out out_missing
 expect_failure scenes_generate_count "--count" "$phyir" scenes generate --out rooms_bad --count -1
 expect_failure scenes_generate_preset "preset" "$phyir" scenes generate --out rooms_bad --count 1 --preset enormous
-expect_failure unknown_command "A subcommand is required" "$phyir" nonsense
+expect_failure unknown_command "'nonsense' is not a command" "$phyir" nonsense
 echo "bad command-line values: refused"
 
 # --- 3. output folders that cannot be written ---------------------------------------------------
