@@ -22,7 +22,7 @@ trap 'echo "FAIL: line $LINENO: $BASH_COMMAND" >&2' ERR
 export OMP_WAIT_POLICY=passive
 
 [ -x "$phyir" ] || die "$phyir: not an executable"
-if "$phyir" train --help 2>&1 | grep -q "not available"; then
+if "$phyir" train --help 2>&1 | grep -q "not built"; then
   echo "SKIP: phyir built without the model (-DPHYIR_BUILD_MODEL=OFF)"; exit 0
 fi
 
