@@ -7,15 +7,9 @@
 # out-of-range view, with a message and a non-zero exit.
 #   $1 = phyir binary, $2 = scratch folder (emptied).
 set -euo pipefail
-phyir=$1
-work=$2
 root=${PHYIR_SOURCE_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
 example=$root/scripts/load_dataset_example.py
-rm -rf "$work"
-mkdir -p "$work"
-cd "$work"
-die() { echo "FAIL: $*" >&2; exit 1; }
-trap 'echo "FAIL: line $LINENO: $BASH_COMMAND" >&2' ERR
+source "$(dirname "${BASH_SOURCE[0]}")/lib/prologue.sh"
 /usr/bin/python3 -c 'import OpenImageIO, numpy' || die "needs python3-openimageio and python3-numpy (scripts/install_deps.sh)"
 
 "$phyir" --log-level warn scenes generate --out rooms --count 2 --seed 5 --preset mini
