@@ -70,6 +70,12 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--probe-offset", job.probe.offset, "probe origin's distance off the surface along its normal, metres")->capture_default_str();
   cmd->add_option("--probe-cache-cell", job.probe.cache_cell, "cache mode: cell size, metres")->capture_default_str();
   cmd->add_option("--probe-cache-spp", job.probe.cache_spp, "cache mode: irradiance samples per cell")->capture_default_str();
+  cmd->add_option("--probe-cache-direct-cells", job.probe.cache_direct_cells,
+                  "cache mode: cache direct light too in cells at least this many cell sizes from every emitter (0: never)")
+      ->capture_default_str();
+  cmd->add_option("--probe-spread-threshold", job.probe.spread_threshold,
+                  "cache mode: a texel whose first samples spread over more than this times their mean gets hard-texel sampling")
+      ->capture_default_str();
   cmd->callback([flags] {
     render::RenderJob& job = flags->job;
     job.scene_path = flags->scene;

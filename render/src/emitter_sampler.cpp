@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 
 #include "phyir/core/safe_math.h"
@@ -183,6 +184,15 @@ float EmitterSampler::cluster_weights(const glm::vec3& reference, float* weights
     total += weights[i];
   }
   return total;
+}
+
+float EmitterSampler::distance_bound(const glm::vec3& point) const {
+  float nearest2 = std::numeric_limits<float>::infinity();
+  for (const Cluster& c : clusters_) {
+    const glm::vec3 d = point - glm::clamp(point, c.bounds_min, c.bounds_max);
+    nearest2 = std::min(nearest2, glm::dot(d, d));
+  }
+  return std::sqrt(nearest2);
 }
 
 float EmitterSampler::selection_pmf(const glm::vec3& reference, int index) const {

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <chrono>
+#include <limits>
 #include <memory>
 
 #include "phyir/core/error.h"
@@ -58,6 +59,10 @@ enum Purpose : uint64_t {
 // 1/8 of the samples (the floor, so no sample is weighted by more than 8), a glossy or
 // metal lobe in every sample.
 constexpr float kSpecularKeepScale = 4.0f;
+constexpr float kMinSpecularKeep = 0.125f;
+
+// See dark_floor in render_probes_at.
+constexpr float kDarkFloorFraction = 0.1f;
 
 Rng shading_rng(uint64_t key, int depth, Purpose purpose) {
   return Rng(mix64(key ^ mix64(uint64_t(purpose) * 64 + uint64_t(depth))), purpose);
@@ -153,14 +158,15 @@ class TexelEstimator {
     if (!(wo.z >= kMinCosine)) return glm::vec3(0.0f);
     const BrdfParams p = clamped(si.brdf);
     const glm::vec3& ng = si.geometric_normal;
-    glm::vec3 L(0.0f);
     const glm::vec3 fd = Fd_Lambert(p.base_color, p.metalness);
-    if (max_component(fd) > 0.0f)
-      L += fd * cache_->irradiance(cache_point(si, frame.n), derived_key(key, depth, kLookup), c);
+    const CachedIrradiance E = cache_->lookup(cache_point(si, frame.n), derived_key(key, depth, kLookup), c);
+    if (E.has_direct && !is_mirror(p.roughness)) return reflected_split(si, frame, wo, p, fd, E, depth, key, c);
+    glm::vec3 L(0.0f);
+    if (max_component(fd) > 0.0f) L += fd * E.indirect;
     const bool emitters = !scene_.emitters().empty();
 
     // Next-event estimation on the emitters, full BRDF.
-    if (emitters) L += direct_light(si, frame, wo, p, depth, key, /*mis=*/true, c);
+    if (emitters) L += direct_light(si, frame, wo, p, Lobes::kAll, depth, key, /*mis=*/true, c);
 
     // One direction from the BRDF.
     Rng rng = shading_rng(key, depth, kBrdfSample);
@@ -186,25 +192,75 @@ class TexelEstimator {
     const int next = depth + 1;
     if (next >= settings_.path.max_bounces || !(max_component(weight_specular) > 0.0f)) return L;
     const float share = safe_div(luminance(weight_specular), luminance(bs.weight));
-    const float keep = std::clamp(kSpecularKeepScale * share, 0.125f, 1.0f);
+    const float keep = std::clamp(kSpecularKeepScale * share, kMinSpecularKeep, 1.0f);
     if (keep < 1.0f && !(shading_rng(key, depth, kSpecularRoulette).next_float() < keep)) return L;
-    const glm::vec3 Le = y.emits ? y.emission : glm::vec3(0.0f);
-    glm::vec3 Ly;
-    if (y.transmission > 0.0f) {
-      // Glass: the path tracer from here (it re-adds y's emission at full weight: removed).
-      Ly = glm::max(tracers_[std::min(next, kMaxSpecularDepth)]->radiance(ray, derived_key(key, depth, kGlassContinuation), c) - Le,
-                    glm::vec3(0.0f));
-    } else if (y.brdf.roughness < settings_.glossy_roughness && next < kMaxSpecularDepth) {
-      Ly = reflected(y, -wi_world, next, key, c);
-    } else {
-      Ly = terminal(y, -wi_world, next, key, c);
-    }
-    return L + weight_specular * Ly / keep;
+    return L + weight_specular * reflected_at(ray, y, next, depth, key, c) / keep;
   }
 
-  // Where a specular chain ends in the cache: direct light by next-event estimation (light
-  // sampling alone, full BRDF), indirect as (f_d + specular albedo / pi) E, i.e. the
-  // specular lobe treated as if the indirect light arriving were uniform.
+  // Light that y, the hit of a specular ray from a scattering event at depth - 1, reflects
+  // back along it (its emission excluded): glass is path traced, a glossy y followed, any
+  // other y ends the chain in the cache.
+  glm::vec3 reflected_at(const Ray& ray, const SurfaceInteraction& y, int next, int depth, uint64_t key,
+                         PathCounters* c) const {
+    const glm::vec3 Le = y.emits ? y.emission : glm::vec3(0.0f);
+    if (y.transmission > 0.0f) {
+      // Glass: the path tracer from here (it re-adds y's emission at full weight: removed).
+      return glm::max(tracers_[std::min(next, kMaxSpecularDepth)]->radiance(ray, derived_key(key, depth, kGlassContinuation), c) - Le,
+                      glm::vec3(0.0f));
+    }
+    if (y.brdf.roughness < settings_.glossy_roughness && next < kMaxSpecularDepth) return reflected(y, -ray.direction, next, key, c);
+    return terminal(y, -ray.direction, next, key, c);
+  }
+
+  // reflected() where the cache holds the direct light too: the diffuse part of all the
+  // light is f_d E, with no ray; the specular part is estimated apart: next-event
+  // estimation through f_s in every sample (one shadow ray: it finds the lights'
+  // highlights, the largest specular values, so they must never carry a roulette weight),
+  // and one GGX-sampled ray with its continuation taken with probability `keep`, its
+  // share of the surface's albedo scaled (a wall's ~5% in a fraction of the samples). Both
+  // strategies stay unbiased under the power heuristic with the GGX ray's effective
+  // density keep x pdf.
+  glm::vec3 reflected_split(const SurfaceInteraction& si, const Frame& frame, const glm::vec3& wo, const BrdfParams& p,
+                            const glm::vec3& fd, const CachedIrradiance& E, int depth, uint64_t key,
+                            PathCounters* c) const {
+    glm::vec3 L = fd * (E.indirect + E.direct);
+    const glm::vec2 terms = specular_albedo_terms(wo.z, p.roughness);
+    const glm::vec3 F0 = specular_F0(p.base_color, p.metalness);
+    const float albedo_s = luminance(F0 * terms.x + (glm::vec3(1.0f) - F0) * terms.y);
+    const float share = safe_div(albedo_s, albedo_s + kPi * luminance(fd));
+    if (!(share > 0.0f)) return L;
+    const float keep = std::clamp(kSpecularKeepScale * share, kMinSpecularKeep, 1.0f);
+    const bool emitters = !scene_.emitters().empty();
+    if (emitters) L += direct_light(si, frame, wo, p, Lobes::kSpecular, depth, key, /*mis=*/true, c, keep);
+    if (keep < 1.0f && !(shading_rng(key, depth, kSpecularRoulette).next_float() < keep)) return L;
+
+    const float alpha = p.roughness * p.roughness;
+    Rng rng = shading_rng(key, depth, kBrdfSample);
+    const glm::vec3 h = sample_ggx_half_vector(rng.next_2d(), alpha);
+    const glm::vec3 wi = safe_normalize(2.0f * glm::dot(wo, h) * h - wo, glm::vec3(0, 0, -1));
+    const float pdf = keep * specular_pdf(wo, wi, alpha);
+    const glm::vec3 wi_world = frame.to_world(wi);
+    const glm::vec3& ng = si.geometric_normal;
+    if (!(pdf > 0.0f) || !(glm::dot(wi_world, ng) > 0.0f)) return L;
+    const glm::vec3 weight = specular_eval(p, wo, wi) * safe_div(wi.z, pdf);
+    if (!(max_component(weight) > 0.0f)) return L;
+    const Ray ray{spawn_origin(si.position, ng, wi_world), wi_world};
+    SurfaceInteraction y;
+    ++c->rays;
+    if (!scene_.trace(ray, &y)) return L + weight * miss(wi_world);
+    if (y.emits) {
+      const float w = emitters ? power_heuristic(pdf, scene_.emitters().pdf(si.position, y.mesh, y.triangle, y.position)) : 1.0f;
+      L += weight * y.emission * w;
+    }
+    const int next = depth + 1;
+    if (next < settings_.path.max_bounces) L += weight * reflected_at(ray, y, next, depth, key, c);
+    return L;
+  }
+
+  // Where a specular chain ends in the cache: (f_d + specular albedo / pi) E, i.e. the
+  // specular lobe treated as if the light arriving were uniform: all of E where the cache
+  // holds the direct light, else its indirect part plus next-event estimation (light
+  // sampling alone, full BRDF).
   glm::vec3 terminal(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key,
                      PathCounters* c) const {
     const Frame frame = shading_frame(si, wo_world);
@@ -212,20 +268,27 @@ class TexelEstimator {
     if (!(wo.z >= kMinCosine)) return glm::vec3(0.0f);
     const BrdfParams p = clamped(si.brdf);
     glm::vec3 L(0.0f);
-    // Light sampling alone: no BRDF-sampled ray at a chain's end competes for the emitters.
-    if (!scene_.emitters().empty()) L += direct_light(si, frame, wo, p, depth, key, /*mis=*/false, c);
     const glm::vec2 terms = specular_albedo_terms(wo.z, p.roughness);
     const glm::vec3 F0 = specular_F0(p.base_color, p.metalness);
     const glm::vec3 albedo = F0 * terms.x + (glm::vec3(1.0f) - F0) * terms.y;
-    const glm::vec3 E = cache_->irradiance(cache_point(si, frame.n), derived_key(key, depth, kLookup), c);
-    return L + (Fd_Lambert(p.base_color, p.metalness) + albedo * kInvPi) * E;
+    const glm::vec3 lobe = Fd_Lambert(p.base_color, p.metalness) + albedo * kInvPi;
+    const CachedIrradiance E = cache_->lookup(cache_point(si, frame.n), derived_key(key, depth, kLookup), c);
+    if (E.has_direct) return lobe * (E.indirect + E.direct);  // the whole lobe as if lit uniformly
+    // Light sampling alone: no BRDF-sampled ray at a chain's end competes for the emitters.
+    if (!scene_.emitters().empty()) L += direct_light(si, frame, wo, p, Lobes::kAll, depth, key, /*mis=*/false, c);
+    return L + lobe * E.indirect;
   }
 
+  // Which part of the BRDF a next-event estimate goes through.
+  enum class Lobes { kAll, kSpecular };
+
   // One next-event estimate on the emitters of the light reflected towards wo through the
-  // full BRDF; `mis`: weighted by the power heuristic against the BRDF-sampled ray of the
-  // same event.
+  // BRDF (or its specular lobe); `mis`: weighted by the power heuristic against the
+  // BRDF-sampled (or GGX-sampled) ray of the same event, which is traced with probability
+  // `brdf_strategy_probability` (its effective density is that times its pdf).
   glm::vec3 direct_light(const SurfaceInteraction& si, const Frame& frame, const glm::vec3& wo, const BrdfParams& p,
-                         int depth, uint64_t key, bool mis, PathCounters* c) const {
+                         Lobes lobes, int depth, uint64_t key, bool mis, PathCounters* c,
+                         float brdf_strategy_probability = 1.0f) const {
     Rng rng = shading_rng(key, depth, kLightSample);
     const float u_select = rng.next_float();
     const glm::vec2 u_point = rng.next_2d();
@@ -234,14 +297,17 @@ class TexelEstimator {
         !(max_component(ls.radiance) > 0.0f))
       return glm::vec3(0.0f);
     const glm::vec3 wi = frame.to_local(ls.wi);
-    const glm::vec3 f = brdf_eval(p, wo, wi);
+    const bool all = lobes == Lobes::kAll;
+    const glm::vec3 f = all ? brdf_eval(p, wo, wi) : specular_eval(p, wo, wi);
     const glm::vec3& ng = si.geometric_normal;
     if (!(wi.z > 0.0f) || !(glm::dot(ls.wi, ng) > 0.0f) || !(max_component(f) > 0.0f)) return glm::vec3(0.0f);
     Ray shadow{spawn_origin(si.position, ng, ls.wi), ls.wi};
     shadow.tmax = ls.distance * (1.0f - kShadowRayShortening);
     ++c->rays;
     if (scene_.accelerator().occluded(shadow)) return glm::vec3(0.0f);
-    const float w = mis ? power_heuristic(ls.pdf, brdf_pdf(p, wo, wi)) : 1.0f;
+    const float pdf_brdf =
+        brdf_strategy_probability * (all ? brdf_pdf(p, wo, wi) : specular_pdf(wo, wi, p.roughness * p.roughness));
+    const float w = mis ? power_heuristic(ls.pdf, pdf_brdf) : 1.0f;
     return f * ls.radiance * (wi.z * w / ls.pdf);
   }
 
@@ -407,7 +473,11 @@ void ProbeSettings::validate() const {
   if (!(offset >= 1e-4f && offset <= 1.0f)) fail("--probe-offset {} must be between 1e-4 and 1 metre", offset);
   if (!(cache_cell >= 1e-3f && cache_cell <= 10.0f)) fail("--probe-cache-cell {} must be between 1e-3 and 10 metres", cache_cell);
   if (cache_spp <= 0 || cache_spp > 1 << 20) fail("--probe-cache-spp {} must be between 1 and 2^20", cache_spp);
+  if (!(cache_direct_cells >= 0.0f && cache_direct_cells <= 1e6f))
+    fail("--probe-cache-direct-cells {} must be between 0 (never) and 1e6 cells", cache_direct_cells);
   if (hard_spp_factor < 1 || hard_spp_factor > 1024) fail("hard-texel spp factor {} must be between 1 and 1024", hard_spp_factor);
+  if (!(spread_threshold > 0.0f && spread_threshold <= 1e6f))
+    fail("--probe-spread-threshold {} must be above 0 (and at most 1e6, i.e. never)", spread_threshold);
 }
 
 nlohmann::json ProbeSettings::to_json() const {
@@ -422,8 +492,10 @@ nlohmann::json ProbeSettings::to_json() const {
   if (mode == ProbeMode::kCache) {
     j["cache_cell_m"] = cache_cell;
     j["cache_spp"] = cache_spp;
+    j["cache_direct_cells"] = cache_direct_cells;
     j["hard_spp_factor"] = hard_spp_factor;
     j["glossy_roughness"] = glossy_roughness;
+    j["spread_threshold"] = spread_threshold;
   }
   return j;
 }
@@ -436,7 +508,7 @@ nlohmann::json ProbeStats::to_json() const {
           {"counts", {{"probes", probes}, {"valid", valid}, {"invalid", probes - valid}, {"nothing", nothing},
                       {"emitter", emitter}, {"transparent", transparent}, {"computed", computed_probes}}},
           {"supersampled_texels", supersampled_texels},
-          {"cache", {{"cells", cache_cells}, {"fill_samples", cache_fill_samples}, {"fallback_lookups", cache_fallbacks}}},
+          {"cache", {{"cells", cache_cells}, {"cells_with_direct_light", cache_direct_cells}, {"fill_samples", cache_fill_samples}, {"fallback_lookups", cache_fallbacks}}},
           {"nonfinite_samples_caught", counters.nonfinite_samples}};
 }
 
@@ -515,6 +587,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
     RadianceCacheSettings cs;
     cs.cell_size = settings.cache_cell;
     cs.samples_per_cell = settings.cache_spp;
+    cs.direct_distance_cells = settings.cache_direct_cells;
     cs.seed = mix64(settings.seed ^ 0x6361636865ull);  // "cache"
     cs.progress = settings.progress;
     cache = std::make_unique<RadianceCache>(scene, effects, settings.path, cs);
@@ -543,11 +616,16 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
     cache->build(list, &fill_counters);
     stats.counters += fill_counters;
     stats.cache_cells = cache->cell_count();
+    stats.cache_direct_cells = cache->direct_cell_count();
     stats.cache_fill_samples = cache->fill_samples();
     stats.cache_seconds = seconds_since(cache_start);
   }
 
-  // The probes.
+  // The probes. A texel's spread is judged against its mean plus a floor, so that the
+  // noise of nearly black texels does not flag them: kDarkFloorFraction of the mean
+  // radiance a diffuse white surface would reflect under the cache's mean irradiance (a
+  // scale of the view's brightness that exists before any probe is shaded).
+  const float dark_floor = cache ? kDarkFloorFraction * cache->mean_irradiance_luminance() * kInvPi : 0.0f;
   const auto shade_start = Clock::now();
   const TexelEstimator estimator(scene, effects, settings, cache.get());
   const EmitterFootprints footprints(scene.scene());
@@ -571,10 +649,12 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
             const int row = t / layout.res_width, col = t % layout.res_width;
             // `count` fresh samples from sample id `first` on, stratified over the texel.
             using Part = TexelEstimator::Part;
-            auto estimate = [&](int first, int count, Part part, bool* saw_hard) {
+            // `spread` (if given) receives the range of the samples' luminances.
+            auto estimate = [&](int first, int count, Part part, bool* saw_hard, float* spread = nullptr) {
               Rng permutation(PathTracer::path_key(probe_seed, texel_id(p, t), kStrataStream + uint64_t(first)), 0);
               stratified_square(count, permutation, &strata);
               glm::dvec3 sum(0.0);
+              float lo = std::numeric_limits<float>::infinity(), hi = 0.0f;
               for (int s = 0; s < count; ++s) {
                 const uint64_t key = PathTracer::path_key(probe_seed, texel_id(p, t), uint64_t(first + s));
                 const Ray ray{origin, probe_texel_direction(row, col, layout.res_height, layout.res_width, strata[size_t(s)])};
@@ -584,19 +664,28 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
                   L = glm::vec3(0.0f);
                 }
                 sum += glm::dvec3(L);
+                lo = std::min(lo, luminance(L));
+                hi = std::max(hi, luminance(L));
               }
+              if (spread) *spread = count > 0 ? hi - lo : 0.0f;
               return glm::vec3(sum / double(count));
             };
-            // Hard texels (the first samples met a light, glass or a glossy surface) are
-            // estimated again from hard_spp_factor x spp fresh samples. Texels a light may
-            // cover (EmitterFootprints) are hard from the start, and the emission seen
-            // first there is estimated apart, from kEmissionSppFactor x spp more directions
-            // (one ray each): partial coverage of a light is the largest error otherwise.
-            // No decision looks at the samples it selects, so none biases the value.
+            // Hard texels (the first samples met a light, glass or a glossy surface, or
+            // their values spread over more than spread_threshold x (their mean + a floor):
+            // the texel straddles an edge or a highlight) are estimated again from
+            // hard_spp_factor x spp fresh samples. Texels a light may cover
+            // (EmitterFootprints) are hard from the start, and the emission seen first
+            // there is estimated apart, from kEmissionSppFactor x spp more directions (one
+            // ray each): partial coverage of a light is the largest error otherwise. No
+            // decision looks at the samples it selects, so none biases the value.
             const int spp = settings.spp, hard_spp = spp * settings.hard_spp_factor;
             bool hard = lit[size_t(t)] != 0;
             glm::vec3 value(0.0f);
-            if (!hard) value = estimate(0, spp, Part::kAll, &hard);
+            if (!hard) {
+              float spread = 0.0f;
+              value = estimate(0, spp, Part::kAll, &hard, &spread);
+              if (spp > 1 && spread > settings.spread_threshold * (luminance(value) + dark_floor)) hard = true;
+            }
             if (hard && adaptive) {
               bool unused = false;
               if (lit[size_t(t)]) {

@@ -142,18 +142,6 @@ TEST(GlassFurnace, LosslessGlassSphereReturnsTheEnclosureRadiance) {
   }
 }
 
-// Lambert's formula: irradiance at the origin (normal n) from a polygon of radiance L.
-double polygon_irradiance(const std::vector<glm::dvec3>& vertices, const glm::dvec3& n, double L) {
-  double sum = 0.0;
-  for (size_t i = 0; i < vertices.size(); ++i) {
-    const glm::dvec3 a = glm::normalize(vertices[i]);
-    const glm::dvec3 b = glm::normalize(vertices[(i + 1) % vertices.size()]);
-    const double angle = std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0));
-    sum += angle * glm::dot(glm::normalize(glm::cross(a, b)), n);
-  }
-  return 0.5 * L * std::abs(sum);
-}
-
 TEST(DirectLighting, DiffusePlaneUnderAreaLightMatchesQuadrature) {
   const glm::vec3 Le(5.0f);
   const BrdfParams floor_brdf{glm::vec3(0.6f), 0.7f, 0.0f};
@@ -193,7 +181,7 @@ TEST(DirectLighting, DiffusePlaneUnderAreaLightMatchesQuadrature) {
   // The quadrature itself against the closed form.
   std::vector<glm::dvec3> poly;
   for (const glm::vec3& v : {corner, corner + eu, corner + eu + ev, corner + ev}) poly.push_back(glm::dvec3(v - shading_point));
-  EXPECT_NEAR(cos_only * Le.x, polygon_irradiance(poly, glm::dvec3(0, 1, 0), Le.x), 1e-3 * cos_only * Le.x);
+  EXPECT_NEAR(cos_only * Le.x, test::polygon_irradiance(poly, glm::dvec3(0, 1, 0), Le.x), 1e-3 * cos_only * Le.x);
 
   const Estimate e = estimate(tracer, ray, 20000, 11);
   EXPECT_NEAR(e.mean.x, expected.x, 5 * e.stderr_luminance + 0.005 * expected.x);

@@ -338,5 +338,50 @@ TEST(ProbeRobustness, NoTexelIsNegativeOrNonFiniteWithMetalMirrorAndGlass) {
   }
 }
 
+// The cache mode's two regimes against the unbiased path mode, in a room of glossy
+// dielectric walls (roughness 0.5: the specular lobe is a sizeable share) with a small
+// hanging light: a probe between the light and a pillar's top 20 cm under it sees that top
+// within the cache's near-light distance (direct light sampled per direction, several
+// light samples per estimate, multi-sample MIS), a probe near the floor far from it sees cells
+// whose direct light is cached (the specular lobe estimated apart, its GGX ray
+// Russian-rouletted, MIS with the rouletted density). Each probe's mean and its
+// cosine-weighted upper-hemisphere sum agree within noise plus the cache's few-percent
+// interpolation bias.
+TEST(ProbeCache, NearAndFarFromALightMatchesThePathMode) {
+  scenes::Scene scene =
+      test::make_box_room(glm::vec3(-2.0f, 0.0f, -1.5f), glm::vec3(2.0f, 3.0f, 1.5f), test::make_material(glm::vec3(0.7f), 0.5f, 0.0f));
+  const int light = test::add_material(scene, test::make_emitter(glm::vec3(20.0f)));
+  test::add_quad(scene, glm::vec3(-0.2f, 2.6f, -0.2f), glm::vec3(0.4f, 0, 0), glm::vec3(0, 0, 0.4f), light, "light");
+  // A pillar whose top is 20 cm under the light: cells there hold no direct light.
+  test::add_box(scene, glm::vec3(-0.4f, 0.0f, -0.4f), glm::vec3(0.4f, 2.4f, 0.4f),
+                test::add_material(scene, test::make_material(glm::vec3(0.6f), 0.4f, 0.0f)));
+  const struct {
+    const char* name;
+    glm::vec3 origin;
+  } probes[] = {{"between the light and the pillar", glm::vec3(0.1f, 2.45f, 0.05f)},
+                {"far from the light", glm::vec3(-1.5f, 0.3f, 1.0f)}};
+  for (const auto& probe : probes) {
+    ProbeSettings path = settings_for(ProbeMode::kPath, 512, 16, 32, 4);
+    ProbeSettings cache = settings_for(ProbeMode::kCache, 64, 16, 32, 4);
+    cache.cache_spp = 1024;
+    const Image a = render_single(scene, probe.origin, path), b = render_single(scene, probe.origin, cache);
+    double mean_a = 0.0, mean_b = 0.0, up_a = 0.0, up_b = 0.0;
+    for (int r = 0; r < 16; ++r)
+      for (int c = 0; c < 32; ++c) {
+        const glm::vec3 d = equirect_direction(glm::vec2((c + 0.5f) / 32.0f, (r + 0.5f) / 16.0f));
+        const double w = equirect_texel_solid_angle(r, 32, 16) * std::max(d.y, 0.0f);
+        for (int ch = 0; ch < 3; ++ch) {
+          mean_a += a.at(c, r, ch), mean_b += b.at(c, r, ch);
+          up_a += w * a.at(c, r, ch), up_b += w * b.at(c, r, ch);
+        }
+      }
+    std::printf("[ %s ] mean path %.4f cache %.4f (%+.2f%%), upward irradiance path %.4f cache %.4f (%+.2f%%)\n",
+                probe.name, mean_a / 1536, mean_b / 1536, 100 * (mean_b / mean_a - 1), up_a / 3, up_b / 3,
+                100 * (up_b / up_a - 1));
+    EXPECT_NEAR(mean_b / mean_a, 1.0, 0.03) << probe.name;
+    EXPECT_NEAR(up_b / up_a, 1.0, 0.03) << probe.name;
+  }
+}
+
 }  // namespace
 }  // namespace phyir::render

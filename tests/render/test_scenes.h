@@ -5,6 +5,7 @@
 // Every add_* function appends ONE mesh and returns its index (= its Embree geometry id).
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -170,6 +171,19 @@ inline int add_uv_sphere(scenes::Scene& scene, const glm::vec3& centre, float ra
     }
   }
   return add_mesh(scene, std::move(mesh));
+}
+
+// Lambert's formula: irradiance at the origin (normal n) from a polygon of radiance L
+// (vertices relative to the origin, in order round the polygon).
+inline double polygon_irradiance(const std::vector<glm::dvec3>& vertices, const glm::dvec3& n, double L) {
+  double sum = 0.0;
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    const glm::dvec3 a = glm::normalize(vertices[i]);
+    const glm::dvec3 b = glm::normalize(vertices[(i + 1) % vertices.size()]);
+    const double angle = std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0));
+    sum += angle * glm::dot(glm::normalize(glm::cross(a, b)), n);
+  }
+  return 0.5 * L * std::abs(sum);
 }
 
 }  // namespace phyir::test

@@ -50,6 +50,11 @@ class EmitterSampler {
   size_t cluster_count() const { return clusters_.size(); }
   float total_power() const { return distribution_.total(); }
 
+  // A lower bound of the distance from `point` to every emitter that is ever sampled (the
+  // nearest cluster's bounding box); +infinity when there are none. Cost: one box test per
+  // cluster.
+  float distance_bound(const glm::vec3& point) const;
+
   bool sample(const glm::vec3& reference, float u_select, const glm::vec2& u_point,
               EmitterSample* out) const;
 

@@ -8,10 +8,13 @@
 //  - ProbeMode::kPath: the path tracer, exactly as a camera ray of color.exr (unbiased; the
 //    reference the other mode is measured against);
 //  - ProbeMode::kCache: the direction's first hit x is found by one ray; its emission is
-//    added exactly; direct light at x is sampled as the integrator does (next-event
-//    estimation plus one BRDF-sampled ray, power-heuristic MIS); indirect diffuse light is
-//    f_d(x) E(x) with E from the view's RadianceCache (indirect irradiance only); indirect
-//    specular light comes through the BRDF-sampled ray: the specular part of its weight
+//    added exactly. Where the view's RadianceCache holds x's direct irradiance too (far
+//    from the emitters), the diffuse part of all light at x is f_d(x) E(x) and the specular
+//    part is sampled apart (next-event estimation and a GGX-sampled ray through f_s,
+//    Russian-rouletted by its share of the albedo). Elsewhere direct light at x is sampled
+//    as the integrator does (next-event estimation plus one BRDF-sampled ray,
+//    power-heuristic MIS); indirect diffuse light is f_d(x) E(x) with E's indirect part;
+//    indirect specular light comes through the BRDF-sampled ray: the specular part of its weight
 //    times the light its hit y reflects, followed recursively for glossy y (roughness below
 //    glossy_roughness, up to kMaxSpecularDepth) and otherwise next-event estimation at y
 //    plus (f_d(y) + specular albedo(y)/pi) E(y); on rough dielectrics that evaluation is
@@ -53,7 +56,11 @@ struct ProbeSettings {
   // kCache only.
   float cache_cell = 0.05f;       // metres
   int cache_spp = 256;            // irradiance estimates per cache cell
-  int hard_spp_factor = 8;        // hard texels (lights, glass, glossy) get this many times spp
+  float cache_direct_cells = 6.0f;  // direct light cached this many cells from emitters (0: never)
+  int hard_spp_factor = 8;        // hard texels (lights, glass, glossy, edges) get this many times spp
+  // A texel whose first spp samples' luminances spread over more than this times their
+  // mean (plus a small floor) is hard: an edge, a highlight or a shadow boundary in it.
+  float spread_threshold = 0.5f;
   float glossy_roughness = 0.3f;  // secondary hits smoother than this are traced on
   bool progress = true;
 
@@ -71,7 +78,7 @@ struct ProbeStats {
   uint64_t probes = 0, valid = 0, nothing = 0, emitter = 0, transparent = 0;
   uint64_t computed_probes = 0;   // probes actually rendered (all but kNothing, or a subset)
   uint64_t supersampled_texels = 0;
-  uint64_t cache_cells = 0, cache_fill_samples = 0, cache_fallbacks = 0;
+  uint64_t cache_cells = 0, cache_direct_cells = 0, cache_fill_samples = 0, cache_fallbacks = 0;
   nlohmann::json to_json() const;
 };
 
