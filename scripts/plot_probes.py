@@ -44,6 +44,11 @@ def main():
         ax.plot(x, y, marker=markers.get(mode, "x"), linestyle="-" if mode == "cache" else "--", label=label)
         for r, xi, yi in zip(points, x, y):
             tag = f"{r['spp']} spp" + (f"/{r['cache_spp']}" if mode == "cache" else "")
+            # Settings past MODE:SPP:CACHE_SPP (cell, seed, direct cells, spread) are named
+            # as given, so that two runs of one spp stay apart.
+            extra = r["config"].split(":")[3:]
+            if extra:
+                tag += " (" + ":".join(extra) + ")"
             ax.annotate(tag, (xi, yi), textcoords="offset points", xytext=(4, 3), fontsize=7)
     noise = max(float(r["reference_noise"]) for r in rows)
     ax.axhline(0.05, color="tab:red", linewidth=0.8, linestyle=":", label="target: 5% relative RMSE")
@@ -55,7 +60,7 @@ def main():
     ax.set_ylabel("relative RMSE vs converged reference (valid probes)")
     ax.set_title("Per-pixel light probes: error versus time (" + ", ".join(scenes) + ")")
     ax.grid(True, which="both", linewidth=0.3)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="lower left")
     fig.tight_layout()
     fig.savefig(sys.argv[2], dpi=130)
 

@@ -81,5 +81,11 @@ grep -q -- "--probe-grid" "$work/err.txt" || die "error does not name --probe-gr
 if "$phyir" render "$scene" --out "$work/bad" --probes --probe-mode fast 2> "$work/err.txt"; then die "--probe-mode fast accepted"; fi
 grep -q -- "--probe-mode" "$work/err.txt" || die "error does not name --probe-mode"
 if "$phyir" render "$scene" --out "$work/bad" --probes --probe-spp 0 2> "$work/err.txt"; then die "--probe-spp 0 accepted"; fi
+for bad in "--probe-spread-threshold 0" "--probe-cache-direct-cells -1"; do
+  flag=${bad%% *}
+  # shellcheck disable=SC2086
+  if "$phyir" render "$scene" --out "$work/bad" --probes $bad 2> "$work/err.txt"; then die "$bad accepted"; fi
+  grep -q -- "$flag" "$work/err.txt" || die "error does not name $flag: $(cat "$work/err.txt")"
+done
 [ ! -e "$work/bad/render.json" ] || die "render.json written for a failed render"
 echo "render_probes_test: ok"
