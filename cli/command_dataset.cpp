@@ -34,7 +34,7 @@ struct SettingsFlags {
   bool probes = false, no_probes = false;
   std::string probe_grid, probe_res, probe_mode;
   int probe_spp = 0, probe_cache_spp = 0;
-  float probe_offset = 0, probe_cache_cell = 0;
+  float probe_offset = 0, probe_cache_cell = 0, probe_cache_direct_cells = 0, probe_spread_threshold = 0;
   std::string exposure = "auto";
   double exposure_percentile = 0, exposure_target = 0;
   float exposure_jitter = 0, preview_exposure = 0;
@@ -95,6 +95,10 @@ void add_settings_options(CLI::App* cmd, SettingsFlags& f) {
   opt(cmd->add_option("--probe-offset", f.probe_offset, "probe origin's distance off the surface, metres [0.01]"));
   opt(cmd->add_option("--probe-cache-cell", f.probe_cache_cell, "cache mode: cell size, metres [0.05]"));
   opt(cmd->add_option("--probe-cache-spp", f.probe_cache_spp, "cache mode: irradiance samples per cell [preset]"));
+  opt(cmd->add_option("--probe-cache-direct-cells", f.probe_cache_direct_cells,
+                      "cache mode: cache direct light this many cells from every emitter (0: never) [6]"));
+  opt(cmd->add_option("--probe-spread-threshold", f.probe_spread_threshold,
+                      "cache mode: texels whose first samples spread over more than this times their mean get 8x the samples [0.5]"));
   opt(cmd->add_option("--exposure", f.exposure,
                       "input.png exposure: 'auto' (the 95th percentile of color.exr maps to --exposure-target) or "
                       "stops")
@@ -129,6 +133,8 @@ dataset::DatasetSettings resolve(const SettingsFlags& f) {
   if (f.given("--probe-offset")) s.probe.offset = f.probe_offset;
   if (f.given("--probe-cache-cell")) s.probe.cache_cell = f.probe_cache_cell;
   if (f.given("--probe-cache-spp")) s.probe.cache_spp = f.probe_cache_spp;
+  if (f.given("--probe-cache-direct-cells")) s.probe.cache_direct_cells = f.probe_cache_direct_cells;
+  if (f.given("--probe-spread-threshold")) s.probe.spread_threshold = f.probe_spread_threshold;
   if (f.exposure == "auto") {
     s.input.auto_exposure = true;
   } else {
