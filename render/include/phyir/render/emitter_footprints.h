@@ -1,0 +1,39 @@
+#pragma once
+// The emissive triangles of a scene, to find the texels of a light probe in which a light
+// can appear before any sample is taken: those texels are the ones whose partial coverage
+// of a very bright surface dominates a probe's error, and a few stratified samples can miss
+// a sliver of light entirely (a ceiling panel seen edge-on from a probe on the ceiling).
+// Used by the probe renderer's cache mode (probe_renderer.h, docs/probes.md).
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+#include "phyir/scenes/scene.h"
+
+namespace phyir::render {
+
+class EmitterFootprints {
+ public:
+  explicit EmitterFootprints(const scenes::Scene& scene);
+
+  bool empty() const { return triangles_.empty(); }
+
+  // Sets flags[row * w + col] for every texel of an h x w probe at `origin` that a
+  // front-facing emissive triangle may cover, occlusion ignored: the texel box of points
+  // sampled densely along its edges, grown by one texel, or the whole cap when the
+  // triangle surrounds a pole.
+  void mark(const glm::vec3& origin, int h, int w, std::vector<uint8_t>* flags) const;
+
+ private:
+  struct Triangle {
+    glm::vec3 p[3];
+    glm::vec3 normal;
+    bool two_sided;
+  };
+  // Whether the ray from `o` along `d` crosses the triangle (Moller-Trumbore).
+  static bool surrounds(const Triangle& t, const glm::vec3& o, const glm::vec3& d);
+  std::vector<Triangle> triangles_;
+};
+
+}  // namespace phyir::render

@@ -1,0 +1,78 @@
+#include "phyir/render/emitter_footprints.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "phyir/core/safe_math.h"
+#include "phyir/render/equirect.h"
+
+namespace phyir::render {
+
+EmitterFootprints::EmitterFootprints(const scenes::Scene& scene) {
+  for (const scenes::Mesh& mesh : scene.meshes) {
+    if (mesh.material < 0 || size_t(mesh.material) >= scene.materials.size()) continue;
+    const scenes::Material& material = scene.materials[size_t(mesh.material)];
+    if (!material.is_emissive()) continue;
+    for (const glm::uvec3& t : mesh.triangles) {
+      if (t.x >= mesh.positions.size() || t.y >= mesh.positions.size() || t.z >= mesh.positions.size()) continue;
+      Triangle tri{{mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]}, glm::vec3(0.0f), material.double_sided};
+      const glm::vec3 n = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
+      if (!(glm::dot(n, n) > 0.0f) || !is_finite(n)) continue;
+      tri.normal = glm::normalize(n);
+      triangles_.push_back(tri);
+    }
+  }
+}
+
+void EmitterFootprints::mark(const glm::vec3& origin, int h, int w, std::vector<uint8_t>* flags) const {
+  constexpr int kEdgeSamples = 16;
+  std::vector<float> us;
+  for (const Triangle& tri : triangles_) {
+    if (!tri.two_sided && !(glm::dot(tri.normal, origin - tri.p[0]) > 0.0f)) continue;  // its back
+    us.clear();
+    float vmin = 1.0f, vmax = 0.0f;
+    for (int e = 0; e < 3; ++e)
+      for (int k = 0; k < kEdgeSamples; ++k) {
+        const glm::vec3 q = glm::mix(tri.p[e], tri.p[(e + 1) % 3], float(k) / kEdgeSamples);
+        const glm::vec3 d = q - origin;
+        const float len = glm::length(d);
+        if (!(len > 0.0f)) continue;
+        const glm::vec2 uv = equirect_uv(d / len);
+        us.push_back(uv.x);
+        vmin = std::min(vmin, uv.y);
+        vmax = std::max(vmax, uv.y);
+      }
+    if (us.empty()) continue;
+    const bool up = surrounds(tri, origin, glm::vec3(0, 1, 0)), down = surrounds(tri, origin, glm::vec3(0, -1, 0));
+    const int r0 = up ? 0 : std::max(int(vmin * h) - 1, 0);
+    const int r1 = down ? h - 1 : std::min(int(vmax * h) + 1, h - 1);
+    // The columns: the circle of u minus its largest empty gap.
+    std::sort(us.begin(), us.end());
+    float gap = us.front() + 1.0f - us.back();
+    float start = us.front(), end = us.back();
+    for (size_t k = 1; k < us.size(); ++k)
+      if (us[k] - us[k - 1] > gap) gap = us[k] - us[k - 1], start = us[k], end = us[k - 1];
+    int c0 = int(std::floor(start * w)) - 1, c1 = int(std::floor(end * w)) + 1;
+    if (c1 < c0) c1 += w;
+    const bool all_columns = up || down || c1 - c0 + 1 >= w;
+    if (all_columns) c0 = 0, c1 = w - 1;
+    for (int r = r0; r <= r1; ++r)
+      for (int c = c0; c <= c1; ++c) (*flags)[size_t(r) * w + size_t(((c % w) + w) % w)] = 1;
+  }
+}
+
+bool EmitterFootprints::surrounds(const Triangle& t, const glm::vec3& o, const glm::vec3& d) {
+  const glm::vec3 e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0];
+  const glm::vec3 pv = glm::cross(d, e2);
+  const float det = glm::dot(e1, pv);
+  if (std::abs(det) < 1e-12f) return false;
+  const glm::vec3 tv = o - t.p[0];
+  const float a = glm::dot(tv, pv) / det;
+  if (a < 0.0f || a > 1.0f) return false;
+  const glm::vec3 qv = glm::cross(tv, e1);
+  const float b = glm::dot(d, qv) / det;
+  if (b < 0.0f || a + b > 1.0f) return false;
+  return glm::dot(e2, qv) / det > 0.0f;
+}
+
+}  // namespace phyir::render
