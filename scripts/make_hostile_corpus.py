@@ -200,6 +200,10 @@ add("image_bufferview_missing.gltf", textured({"bufferView": 12, "mimeType": "im
 add("image_not_an_image.gltf", textured({"uri": data_uri(b"this is not a PNG at all, just text", "image/png")}),
     "image 0: cannot decode image")
 # A "regular file" of 128 TiB (where /proc/kcore is readable; else it is not found).
+# A PNG cut inside its IDAT chunk: refused before OIIO reads it (OIIO 2.4 leaks an error
+# string when libpng reads past in-memory data; found by scripts/fuzz.sh).
+add("image_png_truncated.gltf", textured({"uri": data_uri(PNG_1x1[:45], "image/png")}),
+    "image 0: cannot decode image: truncated in chunk")
 add("image_uri_proc_kcore.gltf", textured({"uri": "/proc/kcore"}), "image 0 uri '/proc/kcore'")
 add("image_without_source.gltf", textured({"name": "nothing"}), "image 0 has neither a uri nor a bufferView")
 # A PNG whose header claims 1,000,000 x 1,000,000 pixels (the libpng maximum), then ends.

@@ -1,4 +1,5 @@
 #include "phyir/core/image_io.h"
+#include "phyir/core/png_structure.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -60,6 +61,10 @@ Image read_image_from_memory(const std::vector<unsigned char>& bytes, const std:
   // OIIO needs a format hint: sniff the magic numbers of the formats glTF allows.
   std::string ext = "png";
   if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8) ext = "jpg";
+  if (ext == "png") {
+    const std::string problem = png_structure_error(bytes.data(), bytes.size());
+    if (!problem.empty()) fail("{}: cannot decode image: {}", what, problem);
+  }
   auto in = ImageInput::open("in-memory." + ext, nullptr, &reader);
   if (!in) fail("{}: cannot decode image: {}", what, OIIO::geterror());
   return read_all(*in, what);

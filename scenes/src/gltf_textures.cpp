@@ -8,6 +8,7 @@
 
 #include "phyir/core/colour.h"
 #include "phyir/core/image_io.h"
+#include "phyir/core/png_structure.h"
 
 namespace phyir::scenes::gltf {
 
@@ -24,6 +25,8 @@ constexpr uint64_t kMaxTextureValues = uint64_t{1} << 28;
 std::array<uint64_t, 3> encoded_image_size(const std::vector<unsigned char>& bytes) {
   OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
   const bool jpeg = bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8;
+  // A PNG whose chunks run past its end never reaches OIIO (png_structure.h says why).
+  if (!jpeg && !png_structure_error(bytes.data(), bytes.size()).empty()) return {0, 0, 0};
   auto in = OIIO::ImageInput::open(jpeg ? "in-memory.jpg" : "in-memory.png", nullptr, &reader);
   if (!in) {
     OIIO::geterror();  // clear the message: read_image_from_memory produces its own

@@ -8,6 +8,7 @@
 
 #include "phyir/core/error.h"
 #include "phyir/core/image_io.h"
+#include "phyir/core/png_structure.h"
 
 namespace fs = std::filesystem;
 using phyir::Image;
@@ -101,4 +102,30 @@ TEST(ImageIo, DecodesFromMemory) {
   ASSERT_EQ(back.width, 3);
   EXPECT_FLOAT_EQ(back.at(1, 1, 0), 1.0f);
   EXPECT_FLOAT_EQ(back.at(0, 0, 0), 0.0f);
+}
+
+// A PNG cut anywhere, or with a chunk length past its end, is refused with a message that
+// says so before any decoder reads it (OIIO 2.4 leaks an error string when libpng hits the
+// end of in-memory data: scripts/fuzz.sh found it); the whole file still decodes.
+TEST(ImageIo, TruncatedPngInMemoryIsRefusedBeforeDecoding) {
+  const fs::path dir = scratch_dir("truncated");
+  Image image(8, 8, 3, 0.5f);
+  phyir::write_image(dir / "t.png", image);
+  std::ifstream in(dir / "t.png", std::ios::binary);
+  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_EQ(phyir::png_structure_error(bytes.data(), bytes.size()), "");
+  for (size_t cut = 0; cut < bytes.size(); ++cut) {
+    const std::vector<unsigned char> part(bytes.begin(), bytes.begin() + long(cut));
+    try {
+      phyir::read_image_from_memory(part, "texture 3");
+      ADD_FAILURE() << "a PNG cut at byte " << cut << " decoded";
+    } catch (const phyir::Error& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("texture 3"), std::string::npos) << message;
+      if (cut >= 8) EXPECT_NE(message.find("truncated"), std::string::npos) << message;
+    }
+  }
+  std::vector<unsigned char> lying = bytes;
+  lying[8] = 0x7F;  // the first chunk (IHDR) now declares ~2 GB
+  EXPECT_NE(phyir::png_structure_error(lying.data(), lying.size()).find("truncated in chunk 0 (IHDR"), std::string::npos);
 }
