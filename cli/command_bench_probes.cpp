@@ -4,7 +4,7 @@
 // The reference is the unbiased path mode at --reference-spp on a random subset of
 // --reference-probes valid probes, rendered as two independent halves so that its own noise
 // is measured too (reference_noise = RMSE(half 1 - half 2) / 2, relative like the errors).
-// Each configuration "MODE:SPP[:CACHE_SPP[:CELL_M[:SEED[:DIRECT_CELLS[:SPREAD[:CACHED_FACTOR]]]]]]" is then timed and compared on that
+// Each configuration "MODE:SPP[:CACHE_SPP[:CELL_M[:SEED[:DIRECT_CELLS[:SPREAD]]]]]" is then timed and compared on that
 // subset: cache mode renders the full grid (its cache depends on every probe); path mode
 // renders the subset only and its time is scaled to the full grid's probe count (its
 // probes are independent; the row says `extrapolated`).
@@ -65,18 +65,17 @@ struct Config {
   uint64_t seed_offset = 0;  // another run of the same setting, to tell noise from bias
   float direct_cells = 6.0f;
   float spread = 0.5f;
-  int cached_factor = 1;
 };
 
-constexpr const char* kConfigSyntax = "MODE:SPP[:CACHE_SPP[:CELL_M[:SEED[:DIRECT_CELLS[:SPREAD[:CACHED_FACTOR]]]]]]";
+constexpr const char* kConfigSyntax = "MODE:SPP[:CACHE_SPP[:CELL_M[:SEED[:DIRECT_CELLS[:SPREAD]]]]]";
 
 Config parse_config(const std::string& text, const render::ProbeSettings& defaults) {
   Config c{text, render::ProbeMode::kCache, 0, defaults.cache_spp, defaults.cache_cell, 0, defaults.cache_direct_cells,
-           defaults.spread_threshold, defaults.cached_spp_factor};
+           defaults.spread_threshold};
   std::vector<std::string> parts;
   std::stringstream in(text);
   for (std::string part; std::getline(in, part, ':');) parts.push_back(part);
-  if (parts.size() < 2 || parts.size() > 8) fail("--configs '{}' is not {}", text, kConfigSyntax);
+  if (parts.size() < 2 || parts.size() > 7) fail("--configs '{}' is not {}", text, kConfigSyntax);
   c.mode = render::parse_probe_mode(parts[0]);
   try {
     c.spp = std::stoi(parts[1]);
@@ -85,9 +84,8 @@ Config parse_config(const std::string& text, const render::ProbeSettings& defaul
     if (parts.size() > 4) c.seed_offset = std::stoull(parts[4]);
     if (parts.size() > 5) c.direct_cells = std::stof(parts[5]);
     if (parts.size() > 6) c.spread = std::stof(parts[6]);
-    if (parts.size() > 7) c.cached_factor = std::stoi(parts[7]);
   } catch (const std::exception&) {
-    fail("--configs '{}': SPP, CACHE_SPP, CELL_M, SEED, DIRECT_CELLS, SPREAD and CACHED_FACTOR must be numbers", text);
+    fail("--configs '{}': SPP, CACHE_SPP, CELL_M, SEED, DIRECT_CELLS and SPREAD must be numbers", text);
   }
   return c;
 }
@@ -203,7 +201,6 @@ void run_bench_probes(const BenchProbeFlags& f) {
       t.cache_spp = c.cache_spp;
       t.cache_direct_cells = c.direct_cells;
       t.spread_threshold = c.spread;
-      t.cached_spp_factor = c.cached_factor;
       t.cache_cell = c.cache_cell;
       t.seed = s.seed + c.seed_offset;
       t.validate();
@@ -260,7 +257,7 @@ void add_bench_probes_command(CLI::App& bench) {
   cmd->add_option("--grid", f->grid, "probe grid HxW the times are measured on")->capture_default_str();
   cmd->add_option("--res-list", f->res_list, "probe resolutions hxw")->delimiter(',')->capture_default_str();
   cmd->add_option("--configs", f->configs,
-                  std::string(kConfigSyntax) + " settings to measure (SEED: added to --seed, for repeated runs; DIRECT_CELLS, SPREAD, CACHED_FACTOR: as --probe-cache-direct-cells, --probe-spread-threshold, --probe-cached-spp-factor)")->delimiter(',')->capture_default_str();
+                  std::string(kConfigSyntax) + " settings to measure (SEED: added to --seed, for repeated runs; DIRECT_CELLS, SPREAD: as --probe-cache-direct-cells, --probe-spread-threshold)")->delimiter(',')->capture_default_str();
   cmd->add_option("--reference-spp", f->reference_spp, "spp of the converged path-mode reference")->capture_default_str();
   cmd->add_option("--reference-probes", f->reference_probes, "how many random valid probes the error is measured on")->capture_default_str();
   cmd->add_option("--probe-indices", f->probe_indices, "measure on these probe indices (i * grid width + j) instead of a random subset")->delimiter(',');

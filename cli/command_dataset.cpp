@@ -35,7 +35,6 @@ struct SettingsFlags {
   std::string probe_grid, probe_res, probe_mode;
   int probe_spp = 0, probe_cache_spp = 0;
   float probe_offset = 0, probe_cache_cell = 0, probe_cache_direct_cells = 0, probe_spread_threshold = 0;
-  int probe_cached_spp_factor = 0;
   std::string exposure = "auto";
   double exposure_percentile = 0, exposure_target = 0;
   float exposure_jitter = 0, preview_exposure = 0;
@@ -98,8 +97,6 @@ void add_settings_options(CLI::App* cmd, SettingsFlags& f) {
   opt(cmd->add_option("--probe-cache-spp", f.probe_cache_spp, "cache mode: irradiance samples per cell [preset]"));
   opt(cmd->add_option("--probe-cache-direct-cells", f.probe_cache_direct_cells,
                       "cache mode: cache direct light this many cells from every emitter (0: never) [6]"));
-  opt(cmd->add_option("--probe-cached-spp-factor", f.probe_cached_spp_factor,
-                      "cache mode: emission and cached diffuse light from this many times --probe-spp directions [1]"));
   opt(cmd->add_option("--probe-spread-threshold", f.probe_spread_threshold,
                       "cache mode: texels whose first samples spread over more than this times their mean get 8x the samples [0.5]"));
   opt(cmd->add_option("--exposure", f.exposure,
@@ -138,7 +135,6 @@ dataset::DatasetSettings resolve(const SettingsFlags& f) {
   if (f.given("--probe-cache-spp")) s.probe.cache_spp = f.probe_cache_spp;
   if (f.given("--probe-cache-direct-cells")) s.probe.cache_direct_cells = f.probe_cache_direct_cells;
   if (f.given("--probe-spread-threshold")) s.probe.spread_threshold = f.probe_spread_threshold;
-  if (f.given("--probe-cached-spp-factor")) s.probe.cached_spp_factor = f.probe_cached_spp_factor;
   if (f.exposure == "auto") {
     s.input.auto_exposure = true;
   } else {

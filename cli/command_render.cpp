@@ -73,9 +73,6 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--probe-cache-direct-cells", job.probe.cache_direct_cells,
                   "cache mode: cache direct light too in cells at least this many cell sizes from every emitter (0: never)")
       ->capture_default_str();
-  cmd->add_option("--probe-cached-spp-factor", job.probe.cached_spp_factor,
-                  "cache mode: texels that are not hard trace emission and cached diffuse light from this many times --probe-spp directions")
-      ->capture_default_str();
   cmd->add_option("--probe-spread-threshold", job.probe.spread_threshold,
                   "cache mode: a texel whose first samples spread over more than this times their mean gets hard-texel sampling")
       ->capture_default_str();

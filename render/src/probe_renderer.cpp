@@ -38,7 +38,7 @@ constexpr int kMaxSpecularDepth = 3;
 // (64 x 4 = 256 at the default spp: a light edge crossing a texel is then found to ~1%).
 constexpr int kEmissionSppFactor = 64;
 
-// Sample ids: a texel's samples are 0 .. spp (hard_spp_factor + kEmissionSppFactor + cached_spp_factor) - 1; these two
+// Sample ids: a texel's samples are 0 .. spp (1 + hard_spp_factor + kEmissionSppFactor) - 1; these two
 // keep the discovery ray and the strata permutations on streams of their own.
 constexpr uint64_t kDiscoverySample = uint64_t(1) << 40;
 constexpr uint64_t kStrataStream = uint64_t(1) << 41;
@@ -117,32 +117,17 @@ class TexelEstimator {
 
   // What sample() returns: all of the radiance, or the emission seen first (lights, and the
   // environment where nothing is hit) or everything else, for estimating the two with
-  // different sample counts; or the cheap part alone: that emission plus the cached diffuse
-  // light f_d E at the first hit where its cell holds direct light (one ray and one lookup,
-  // no further ray), which kAll reports through `cached` so that the two parts can be
-  // estimated from different numbers of directions.
-  enum class Part { kAll, kEmission, kRest, kCached };
+  // different sample counts.
+  enum class Part { kAll, kEmission, kRest };
 
-  // Radiance arriving at ray.origin from -ray.direction (cache mode: `part` of it). For
-  // kAll, `cached` (if given) receives the kCached part of the returned value.
-  glm::vec3 sample(const Ray& ray, uint64_t key, Part part, bool* saw_hard, PathCounters* c,
-                   glm::vec3* cached = nullptr) const {
-    if (cached) *cached = glm::vec3(0.0f);
+  // Radiance arriving at ray.origin from -ray.direction (cache mode: `part` of it).
+  glm::vec3 sample(const Ray& ray, uint64_t key, Part part, bool* saw_hard, PathCounters* c) const {
     if (settings_.mode == ProbeMode::kPath) return full_.radiance(ray, key, c);
     SurfaceInteraction si;
     ++c->rays;
-    if (!scene_.trace(ray, &si)) {
-      if (part == Part::kRest) return glm::vec3(0.0f);
-      if (cached) *cached = miss(ray.direction);
-      return miss(ray.direction);
-    }
+    if (!scene_.trace(ray, &si)) return part == Part::kRest ? glm::vec3(0.0f) : miss(ray.direction);
     const glm::vec3 Le = si.emits ? si.emission : glm::vec3(0.0f);
     if (part == Part::kEmission) return Le;
-    if (cached) *cached = Le;
-    if (part == Part::kCached) {
-      if (settings_.path.max_bounces < 1 || si.transmission > 0.0f) return Le;
-      return Le + cached_diffuse(si, -ray.direction, key, c);
-    }
     // The texel sees something small and bright or hard to sample: a light, glass, or a
     // glossy surface (whose highlights are small images of the lights).
     if (si.emits || si.transmission > 0.0f || si.brdf.roughness < settings_.glossy_roughness) *saw_hard = true;
@@ -152,25 +137,10 @@ class TexelEstimator {
       const glm::vec3 all = full_.radiance(ray, key, c);
       return part == Part::kAll ? all : glm::max(all - Le, glm::vec3(0.0f));
     }
-    glm::vec3 diffuse(0.0f);
-    const glm::vec3 R = reflected(si, -ray.direction, 0, key, c, cached ? &diffuse : nullptr);
-    if (cached) *cached += diffuse;
-    return L + R;
+    return L + reflected(si, -ray.direction, 0, key, c);
   }
 
  private:
-  // The cached diffuse light x = si reflects towards wo_world where x's cell holds direct
-  // light (f_d (E_direct + E_indirect), as reflected() adds it), else 0.
-  glm::vec3 cached_diffuse(const SurfaceInteraction& si, const glm::vec3& wo_world, uint64_t key, PathCounters* c) const {
-    const Frame frame = shading_frame(si, wo_world);
-    if (!(glm::dot(frame.n, wo_world) >= kMinCosine)) return glm::vec3(0.0f);
-    const BrdfParams p = clamped(si.brdf);
-    if (is_mirror(p.roughness)) return glm::vec3(0.0f);
-    const CachedIrradiance E = cache_->lookup(cache_point(si, frame.n), derived_key(key, 0, kLookup), c);
-    if (!E.has_direct) return glm::vec3(0.0f);
-    return Fd_Lambert(p.base_color, p.metalness) * (E.indirect + E.direct);
-  }
-
   glm::vec3 miss(const glm::vec3& direction) const {
     return scene_.environment() ? scene_.environment()->radiance(direction) : glm::vec3(0.0f);
   }
@@ -182,10 +152,8 @@ class TexelEstimator {
   // Indirect light: diffuse from the cache, f_d E(x); specular through the same BRDF-sampled
   // ray (f_s cos / pdf of it times the light its hit y reflects, Russian-rouletted by the
   // specular share of the sample's weight).
-  // `cached` (if given) receives the part of the result that is f_d E from the cache where
-  // x's cell holds direct light (what cached_diffuse() returns), 0 elsewhere.
   glm::vec3 reflected(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key,
-                      PathCounters* c, glm::vec3* cached = nullptr) const {
+                      PathCounters* c) const {
     const Frame frame = shading_frame(si, wo_world);
     const glm::vec3 wo = frame.to_local(wo_world);
     if (!(wo.z >= kMinCosine)) return glm::vec3(0.0f);
@@ -193,11 +161,7 @@ class TexelEstimator {
     const glm::vec3& ng = si.geometric_normal;
     const glm::vec3 fd = Fd_Lambert(p.base_color, p.metalness);
     const CachedIrradiance E = cache_->lookup(cache_point(si, frame.n), derived_key(key, depth, kLookup), c);
-    if (E.has_direct && !is_mirror(p.roughness)) {
-      const glm::vec3 diffuse = fd * (E.indirect + E.direct);
-      if (cached) *cached = diffuse;
-      return diffuse + reflected_specular(si, frame, wo, p, fd, depth, key, c);
-    }
+    if (E.has_direct && !is_mirror(p.roughness)) return reflected_split(si, frame, wo, p, fd, E, depth, key, c);
     glm::vec3 L(0.0f);
     if (max_component(fd) > 0.0f) L += fd * E.indirect;
     const bool emitters = !scene_.emitters().empty();
@@ -249,17 +213,18 @@ class TexelEstimator {
     return terminal(y, -ray.direction, next, key, c);
   }
 
-  // The specular part of reflected() where the cache holds the direct light too (whose
-  // diffuse part of all the light is f_d E, with no ray), estimated apart: next-event
+  // reflected() where the cache holds the direct light too: the diffuse part of all the
+  // light is f_d E, with no ray; the specular part is estimated apart: next-event
   // estimation through f_s in every sample (one shadow ray: it finds the lights'
   // highlights, the largest specular values, so they must never carry a roulette weight),
   // and one GGX-sampled ray with its continuation taken with probability `keep`, its
   // share of the surface's albedo scaled (a wall's ~5% in a fraction of the samples). Both
   // strategies stay unbiased under the power heuristic with the GGX ray's effective
   // density keep x pdf.
-  glm::vec3 reflected_specular(const SurfaceInteraction& si, const Frame& frame, const glm::vec3& wo, const BrdfParams& p,
-                               const glm::vec3& fd, int depth, uint64_t key, PathCounters* c) const {
-    glm::vec3 L(0.0f);
+  glm::vec3 reflected_split(const SurfaceInteraction& si, const Frame& frame, const glm::vec3& wo, const BrdfParams& p,
+                            const glm::vec3& fd, const CachedIrradiance& E, int depth, uint64_t key,
+                            PathCounters* c) const {
+    glm::vec3 L = fd * (E.indirect + E.direct);
     const glm::vec2 terms = specular_albedo_terms(wo.z, p.roughness);
     const glm::vec3 F0 = specular_F0(p.base_color, p.metalness);
     const float albedo_s = luminance(F0 * terms.x + (glm::vec3(1.0f) - F0) * terms.y);
@@ -424,8 +389,6 @@ void ProbeSettings::validate() const {
   if (!(cache_direct_cells >= 0.0f && cache_direct_cells <= 1e6f))
     fail("--probe-cache-direct-cells {} must be between 0 (never) and 1e6 cells", cache_direct_cells);
   if (hard_spp_factor < 1 || hard_spp_factor > 1024) fail("hard-texel spp factor {} must be between 1 and 1024", hard_spp_factor);
-  if (cached_spp_factor < 1 || cached_spp_factor > 256)
-    fail("--probe-cached-spp-factor {} must be between 1 and 256", cached_spp_factor);
   if (!(spread_threshold > 0.0f && spread_threshold <= 1e6f))
     fail("--probe-spread-threshold {} must be above 0 (and at most 1e6, i.e. never)", spread_threshold);
 }
@@ -446,7 +409,6 @@ nlohmann::json ProbeSettings::to_json() const {
     j["hard_spp_factor"] = hard_spp_factor;
     j["glossy_roughness"] = glossy_roughness;
     j["spread_threshold"] = spread_threshold;
-    j["cached_spp_factor"] = cached_spp_factor;
   }
   return j;
 }
@@ -600,30 +562,25 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
             const int row = t / layout.res_width, col = t % layout.res_width;
             // `count` fresh samples from sample id `first` on, stratified over the texel.
             using Part = TexelEstimator::Part;
-            // `spread` (if given) receives the range of the samples' luminances, `cached_mean`
-            // (if given, with kAll) the mean of their kCached parts.
-            auto estimate = [&](int first, int count, Part part, bool* saw_hard, float* spread = nullptr,
-                                glm::vec3* cached_mean = nullptr) {
+            // `spread` (if given) receives the range of the samples' luminances.
+            auto estimate = [&](int first, int count, Part part, bool* saw_hard, float* spread = nullptr) {
               Rng permutation(PathTracer::path_key(probe_seed, texel_id(p, t), kStrataStream + uint64_t(first)), 0);
               stratified_square(count, permutation, &strata);
-              glm::dvec3 sum(0.0), cached_sum(0.0);
+              glm::dvec3 sum(0.0);
               float lo = std::numeric_limits<float>::infinity(), hi = 0.0f;
               for (int s = 0; s < count; ++s) {
                 const uint64_t key = PathTracer::path_key(probe_seed, texel_id(p, t), uint64_t(first + s));
                 const Ray ray{origin, probe_texel_direction(row, col, layout.res_height, layout.res_width, strata[size_t(s)])};
-                glm::vec3 cached(0.0f);
-                glm::vec3 L = estimator.sample(ray, key, part, saw_hard, &c, cached_mean ? &cached : nullptr);
-                if (!is_finite(L) || !is_finite(cached)) {
+                glm::vec3 L = estimator.sample(ray, key, part, saw_hard, &c);
+                if (!is_finite(L)) {
                   ++c.nonfinite_samples;
-                  L = cached = glm::vec3(0.0f);
+                  L = glm::vec3(0.0f);
                 }
                 sum += glm::dvec3(L);
-                cached_sum += glm::dvec3(cached);
                 lo = std::min(lo, luminance(L));
                 hi = std::max(hi, luminance(L));
               }
               if (spread) *spread = count > 0 ? hi - lo : 0.0f;
-              if (cached_mean) *cached_mean = glm::vec3(cached_sum / double(count));
               return glm::vec3(sum / double(count));
             };
             // Hard texels (the first samples met a light, glass or a glossy surface, or
@@ -635,25 +592,12 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
             // ray each): partial coverage of a light is the largest error otherwise. No
             // decision looks at the samples it selects, so none biases the value.
             const int spp = settings.spp, hard_spp = spp * settings.hard_spp_factor;
-            const int cached_factor = settings.mode == ProbeMode::kCache ? settings.cached_spp_factor : 1;
-            const int cached_first = spp * (1 + settings.hard_spp_factor + kEmissionSppFactor);
             bool hard = lit[size_t(t)] != 0;
             glm::vec3 value(0.0f);
             if (!hard) {
               float spread = 0.0f;
-              glm::vec3 cached(0.0f);
-              value = estimate(0, spp, Part::kAll, &hard, &spread, &cached);
+              value = estimate(0, spp, Part::kAll, &hard, &spread);
               if (spp > 1 && spread > settings.spread_threshold * (luminance(value) + dark_floor)) hard = true;
-              if (!hard && cached_factor > 1) {
-                // The cheap part (emission and cached diffuse light) from cached_factor x spp
-                // directions: these spp and fresh ones; the rest from the spp alone. Each
-                // mean is unbiased for its own part of the texel's integral.
-                const int more = (cached_factor - 1) * spp;
-                bool unused = false;
-                const glm::vec3 extra = estimate(cached_first, more, Part::kCached, &unused);
-                const glm::vec3 rest = glm::max(value - cached, glm::vec3(0.0f));
-                value = rest + (cached * float(spp) + extra * float(more)) / float(spp + more);
-              }
             }
             if (hard && adaptive) {
               bool unused = false;

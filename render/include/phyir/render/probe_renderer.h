@@ -61,10 +61,6 @@ struct ProbeSettings {
   // A texel whose first spp samples' luminances spread over more than this times their
   // mean (plus a small floor) is hard: an edge, a highlight or a shadow boundary in it.
   float spread_threshold = 0.5f;
-  // Texels that are not hard trace their cheap part (emission and the cache's diffuse light
-  // where it holds direct light: one ray and one lookup) from this many times spp
-  // directions, the rest from spp.
-  int cached_spp_factor = 1;
   float glossy_roughness = 0.3f;  // secondary hits smoother than this are traced on
   bool progress = true;
 
