@@ -17,8 +17,6 @@ class EmitterFootprints {
  public:
   explicit EmitterFootprints(const scenes::Scene& scene);
 
-  bool empty() const { return triangles_.empty(); }
-
   // Sets flags[row * w + col] for every texel of an h x w probe at `origin` that a
   // front-facing emissive triangle may cover, occlusion ignored: the texel box of points
   // sampled densely along its edges, grown by one texel, or the whole cap when the
