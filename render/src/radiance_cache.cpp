@@ -224,7 +224,7 @@ CachedIrradiance RadianceCache::lookup(const CachePoint& point, uint64_t key, Pa
     if (!cell) continue;
     indirect += w * glm::dvec3(cell->indirect);
     w_all += w;
-    if (cell->has_direct) {
+    if (self->has_direct && cell->has_direct) {  // direct light is only used where the point's own cell holds it
       direct += w * glm::dvec3(cell->direct);
       w_direct += w;
     }
