@@ -65,17 +65,20 @@ struct Config {
   uint64_t seed_offset = 0;  // another run of the same setting, to tell noise from bias
   float direct_cells = 6.0f;
   float spread = 0.5f;
+  int share_radius = 1;
+  float share_parallax = 0.5f;
 };
 
-constexpr const char* kConfigSyntax = "MODE:SPP[:CACHE_SPP[:CELL_M[:SEED[:DIRECT_CELLS[:SPREAD]]]]]";
+constexpr const char* kConfigSyntax =
+    "MODE:SPP[:CACHE_SPP[:CELL_M[:SEED[:DIRECT_CELLS[:SPREAD[:SHARE_RADIUS[:SHARE_PARALLAX]]]]]]]";
 
 Config parse_config(const std::string& text, const render::ProbeSettings& defaults) {
   Config c{text, render::ProbeMode::kCache, 0, defaults.cache_spp, defaults.cache_cell, 0, defaults.cache_direct_cells,
-           defaults.spread_threshold};
+           defaults.spread_threshold, defaults.sharing.radius, defaults.sharing.parallax_texels};
   std::vector<std::string> parts;
   std::stringstream in(text);
   for (std::string part; std::getline(in, part, ':');) parts.push_back(part);
-  if (parts.size() < 2 || parts.size() > 7) fail("--configs '{}' is not {}", text, kConfigSyntax);
+  if (parts.size() < 2 || parts.size() > 9) fail("--configs '{}' is not {}", text, kConfigSyntax);
   c.mode = render::parse_probe_mode(parts[0]);
   try {
     c.spp = std::stoi(parts[1]);
@@ -84,8 +87,11 @@ Config parse_config(const std::string& text, const render::ProbeSettings& defaul
     if (parts.size() > 4) c.seed_offset = std::stoull(parts[4]);
     if (parts.size() > 5) c.direct_cells = std::stof(parts[5]);
     if (parts.size() > 6) c.spread = std::stof(parts[6]);
+    if (parts.size() > 7) c.share_radius = std::stoi(parts[7]);
+    if (parts.size() > 8) c.share_parallax = std::stof(parts[8]);
   } catch (const std::exception&) {
-    fail("--configs '{}': SPP, CACHE_SPP, CELL_M, SEED, DIRECT_CELLS and SPREAD must be numbers", text);
+    fail("--configs '{}': SPP, CACHE_SPP, CELL_M, SEED, DIRECT_CELLS, SPREAD, SHARE_RADIUS and SHARE_PARALLAX must be numbers",
+         text);
   }
   return c;
 }
@@ -201,6 +207,8 @@ void run_bench_probes(const BenchProbeFlags& f) {
       t.cache_spp = c.cache_spp;
       t.cache_direct_cells = c.direct_cells;
       t.spread_threshold = c.spread;
+      t.sharing.radius = c.share_radius;
+      t.sharing.parallax_texels = c.share_parallax;
       t.cache_cell = c.cache_cell;
       t.seed = s.seed + c.seed_offset;
       t.validate();

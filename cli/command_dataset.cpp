@@ -33,8 +33,9 @@ struct SettingsFlags {
   int width = 0, height = 0, spp = 0, max_bounces = 0;
   bool probes = false, no_probes = false;
   std::string probe_grid, probe_res, probe_mode;
-  int probe_spp = 0, probe_cache_spp = 0;
+  int probe_spp = 0, probe_cache_spp = 0, probe_share_radius = 0;
   float probe_offset = 0, probe_cache_cell = 0, probe_cache_direct_cells = 0, probe_spread_threshold = 0;
+  float probe_share_parallax = 0;
   std::string exposure = "auto";
   double exposure_percentile = 0, exposure_target = 0;
   float exposure_jitter = 0, preview_exposure = 0;
@@ -99,6 +100,10 @@ void add_settings_options(CLI::App* cmd, SettingsFlags& f) {
                       "cache mode: cache direct light this many cells from every emitter (0: never) [6]"));
   opt(cmd->add_option("--probe-spread-threshold", f.probe_spread_threshold,
                       "cache mode: texels whose first samples spread over more than this times their mean get 8x the samples [0.5]"));
+  opt(cmd->add_option("--probe-share-radius", f.probe_share_radius,
+                      "cache mode: average texels with same-surface probes up to this many grid cells away (0: off) [1]"));
+  opt(cmd->add_option("--probe-share-parallax", f.probe_share_parallax,
+                      "cache mode: largest parallax between shared probes, in texel heights [0.5]"));
   opt(cmd->add_option("--exposure", f.exposure,
                       "input.png exposure: 'auto' (the 95th percentile of color.exr maps to --exposure-target) or "
                       "stops")
@@ -135,6 +140,8 @@ dataset::DatasetSettings resolve(const SettingsFlags& f) {
   if (f.given("--probe-cache-spp")) s.probe.cache_spp = f.probe_cache_spp;
   if (f.given("--probe-cache-direct-cells")) s.probe.cache_direct_cells = f.probe_cache_direct_cells;
   if (f.given("--probe-spread-threshold")) s.probe.spread_threshold = f.probe_spread_threshold;
+  if (f.given("--probe-share-radius")) s.probe.sharing.radius = f.probe_share_radius;
+  if (f.given("--probe-share-parallax")) s.probe.sharing.parallax_texels = f.probe_share_parallax;
   if (f.exposure == "auto") {
     s.input.auto_exposure = true;
   } else {

@@ -76,6 +76,13 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--probe-spread-threshold", job.probe.spread_threshold,
                   "cache mode: a texel whose first samples spread over more than this times their mean gets hard-texel sampling")
       ->capture_default_str();
+  cmd->add_option("--probe-share-radius", job.probe.sharing.radius,
+                  "cache mode: average each texel with the probes up to this many grid cells away on the same surface "
+                  "where parallax is small (0: off)")
+      ->capture_default_str();
+  cmd->add_option("--probe-share-parallax", job.probe.sharing.parallax_texels,
+                  "cache mode: largest parallax between shared probes, in texel heights")
+      ->capture_default_str();
   cmd->callback([flags] {
     render::RenderJob& job = flags->job;
     job.scene_path = flags->scene;

@@ -83,7 +83,8 @@ glm::vec3 probe_texel_direction(int row, int col, int height, int width, const g
   return equirect_direction(glm::vec2(u, v));
 }
 
-void stratified_square(int count, Rng& rng, std::vector<glm::vec2>* points) {
+void stratified_square(int count, Rng& rng, std::vector<glm::vec2>* points, const Interleave& interleave) {
+  const int n = std::max(interleave.count, 1);
   points->clear();
   if (count <= 0) return;
   const int s = int(std::ceil(std::sqrt(double(count))));
@@ -95,7 +96,12 @@ void stratified_square(int count, Rng& rng, std::vector<glm::vec2>* points) {
   for (int k = 0; k < count; ++k) {
     const int pick = k + int(rng.next_u32() % uint32_t(s * t - k));
     std::swap(cells[k], cells[pick]);
-    const glm::vec2 jitter = rng.next_2d();
+    glm::vec2 jitter = rng.next_2d();
+    if (n > 1) {
+      const uint64_t h = mix64(interleave.key ^ mix64(uint64_t(cells[k]) + 1));
+      const glm::ivec2 shift(int((h & 0xffffffffu) % uint64_t(n)), int((h >> 32) % uint64_t(n)));
+      jitter = (glm::vec2((interleave.sub + shift) % n) + jitter) / float(n);
+    }
     // Rounding can land a point of the last cell on 1.0; keep it inside [0,1).
     constexpr float kBelowOne = 0x1.fffffep-1f;
     points->push_back(glm::vec2(std::min((float(cells[k] % s) + jitter.x) / float(s), kBelowOne),

@@ -15,6 +15,7 @@
 #include "phyir/render/emitter_footprints.h"
 #include "phyir/render/equirect.h"
 #include "phyir/render/frame.h"
+#include "phyir/render/probe_sharing.h"
 #include "phyir/render/radiance_cache.h"
 #include "phyir/render/ray_offset.h"
 #include "phyir/render/rng.h"
@@ -38,10 +39,11 @@ constexpr int kMaxSpecularDepth = 3;
 // (64 x 4 = 256 at the default spp: a light edge crossing a texel is then found to ~1%).
 constexpr int kEmissionSppFactor = 64;
 
-// Sample ids: a texel's samples are 0 .. spp (1 + hard_spp_factor + kEmissionSppFactor) - 1; these two
+// Sample ids: a texel's samples are 0 .. spp (1 + hard_spp_factor + kEmissionSppFactor) - 1; these three
 // keep the discovery ray and the strata permutations on streams of their own.
 constexpr uint64_t kDiscoverySample = uint64_t(1) << 40;
 constexpr uint64_t kStrataStream = uint64_t(1) << 41;
+constexpr uint64_t kInterleaveStream = uint64_t(1) << 42;
 
 // Streams of the cache-mode shading, per specular depth (distinct from the path tracer's
 // purposes 1..5 and the cache's 101..103).
@@ -121,11 +123,13 @@ class TexelEstimator {
   enum class Part { kAll, kEmission, kRest };
 
   // Radiance arriving at ray.origin from -ray.direction (cache mode: `part` of it).
-  glm::vec3 sample(const Ray& ray, uint64_t key, Part part, bool* saw_hard, PathCounters* c) const {
+  // *distance is lowered to the first hit's distance (cache mode; unchanged on a miss).
+  glm::vec3 sample(const Ray& ray, uint64_t key, Part part, bool* saw_hard, float* distance, PathCounters* c) const {
     if (settings_.mode == ProbeMode::kPath) return full_.radiance(ray, key, c);
     SurfaceInteraction si;
     ++c->rays;
     if (!scene_.trace(ray, &si)) return part == Part::kRest ? glm::vec3(0.0f) : miss(ray.direction);
+    *distance = std::min(*distance, si.distance);
     const glm::vec3 Le = si.emits ? si.emission : glm::vec3(0.0f);
     if (part == Part::kEmission) return Le;
     // The texel sees something small and bright or hard to sample: a light, glass, or a
@@ -391,6 +395,10 @@ void ProbeSettings::validate() const {
   if (hard_spp_factor < 1 || hard_spp_factor > 1024) fail("hard-texel spp factor {} must be between 1 and 1024", hard_spp_factor);
   if (!(spread_threshold > 0.0f && spread_threshold <= 1e6f))
     fail("--probe-spread-threshold {} must be above 0 (and at most 1e6, i.e. never)", spread_threshold);
+  // A 9x9 window is already ~20 cm across at the paper's grid: beyond it parallax rejects most texels.
+  if (sharing.radius < 0 || sharing.radius > 4) fail("--probe-share-radius {} must be between 0 (off) and 4", sharing.radius);
+  if (!(sharing.parallax_texels > 0.0f && sharing.parallax_texels <= 100.0f))
+    fail("--probe-share-parallax {} must be above 0 and at most 100 texels", sharing.parallax_texels);
 }
 
 nlohmann::json ProbeSettings::to_json() const {
@@ -409,18 +417,22 @@ nlohmann::json ProbeSettings::to_json() const {
     j["hard_spp_factor"] = hard_spp_factor;
     j["glossy_roughness"] = glossy_roughness;
     j["spread_threshold"] = spread_threshold;
+    j["share_radius"] = sharing.radius;
+    j["share_parallax_texels"] = sharing.parallax_texels;
   }
   return j;
 }
 
 nlohmann::json ProbeStats::to_json() const {
-  return {{"seconds", {{"place", place_seconds}, {"cache", cache_seconds}, {"shade", shade_seconds}, {"total", total_seconds}}},
+  return {{"seconds", {{"place", place_seconds}, {"cache", cache_seconds}, {"shade", shade_seconds}, {"share", share_seconds}, {"total", total_seconds}}},
           {"rays", counters.rays + placement_rays},
           {"paths", counters.paths},
           {"rays_per_second", total_seconds > 0 ? double(counters.rays + placement_rays) / total_seconds : 0.0},
           {"counts", {{"probes", probes}, {"valid", valid}, {"invalid", probes - valid}, {"nothing", nothing},
                       {"emitter", emitter}, {"transparent", transparent}, {"computed", computed_probes}}},
           {"supersampled_texels", supersampled_texels},
+          {"shared_texels", shared_texels},
+          {"light_texels", light_texels},
           {"cache", {{"cells", cache_cells}, {"cells_with_direct_light", cache_direct_cells}, {"fill_samples", cache_fill_samples}, {"fallback_lookups", cache_fallbacks}}},
           {"nonfinite_samples_caught", counters.nonfinite_samples}};
 }
@@ -543,7 +555,14 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
   const TexelEstimator estimator(scene, effects, settings, cache.get());
   const EmitterFootprints footprints(scene.scene());
   const bool adaptive = settings.mode == ProbeMode::kCache && settings.hard_spp_factor > 1;
-  std::atomic<uint64_t> supersampled{0};
+  const bool share = settings.mode == ProbeMode::kCache && settings.sharing.radius > 0;
+  TexelRecords records;
+  tbb::enumerable_thread_specific<std::vector<std::pair<uint64_t, glm::vec3>>> emission_seen;  // sharing: added after
+  if (share) {
+    records.distance.assign(size_t(layout.probe_count()) * size_t(texels), std::numeric_limits<float>::infinity());
+    records.samples.assign(size_t(layout.probe_count()) * size_t(texels), 0.0f);
+  }
+  std::atomic<uint64_t> supersampled{0}, light_texels{0};
   Progress progress("probes", todo.size(), "probes", settings.progress);
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, todo.size(), 4),
@@ -551,11 +570,17 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
         PathCounters& c = local.local();
         std::vector<glm::vec2> strata;
         std::vector<uint8_t> lit(static_cast<size_t>(texels));
-        uint64_t extra = 0;
+        uint64_t extra = 0, lit_texels = 0;
         for (size_t k = r.begin(); k < r.end(); ++k) {
           const int p = todo[k];
           const int i = p / layout.grid_width, j = p % layout.grid_width;
           const glm::vec3 origin = out.sites[size_t(p)].origin;
+          // Interleaved strata when texels are shared (probe_sharing.h).
+          Interleave interleave;
+          if (share) {
+            interleave.sub = sub_stratum(i, j, settings.sharing);
+            interleave.count = settings.sharing.window();
+          }
           std::fill(lit.begin(), lit.end(), uint8_t(0));
           if (adaptive) footprints.mark(origin, layout.res_height, layout.res_width, &lit);
           for (int t = 0; t < texels; ++t) {
@@ -563,15 +588,18 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
             // `count` fresh samples from sample id `first` on, stratified over the texel.
             using Part = TexelEstimator::Part;
             // `spread` (if given) receives the range of the samples' luminances.
+            float distance = std::numeric_limits<float>::infinity();
             auto estimate = [&](int first, int count, Part part, bool* saw_hard, float* spread = nullptr) {
               Rng permutation(PathTracer::path_key(probe_seed, texel_id(p, t), kStrataStream + uint64_t(first)), 0);
-              stratified_square(count, permutation, &strata);
+              // The interleaving key is the same for every probe (texel and pass only).
+              interleave.key = PathTracer::path_key(probe_seed, uint64_t(t), kInterleaveStream + uint64_t(first));
+              stratified_square(count, permutation, &strata, interleave);
               glm::dvec3 sum(0.0);
               float lo = std::numeric_limits<float>::infinity(), hi = 0.0f;
               for (int s = 0; s < count; ++s) {
                 const uint64_t key = PathTracer::path_key(probe_seed, texel_id(p, t), uint64_t(first + s));
                 const Ray ray{origin, probe_texel_direction(row, col, layout.res_height, layout.res_width, strata[size_t(s)])};
-                glm::vec3 L = estimator.sample(ray, key, part, saw_hard, &c);
+                glm::vec3 L = estimator.sample(ray, key, part, saw_hard, &distance, &c);
                 if (!is_finite(L)) {
                   ++c.nonfinite_samples;
                   L = glm::vec3(0.0f);
@@ -593,7 +621,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
             // decision looks at the samples it selects, so none biases the value.
             const int spp = settings.spp, hard_spp = spp * settings.hard_spp_factor;
             bool hard = lit[size_t(t)] != 0;
-            glm::vec3 value(0.0f);
+            glm::vec3 value(0.0f), seen_emission(0.0f);
             if (!hard) {
               float spread = 0.0f;
               value = estimate(0, spp, Part::kAll, &hard, &spread);
@@ -602,25 +630,53 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
             if (hard && adaptive) {
               bool unused = false;
               if (lit[size_t(t)]) {
-                value = estimate(spp, hard_spp, Part::kRest, &unused) +
-                        estimate(spp + hard_spp, spp * kEmissionSppFactor, Part::kEmission, &unused);
+                value = estimate(spp, hard_spp, Part::kRest, &unused);
+                seen_emission = estimate(spp + hard_spp, spp * kEmissionSppFactor, Part::kEmission, &unused);
+                ++lit_texels;
               } else {
                 value = estimate(spp, hard_spp, Part::kAll, &unused);
               }
               ++extra;
             }
+            if (share) {
+              records.distance[size_t(texel_id(p, t))] = distance;
+              records.samples[size_t(texel_id(p, t))] = float(hard && adaptive ? hard_spp : spp);
+              // Emission seen directly is not shared: a light's edge moves across a texel
+              // with the slightest parallax, and its 64 x spp directions make it exact already.
+              if (lit[size_t(t)]) emission_seen.local().push_back({texel_id(p, t), seen_emission});
+            } else {
+              value += seen_emission;
+            }
             for (int ch = 0; ch < 3; ++ch) out.mosaic.at(j * layout.res_width + col, i * layout.res_height + row, ch) = value[ch];
           }
         }
         supersampled += extra;
+        light_texels += lit_texels;
         progress.advance(r.size());
       },
       tbb::simple_partitioner());
   progress.finish();
   for (const PathCounters& c : local) stats.counters += c;
   stats.supersampled_texels = supersampled.load();
+  stats.light_texels = light_texels.load();
   if (cache) stats.cache_fallbacks = cache->fallbacks();
   stats.shade_seconds = seconds_since(shade_start);
+  if (share) {
+    const auto share_start = Clock::now();
+    std::vector<uint8_t> computed(size_t(layout.probe_count()), 0);
+    for (int p : todo) computed[size_t(p)] = 1;
+    out.mosaic = share_between_neighbours(out.mosaic, layout, out.sites, computed, records, settings.sharing,
+                                          &stats.shared_texels);
+    for (const auto& list : emission_seen) {
+      for (const auto& [id, emission] : list) {
+        const int p = int(id / uint64_t(texels)), t = int(id % uint64_t(texels));
+        const int x = (p % layout.grid_width) * layout.res_width + t % layout.res_width;
+        const int y = (p / layout.grid_width) * layout.res_height + t / layout.res_width;
+        for (int ch = 0; ch < 3; ++ch) out.mosaic.at(x, y, ch) += emission[ch];
+      }
+    }
+    stats.share_seconds = seconds_since(share_start);
+  }
   stats.total_seconds = seconds_since(start);
   return out;
 }

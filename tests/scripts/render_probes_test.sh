@@ -81,7 +81,7 @@ grep -q -- "--probe-grid" "$work/err.txt" || die "error does not name --probe-gr
 if "$phyir" render "$scene" --out "$work/bad" --probes --probe-mode fast 2> "$work/err.txt"; then die "--probe-mode fast accepted"; fi
 grep -q -- "--probe-mode" "$work/err.txt" || die "error does not name --probe-mode"
 if "$phyir" render "$scene" --out "$work/bad" --probes --probe-spp 0 2> "$work/err.txt"; then die "--probe-spp 0 accepted"; fi
-for bad in "--probe-spread-threshold 0" "--probe-cache-direct-cells -1"; do
+for bad in "--probe-spread-threshold 0" "--probe-cache-direct-cells -1" "--probe-share-radius 5" "--probe-share-parallax 0"; do
   flag=${bad%% *}
   # shellcheck disable=SC2086
   if "$phyir" render "$scene" --out "$work/bad" --probes $bad 2> "$work/err.txt"; then die "$bad accepted"; fi

@@ -80,6 +80,16 @@ glm::vec3 probe_texel_direction(int row, int col, int height, int width, const g
 // (s = ceil(sqrt(count))): distinct cells picked by a random permutation, one jittered point
 // in each. Every point is uniform over the square on its own, so any average over them is
 // unbiased; when count is a perfect square every cell is used once.
-void stratified_square(int count, Rng& rng, std::vector<glm::vec2>* points);
+//
+// Interleaving (count n > 1): each cell is split n x n and the point is jittered inside
+// sub-cell (sub + shift(cell)) mod n, shift a hash of (key, cell). Calls with one key and all
+// n^2 values of `sub` cover every sub-cell of every cell they pick once; each call alone is
+// still stratified and unbiased (the shift is uniform over the sub-cells).
+struct Interleave {
+  glm::ivec2 sub{0};  // column, row in [0, count)
+  int count = 1;
+  uint64_t key = 0;
+};
+void stratified_square(int count, Rng& rng, std::vector<glm::vec2>* points, const Interleave& interleave = {});
 
 }  // namespace phyir::render

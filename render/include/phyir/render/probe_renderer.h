@@ -19,6 +19,9 @@
 //    glossy_roughness, up to kMaxSpecularDepth) and otherwise next-event estimation at y
 //    plus (f_d(y) + specular albedo(y)/pi) E(y); on rough dielectrics that evaluation is
 //    Russian-rouletted by the specular share of the weight. Glass at x is path traced.
+//    Afterwards each texel is averaged with the same texel of neighbouring probes on the
+//    same surface where its content is far enough for the parallax to be small
+//    (probe_sharing.h).
 //    "Hard" texels are re-estimated from hard_spp_factor x spp fresh directions: those the
 //    scene's emissive triangles can cover (projected onto the probe before sampling; their
 //    directly seen emission is estimated apart from 64 x spp more one-ray directions) and
@@ -37,6 +40,7 @@
 #include "phyir/render/effects.h"
 #include "phyir/render/path_tracer.h"
 #include "phyir/render/probe_grid.h"
+#include "phyir/render/probe_sharing.h"
 #include "phyir/render/render_scene.h"
 
 namespace phyir::render {
@@ -62,6 +66,7 @@ struct ProbeSettings {
   // mean (plus a small floor) is hard: an edge, a highlight or a shadow boundary in it.
   float spread_threshold = 0.5f;
   float glossy_roughness = 0.3f;  // secondary hits smoother than this are traced on
+  ProbeSharing sharing;           // texels averaged with neighbouring probes' (probe_sharing.h)
   bool progress = true;
 
   void validate() const;  // throws phyir::Error naming the flag
@@ -78,6 +83,9 @@ struct ProbeStats {
   uint64_t probes = 0, valid = 0, nothing = 0, emitter = 0, transparent = 0;
   uint64_t computed_probes = 0;   // probes actually rendered (all but kNothing, or a subset)
   uint64_t supersampled_texels = 0;
+  uint64_t shared_texels = 0;     // texels averaged with at least one neighbour's
+  uint64_t light_texels = 0;      // texels a light may cover (emission estimated apart)
+  double share_seconds = 0.0;
   uint64_t cache_cells = 0, cache_direct_cells = 0, cache_fill_samples = 0, cache_fallbacks = 0;
   nlohmann::json to_json() const;
 };

@@ -1,0 +1,55 @@
+#pragma once
+// Sharing samples between neighbouring probes of one surface (cache mode; docs/probes.md,
+// "Sharing between neighbours").
+//
+// Probes of adjacent grid cells on one surface are centimetres apart, and a texel whose
+// content is metres away sees nearly the same radiance from both. So each texel of a valid
+// probe is averaged with the same texel of the valid probes in the (2r+1) x (2r+1) window of
+// the grid around it, weighted by their sample counts, where
+//  - the two probes lie on one surface: normals within ~25 degrees, each origin within a
+//    tenth of their distance (plus 2 mm) of the other's tangent plane, at most max_baseline
+//    apart;
+//  - the texel's parallax is small: the part of the baseline across the texel's centre
+//    direction is below parallax_texels times the texel's smaller extent (its height pi/h,
+//    or its width at its centre row near the poles) seen from the nearer of the two
+//    probes' hit distances in that texel, and those distances agree within a factor of 2
+//    (else one probe sees an occluder the other does not).
+// The window's probes draw interleaved strata (sub_stratum), so their average is a
+// stratified estimate over (2r+1)^2 times as many strata as one probe's.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "phyir/core/image.h"
+#include "phyir/render/probe_grid.h"
+
+namespace phyir::render {
+
+struct ProbeSharing {
+  int radius = 1;                // window (2r+1)^2; 0: no sharing
+  float parallax_texels = 0.5f;  // largest accepted parallax, in texel extents
+  float max_baseline = 0.25f;    // metres
+
+  int window() const { return 2 * radius + 1; }
+};
+
+// Which of the window() x window() sub-cells of its strata probe (i, j) draws from: (j mod
+// n, i mod n), so any full window of the grid holds each sub-cell once.
+glm::ivec2 sub_stratum(int i, int j, const ProbeSharing& sharing);
+
+// What shading records per texel (index probe * texels_per_probe + texel): the nearest hit
+// distance among its directions (infinity where all missed) and its sample count.
+struct TexelRecords {
+  std::vector<float> distance;
+  std::vector<float> samples;
+};
+
+// The mosaic with each valid computed probe's texels averaged over its neighbours as above.
+// `computed` flags the probes whose texels and records are filled. Returns the number of
+// texels that took in at least one neighbour in *shared_texels.
+Image share_between_neighbours(const Image& mosaic, const ProbeLayout& layout, const std::vector<ProbeSite>& sites,
+                               const std::vector<uint8_t>& computed, const TexelRecords& records,
+                               const ProbeSharing& sharing, uint64_t* shared_texels);
+
+}  // namespace phyir::render

@@ -1,0 +1,115 @@
+#include "phyir/render/probe_sharing.h"
+
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <cmath>
+
+#include "phyir/core/safe_math.h"
+
+namespace phyir::render {
+
+namespace {
+
+// One surface: ~25 degrees between normals (a 0.5 m sphere turns 6 degrees between probes
+// 5 cm apart); the tangent-plane tolerance separates a table top from the floor under it.
+constexpr float kMinNormalCos = 0.9f;
+constexpr float kPlaneSlope = 0.1f;
+constexpr float kPlaneSlack = 0.002f;  // metres: the origins' float noise is far below
+// Hit distances further apart than this factor mean an occluder one probe sees and the other not.
+constexpr float kMaxDistanceRatio = 2.0f;
+
+bool one_surface(const ProbeSite& a, const ProbeSite& b, float max_baseline) {
+  const glm::vec3 d = b.origin - a.origin;
+  const float len = std::sqrt(glm::dot(d, d));
+  if (!(len <= max_baseline)) return false;
+  if (!(glm::dot(a.normal, b.normal) >= kMinNormalCos)) return false;
+  const float slack = kPlaneSlope * len + kPlaneSlack;
+  return std::abs(glm::dot(a.normal, d)) <= slack && std::abs(glm::dot(b.normal, d)) <= slack;
+}
+
+bool similar_distances(float a, float b) {
+  if (std::isinf(a) || std::isinf(b)) return std::isinf(a) && std::isinf(b);
+  return std::max(a, b) <= kMaxDistanceRatio * std::min(a, b);
+}
+
+}  // namespace
+
+glm::ivec2 sub_stratum(int i, int j, const ProbeSharing& sharing) {
+  const int n = sharing.window();
+  return glm::ivec2(j % n, i % n);
+}
+
+Image share_between_neighbours(const Image& mosaic, const ProbeLayout& layout, const std::vector<ProbeSite>& sites,
+                               const std::vector<uint8_t>& computed, const TexelRecords& records,
+                               const ProbeSharing& sharing, uint64_t* shared_texels) {
+  Image out = mosaic;
+  if (sharing.radius <= 0) return out;
+  const int h = layout.res_height, w = layout.res_width, texels = layout.texels_per_probe();
+  // Per texel: its centre direction and the largest parallax angle accepted there, a
+  // fraction of the texel's smaller extent (texels narrow towards the poles).
+  std::vector<glm::vec3> centre(static_cast<size_t>(texels));
+  std::vector<float> max_angle(static_cast<size_t>(texels));
+  for (int t = 0; t < texels; ++t) {
+    const int row = t / w;
+    centre[size_t(t)] = probe_texel_direction(row, t % w, h, w, glm::vec2(0.5f));
+    const float width = kTwoPi / float(w) * std::sin(kPi * (float(row) + 0.5f) / float(h));
+    max_angle[size_t(t)] = sharing.parallax_texels * std::min(kPi / float(h), width);
+  }
+  auto usable = [&](int p) { return computed[size_t(p)] && sites[size_t(p)].valid(); };
+  std::atomic<uint64_t> shared{0};
+
+  tbb::parallel_for(tbb::blocked_range<int>(0, layout.probe_count(), 16), [&](const tbb::blocked_range<int>& range) {
+    std::vector<glm::dvec3> sum(static_cast<size_t>(texels));
+    std::vector<double> weight(static_cast<size_t>(texels));
+    std::vector<uint8_t> took(static_cast<size_t>(texels));
+    uint64_t local_shared = 0;
+    for (int p = range.begin(); p < range.end(); ++p) {
+      if (!usable(p)) continue;
+      const int i = p / layout.grid_width, j = p % layout.grid_width;
+      const ProbeSite& site = sites[size_t(p)];
+      const size_t base_p = size_t(p) * size_t(texels);
+      auto texel = [&](int probe, int t, int ch) {
+        return mosaic.at((probe % layout.grid_width) * w + t % w, (probe / layout.grid_width) * h + t / w, ch);
+      };
+      for (int t = 0; t < texels; ++t) {
+        const double n = records.samples[base_p + size_t(t)];
+        sum[size_t(t)] = n * glm::dvec3(texel(p, t, 0), texel(p, t, 1), texel(p, t, 2));
+        weight[size_t(t)] = n;
+        took[size_t(t)] = 0;
+      }
+      for (int di = -sharing.radius; di <= sharing.radius; ++di) {
+        for (int dj = -sharing.radius; dj <= sharing.radius; ++dj) {
+          const int qi = i + di, qj = j + dj;
+          if ((di == 0 && dj == 0) || qi < 0 || qj < 0 || qi >= layout.grid_height || qj >= layout.grid_width) continue;
+          const int q = qi * layout.grid_width + qj;
+          if (!usable(q) || !one_surface(site, sites[size_t(q)], sharing.max_baseline)) continue;
+          const glm::vec3 baseline = sites[size_t(q)].origin - site.origin;
+          const size_t base_q = size_t(q) * size_t(texels);
+          for (int t = 0; t < texels; ++t) {
+            const float dp = records.distance[base_p + size_t(t)], dq = records.distance[base_q + size_t(t)];
+            if (!similar_distances(dp, dq)) continue;
+            const glm::vec3& dir = centre[size_t(t)];
+            const glm::vec3 across = baseline - glm::dot(baseline, dir) * dir;
+            if (!(std::sqrt(glm::dot(across, across)) <= max_angle[size_t(t)] * std::min(dp, dq))) continue;
+            const double n = records.samples[base_q + size_t(t)];
+            sum[size_t(t)] += n * glm::dvec3(texel(q, t, 0), texel(q, t, 1), texel(q, t, 2));
+            weight[size_t(t)] += n;
+            took[size_t(t)] = 1;
+          }
+        }
+      }
+      for (int t = 0; t < texels; ++t) {
+        if (!took[size_t(t)]) continue;
+        ++local_shared;
+        const glm::dvec3 v = sum[size_t(t)] / weight[size_t(t)];
+        for (int ch = 0; ch < 3; ++ch) out.at(j * w + t % w, i * h + t / w, ch) = float(v[ch]);
+      }
+    }
+    shared += local_shared;
+  });
+  if (shared_texels) *shared_texels = shared.load();
+  return out;
+}
+
+}  // namespace phyir::render
