@@ -64,7 +64,7 @@ struct Config {
   float cache_cell = 0.05f;
   uint64_t seed_offset = 0;  // another run of the same setting, to tell noise from bias
   float direct_cells = 6.0f;
-  float spread = 0.5f;
+  float spread = 0.75f;
   int share_radius = 1;
   float share_parallax = 0.5f;
 };

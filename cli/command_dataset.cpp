@@ -99,11 +99,11 @@ void add_settings_options(CLI::App* cmd, SettingsFlags& f) {
   opt(cmd->add_option("--probe-cache-direct-cells", f.probe_cache_direct_cells,
                       "cache mode: cache direct light this many cells from every emitter (0: never) [6]"));
   opt(cmd->add_option("--probe-spread-threshold", f.probe_spread_threshold,
-                      "cache mode: texels whose first samples spread over more than this times their mean get 8x the samples [0.5]"));
+                      "cache mode: texels whose first samples spread over more than this times their mean get 8x the samples [0.75]"));
   opt(cmd->add_option("--probe-share-radius", f.probe_share_radius,
                       "cache mode: average texels with same-surface probes up to this many grid cells away (0: off) [1]"));
   opt(cmd->add_option("--probe-share-parallax", f.probe_share_parallax,
-                      "cache mode: largest parallax between shared probes, in texel heights [0.5]"));
+                      "cache mode: largest parallax between shared probes, in texel extents [0.5]"));
   opt(cmd->add_option("--exposure", f.exposure,
                       "input.png exposure: 'auto' (the 95th percentile of color.exr maps to --exposure-target) or "
                       "stops")

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
+#include <vector>
 
 #include "phyir/core/safe_math.h"
 #include "phyir/render/equirect.h"
@@ -13,9 +16,28 @@ EmitterFootprints::EmitterFootprints(const scenes::Scene& scene) {
     if (mesh.material < 0 || size_t(mesh.material) >= scene.materials.size()) continue;
     const scenes::Material& material = scene.materials[size_t(mesh.material)];
     if (!material.is_emissive()) continue;
+    // An edge two coplanar triangles of the mesh share is inside the light (a panel's
+    // diagonal), not on its outline; a crease (a box light's corner) is an outline.
+    auto edge = [](uint32_t a, uint32_t b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
+    auto normal_of = [&](const glm::uvec3& t) {
+      const glm::vec3 n = glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]);
+      const float len = glm::length(n);
+      return len > 0.0f ? n / len : glm::vec3(0.0f);
+    };
+    std::map<std::pair<uint32_t, uint32_t>, std::vector<glm::vec3>> edge_normals;
     for (const glm::uvec3& t : mesh.triangles) {
       if (t.x >= mesh.positions.size() || t.y >= mesh.positions.size() || t.z >= mesh.positions.size()) continue;
-      Triangle tri{{mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]}, glm::vec3(0.0f), material.double_sided};
+      for (int e = 0; e < 3; ++e) edge_normals[edge(t[e], t[(e + 1) % 3])].push_back(normal_of(t));
+    }
+    auto on_outline = [&](uint32_t a, uint32_t b) {
+      const std::vector<glm::vec3>& n = edge_normals[edge(a, b)];
+      return !(n.size() == 2 && glm::dot(n[0], n[1]) > 0.999f);
+    };
+    for (const glm::uvec3& t : mesh.triangles) {
+      if (t.x >= mesh.positions.size() || t.y >= mesh.positions.size() || t.z >= mesh.positions.size()) continue;
+      Triangle tri{{mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]}, glm::vec3(0.0f), material.double_sided,
+                   {}};
+      for (int e = 0; e < 3; ++e) tri.outline[e] = on_outline(t[e], t[(e + 1) % 3]);
       const glm::vec3 n = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
       if (!(glm::dot(n, n) > 0.0f) || !is_finite(n)) continue;
       tri.normal = glm::normalize(n);
@@ -57,7 +79,27 @@ void EmitterFootprints::mark(const glm::vec3& origin, int h, int w, std::vector<
     const bool all_columns = up || down || c1 - c0 + 1 >= w;
     if (all_columns) c0 = 0, c1 = w - 1;
     for (int r = r0; r <= r1; ++r)
-      for (int c = c0; c <= c1; ++c) (*flags)[size_t(r) * w + size_t(((c % w) + w) % w)] = 1;
+      for (int c = c0; c <= c1; ++c) {
+        uint8_t& f = (*flags)[size_t(r) * w + size_t(((c % w) + w) % w)];
+        f = std::max(f, kCovered);
+      }
+    // The outline, at 1/8 of a texel's height (at least 16 points per edge).
+    for (int e = 0; e < 3; ++e) {
+      if (!tri.outline[e]) continue;
+      const glm::vec3 a = tri.p[e] - origin, b = tri.p[(e + 1) % 3] - origin;
+      const float la = glm::length(a), lb = glm::length(b);
+      if (!(la > 0.0f) || !(lb > 0.0f)) continue;
+      const float angle = std::acos(std::clamp(glm::dot(a / la, b / lb), -1.0f, 1.0f));
+      const int n = std::clamp(int(std::ceil(angle / (kPi / float(h)) * 8.0f)), kEdgeSamples, 4096);
+      for (int k = 0; k <= n; ++k) {
+        const glm::vec3 d = glm::mix(a, b, float(k) / float(n));
+        const float len = glm::length(d);
+        if (!(len > 0.0f)) continue;
+        const glm::vec2 uv = equirect_uv(d / len);
+        const int r = std::clamp(int(uv.y * float(h)), 0, h - 1), c = std::clamp(int(uv.x * float(w)), 0, w - 1);
+        (*flags)[size_t(r) * w + size_t(c)] = kEdge;
+      }
+    }
   }
 }
 

@@ -36,10 +36,13 @@ double seconds_since(Clock::time_point start) {
 constexpr int kMaxSpecularDepth = 3;
 
 // Directions per texel for the emission seen in texels a light may cover, in units of spp
-// (64 x 4 = 256 at the default spp: a light edge crossing a texel is then found to ~1%).
-constexpr int kEmissionSppFactor = 64;
+// (one ray each): 64 x 4 = 256 at the default spp, and 4x as many where the light's
+// outline crosses the texel (EmitterFootprints::kEdge), since a stratified estimate of
+// partial coverage converges only as N^-3/4 (~1% of the light's radiance at 256).
+constexpr int kEmissionSppFactor = 16;
+constexpr int kEmissionEdgeSppFactor = 256;
 
-// Sample ids: a texel's samples are 0 .. spp (1 + hard_spp_factor + kEmissionSppFactor) - 1; these three
+// Sample ids: a texel's samples are 0 .. spp (1 + hard_spp_factor + kEmissionEdgeSppFactor) - 1; these three
 // keep the discovery ray and the strata permutations on streams of their own.
 constexpr uint64_t kDiscoverySample = uint64_t(1) << 40;
 constexpr uint64_t kStrataStream = uint64_t(1) << 41;
@@ -63,6 +66,11 @@ enum Purpose : uint64_t {
 // metal lobe in every sample.
 constexpr float kSpecularKeepScale = 4.0f;
 constexpr float kMinSpecularKeep = 0.125f;
+
+// Light samples of the next-event estimate at a probe ray's own hit near a light (where
+// direct light is not cached): there the direct light of a thin or nearby emitter varies
+// most from one direction to the next (measured: the ceiling beside a light fixture).
+constexpr int kNearLightSamples = 8;
 
 // See dark_floor in render_probes_at.
 constexpr float kDarkFloorFraction = 0.1f;
@@ -170,8 +178,10 @@ class TexelEstimator {
     if (max_component(fd) > 0.0f) L += fd * E.indirect;
     const bool emitters = !scene_.emitters().empty();
 
-    // Next-event estimation on the emitters, full BRDF.
-    if (emitters) L += direct_light(si, frame, wo, p, Lobes::kAll, depth, key, /*mis=*/true, c);
+    // Next-event estimation on the emitters, full BRDF: several samples at a probe ray's own
+    // hit (near a light the texel's noise is mostly this estimate's), one deeper.
+    const int light_samples = depth == 0 ? kNearLightSamples : 1;
+    if (emitters) L += direct_light(si, frame, wo, p, Lobes::kAll, depth, key, /*mis=*/true, c, 1.0f, light_samples);
 
     // One direction from the BRDF.
     Rng rng = shading_rng(key, depth, kBrdfSample);
@@ -287,13 +297,26 @@ class TexelEstimator {
   // Which part of the BRDF a next-event estimate goes through.
   enum class Lobes { kAll, kSpecular };
 
-  // One next-event estimate on the emitters of the light reflected towards wo through the
-  // BRDF (or its specular lobe); `mis`: weighted by the power heuristic against the
-  // BRDF-sampled (or GGX-sampled) ray of the same event, which is traced with probability
-  // `brdf_strategy_probability` (its effective density is that times its pdf).
+  // A next-event estimate on the emitters of the light reflected towards wo through the
+  // BRDF (or its specular lobe), the mean of `count` light samples; `mis`: weighted by the
+  // power heuristic against the BRDF-sampled (or GGX-sampled) ray of the same event, which
+  // is traced with probability `brdf_strategy_probability` (its effective density is that
+  // times its pdf). Each light sample keeps the one-sample weight, so the weights still sum
+  // to one with that ray's for any count. (The count-scaled weights of multi-sample MIS came
+  // out 11% low in ProbeCache.NearAndFarFromALightMatchesThePathMode: docs/probes.md.)
   glm::vec3 direct_light(const SurfaceInteraction& si, const Frame& frame, const glm::vec3& wo, const BrdfParams& p,
                          Lobes lobes, int depth, uint64_t key, bool mis, PathCounters* c,
-                         float brdf_strategy_probability = 1.0f) const {
+                         float brdf_strategy_probability = 1.0f, int count = 1) const {
+    glm::vec3 sum(0.0f);
+    for (int k = 0; k < count; ++k)
+      sum += light_sample(si, frame, wo, p, lobes, k == 0 ? key : mix64(key ^ uint64_t(k)), depth, mis, c,
+                          brdf_strategy_probability);
+    return sum / float(count);
+  }
+
+  glm::vec3 light_sample(const SurfaceInteraction& si, const Frame& frame, const glm::vec3& wo, const BrdfParams& p,
+                         Lobes lobes, uint64_t key, int depth, bool mis, PathCounters* c,
+                         float brdf_strategy_probability) const {
     Rng rng = shading_rng(key, depth, kLightSample);
     const float u_select = rng.next_float();
     const glm::vec2 u_point = rng.next_2d();
@@ -433,6 +456,7 @@ nlohmann::json ProbeStats::to_json() const {
           {"supersampled_texels", supersampled_texels},
           {"shared_texels", shared_texels},
           {"light_texels", light_texels},
+          {"light_edge_texels", light_edge_texels},
           {"cache", {{"cells", cache_cells}, {"cells_with_direct_light", cache_direct_cells}, {"fill_samples", cache_fill_samples}, {"fallback_lookups", cache_fallbacks}}},
           {"nonfinite_samples_caught", counters.nonfinite_samples}};
 }
@@ -562,7 +586,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
     records.distance.assign(size_t(layout.probe_count()) * size_t(texels), std::numeric_limits<float>::infinity());
     records.samples.assign(size_t(layout.probe_count()) * size_t(texels), 0.0f);
   }
-  std::atomic<uint64_t> supersampled{0}, light_texels{0};
+  std::atomic<uint64_t> supersampled{0}, light_texels{0}, light_edge_texels{0};
   Progress progress("probes", todo.size(), "probes", settings.progress);
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, todo.size(), 4),
@@ -570,7 +594,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
         PathCounters& c = local.local();
         std::vector<glm::vec2> strata;
         std::vector<uint8_t> lit(static_cast<size_t>(texels));
-        uint64_t extra = 0, lit_texels = 0;
+        uint64_t extra = 0, lit_texels = 0, edge_texels = 0;
         for (size_t k = r.begin(); k < r.end(); ++k) {
           const int p = todo[k];
           const int i = p / layout.grid_width, j = p % layout.grid_width;
@@ -631,7 +655,10 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
               bool unused = false;
               if (lit[size_t(t)]) {
                 value = estimate(spp, hard_spp, Part::kRest, &unused);
-                seen_emission = estimate(spp + hard_spp, spp * kEmissionSppFactor, Part::kEmission, &unused);
+                const bool edge = lit[size_t(t)] == EmitterFootprints::kEdge;
+                seen_emission = estimate(spp + hard_spp, spp * (edge ? kEmissionEdgeSppFactor : kEmissionSppFactor),
+                                         Part::kEmission, &unused);
+                edge_texels += edge;
                 ++lit_texels;
               } else {
                 value = estimate(spp, hard_spp, Part::kAll, &unused);
@@ -652,6 +679,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
         }
         supersampled += extra;
         light_texels += lit_texels;
+        light_edge_texels += edge_texels;
         progress.advance(r.size());
       },
       tbb::simple_partitioner());
@@ -659,6 +687,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
   for (const PathCounters& c : local) stats.counters += c;
   stats.supersampled_texels = supersampled.load();
   stats.light_texels = light_texels.load();
+  stats.light_edge_texels = light_edge_texels.load();
   if (cache) stats.cache_fallbacks = cache->fallbacks();
   stats.shade_seconds = seconds_since(shade_start);
   if (share) {

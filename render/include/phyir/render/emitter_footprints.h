@@ -17,10 +17,15 @@ class EmitterFootprints {
  public:
   explicit EmitterFootprints(const scenes::Scene& scene);
 
-  // Sets flags[row * w + col] for every texel of an h x w probe at `origin` that a
-  // front-facing emissive triangle may cover, occlusion ignored: the texel box of points
-  // sampled densely along its edges, grown by one texel, or the whole cap when the
-  // triangle surrounds a pole.
+  static constexpr uint8_t kCovered = 1;  // a light may cover the texel
+  static constexpr uint8_t kEdge = 2;     // ... and a light's outline may cross it
+
+  // Raises flags[row * w + col] to kCovered for every texel of an h x w probe at `origin`
+  // that a front-facing emissive triangle may cover, occlusion ignored: the texel box of
+  // points sampled densely along its edges, grown by one texel, or the whole cap when the
+  // triangle surrounds a pole. Texels that a point of the light's outline (the triangle
+  // edges no other emissive triangle of its mesh shares, sampled at 1/8 of a texel) falls
+  // in are raised to kEdge: there coverage is partial.
   void mark(const glm::vec3& origin, int h, int w, std::vector<uint8_t>* flags) const;
 
  private:
@@ -28,6 +33,7 @@ class EmitterFootprints {
     glm::vec3 p[3];
     glm::vec3 normal;
     bool two_sided;
+    bool outline[3];  // edge p[e] -> p[e+1] is on the light's outline (not shared in its mesh)
   };
   // Whether the ray from `o` along `d` crosses the triangle (Moller-Trumbore).
   static bool surrounds(const Triangle& t, const glm::vec3& o, const glm::vec3& d);

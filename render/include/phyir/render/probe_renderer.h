@@ -12,8 +12,8 @@
 //    from the emitters), the diffuse part of all light at x is f_d(x) E(x) and the specular
 //    part is sampled apart (next-event estimation and a GGX-sampled ray through f_s,
 //    Russian-rouletted by its share of the albedo). Elsewhere direct light at x is sampled
-//    as the integrator does (next-event estimation plus one BRDF-sampled ray,
-//    power-heuristic MIS); indirect diffuse light is f_d(x) E(x) with E's indirect part;
+//    as the integrator does (next-event estimation, with 8 light samples at x, plus one
+//    BRDF-sampled ray, power-heuristic MIS); indirect diffuse light is f_d(x) E(x) with E's indirect part;
 //    indirect specular light comes through the BRDF-sampled ray: the specular part of its weight
 //    times the light its hit y reflects, followed recursively for glossy y (roughness below
 //    glossy_roughness, up to kMaxSpecularDepth) and otherwise next-event estimation at y
@@ -24,7 +24,8 @@
 //    (probe_sharing.h).
 //    "Hard" texels are re-estimated from hard_spp_factor x spp fresh directions: those the
 //    scene's emissive triangles can cover (projected onto the probe before sampling; their
-//    directly seen emission is estimated apart from 64 x spp more one-ray directions) and
+//    directly seen emission is estimated apart from 64 x spp more one-ray directions,
+//    256 x spp where a light's outline crosses the texel) and
 //    those whose first spp directions met a light, glass or a glossy surface.
 // Random numbers: sample s of texel t of probe p draws from streams keyed by
 // (seed, p, t, s) (PathTracer::path_key of a probe seed), the cache's from (seed, cell,
@@ -64,7 +65,7 @@ struct ProbeSettings {
   int hard_spp_factor = 8;        // hard texels (lights, glass, glossy, edges) get this many times spp
   // A texel whose first spp samples' luminances spread over more than this times their
   // mean (plus a small floor) is hard: an edge, a highlight or a shadow boundary in it.
-  float spread_threshold = 0.5f;
+  float spread_threshold = 0.75f;
   float glossy_roughness = 0.3f;  // secondary hits smoother than this are traced on
   ProbeSharing sharing;           // texels averaged with neighbouring probes' (probe_sharing.h)
   bool progress = true;
@@ -85,6 +86,7 @@ struct ProbeStats {
   uint64_t supersampled_texels = 0;
   uint64_t shared_texels = 0;     // texels averaged with at least one neighbour's
   uint64_t light_texels = 0;      // texels a light may cover (emission estimated apart)
+  uint64_t light_edge_texels = 0; // of those, texels a light's outline crosses (4x the emission directions)
   double share_seconds = 0.0;
   uint64_t cache_cells = 0, cache_direct_cells = 0, cache_fill_samples = 0, cache_fallbacks = 0;
   nlohmann::json to_json() const;

@@ -1,0 +1,93 @@
+// EmitterFootprints: the texels of a probe a light may cover, and among them those its
+// outline crosses, against the coverage of every texel computed by dense sampling.
+#include <gtest/gtest.h>
+
+#include <iostream>
+#include <vector>
+
+#include "phyir/render/emitter_footprints.h"
+#include "phyir/render/equirect.h"
+#include "phyir/render/probe_grid.h"
+#include "test_scenes.h"
+
+namespace phyir::render {
+namespace {
+
+// The light: the rectangle x = 1, y in [-0.83, 1.07], z in [-0.71, 0.99] (its edges off the
+// texel borders), seen from the origin.
+constexpr float kY0 = -0.83f, kY1 = 1.07f, kZ0 = -0.71f, kZ1 = 0.99f;
+
+// Fraction of texel (row, col) of an h x w probe at the origin the light covers (a 64 x 64
+// grid of directions uniform in solid angle).
+double square_coverage(int row, int col, int h, int w) {
+  constexpr int n = 64;
+  int hits = 0;
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) {
+      const glm::vec3 d = probe_texel_direction(row, col, h, w, glm::vec2((a + 0.5f) / n, (b + 0.5f) / n));
+      if (!(d.x > 0.0f)) continue;
+      const float y = d.y / d.x, z = d.z / d.x;
+      if (y >= kY0 && y <= kY1 && z >= kZ0 && z <= kZ1) ++hits;
+    }
+  return double(hits) / (n * n);
+}
+
+TEST(EmitterFootprints, PartlyCoveredTexelsAreEdgesFullyCoveredOnesAreCovered) {
+  scenes::Scene scene;
+  const int light = test::add_material(scene, test::make_emitter(glm::vec3(10.0f), /*double_sided=*/true));
+  test::add_quad(scene, glm::vec3(1.0f, kY0, kZ0), glm::vec3(0, kY1 - kY0, 0), glm::vec3(0, 0, kZ1 - kZ0), light,
+                 "wall light");
+  const EmitterFootprints footprints(scene);
+  const int h = 16, w = 32;
+  std::vector<uint8_t> flags(size_t(h) * w, 0);
+  footprints.mark(glm::vec3(0.0f), h, w, &flags);
+  int full = 0, partial = 0, edges = 0, inner_covered = 0;
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) {
+      const double coverage = square_coverage(r, c, h, w);
+      const uint8_t f = flags[size_t(r) * w + c];
+      edges += f == EmitterFootprints::kEdge;
+      if (coverage > 0.999) {
+        ++full;
+        EXPECT_GE(f, EmitterFootprints::kCovered) << r << "," << c;
+        if (f == EmitterFootprints::kCovered) ++inner_covered;
+      } else if (coverage > 0.01) {
+        ++partial;
+        EXPECT_EQ(f, EmitterFootprints::kEdge) << r << "," << c << " coverage " << coverage;
+      }
+    }
+  // The light spans ~90 degrees: ~8 rows by ~8 columns of 11.25-degree texels, of which
+  // the inner ones are whole; the panel's diagonal is not an outline, so they stay kCovered.
+  EXPECT_GT(full, 8);
+  EXPECT_GT(partial, 8);
+  EXPECT_GT(inner_covered, 8);
+  // The outline's texels are found from points on it, so edge texels are (nearly) only
+  // partly covered ones: a few may hold a sliver below the 1% counted above.
+  EXPECT_LE(edges, partial + 4);
+  std::cout << full << " texels fully covered, " << partial << " partly, " << edges << " marked as edges\n";
+}
+
+TEST(EmitterFootprints, ADiagonalInsideAPanelIsNoOutlineACreaseIs) {
+  // One mesh of two triangles sharing the edge v0-v2 (by index); flat, that edge is the
+  // panel's diagonal; with v3 pulled towards the probe, it is a crease the probe sees.
+  for (bool bent : {false, true}) {
+    scenes::Scene scene;
+    scenes::Mesh mesh;
+    mesh.name = "panel";
+    mesh.material = test::add_material(scene, test::make_emitter(glm::vec3(10.0f), true));
+    mesh.positions = {{1, -1, -1}, {1, -1, 1}, {1, 1, 1}, {bent ? 0.5f : 1.0f, 1, -1}};
+    mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    scene.meshes.push_back(mesh);
+    const EmitterFootprints footprints(scene);
+    const int h = 16, w = 32;
+    std::vector<uint8_t> flags(size_t(h) * w, 0);
+    footprints.mark(glm::vec3(0.0f), h, w, &flags);
+    // The texel of a point a quarter of the way along the shared edge.
+    const glm::vec2 uv = equirect_uv(glm::normalize(glm::vec3(1.0f, -0.5f, -0.5f)));
+    const uint8_t f = flags[size_t(uv.y * h) * w + size_t(uv.x * w)];
+    EXPECT_EQ(f, bent ? EmitterFootprints::kEdge : EmitterFootprints::kCovered) << (bent ? "bent" : "flat");
+  }
+}
+
+}  // namespace
+}  // namespace phyir::render
