@@ -265,7 +265,7 @@ void add_bench_probes_command(CLI::App& bench) {
   cmd->add_option("--grid", f->grid, "probe grid HxW the times are measured on")->capture_default_str();
   cmd->add_option("--res-list", f->res_list, "probe resolutions hxw")->delimiter(',')->capture_default_str();
   cmd->add_option("--configs", f->configs,
-                  std::string(kConfigSyntax) + " settings to measure (SEED: added to --seed, for repeated runs; DIRECT_CELLS, SPREAD: as --probe-cache-direct-cells, --probe-spread-threshold)")->delimiter(',')->capture_default_str();
+                  std::string(kConfigSyntax) + " settings to measure (SEED: added to --seed, for repeated runs; DIRECT_CELLS, SPREAD, SHARE_RADIUS, SHARE_PARALLAX: as --probe-cache-direct-cells, --probe-spread-threshold, --probe-share-radius, --probe-share-parallax)")->delimiter(',')->capture_default_str();
   cmd->add_option("--reference-spp", f->reference_spp, "spp of the converged path-mode reference")->capture_default_str();
   cmd->add_option("--reference-probes", f->reference_probes, "how many random valid probes the error is measured on")->capture_default_str();
   cmd->add_option("--probe-indices", f->probe_indices, "measure on these probe indices (i * grid width + j) instead of a random subset")->delimiter(',');

@@ -122,7 +122,9 @@ TEST(ImageIo, TruncatedPngInMemoryIsRefusedBeforeDecoding) {
     } catch (const phyir::Error& e) {
       const std::string message = e.what();
       EXPECT_NE(message.find("texture 3"), std::string::npos) << message;
-      if (cut >= 8) EXPECT_NE(message.find("truncated"), std::string::npos) << message;
+      if (cut >= 8) {
+        EXPECT_NE(message.find("truncated"), std::string::npos) << message;
+      }
     }
   }
   std::vector<unsigned char> lying = bytes;
