@@ -36,8 +36,9 @@ double seconds_since(Clock::time_point start) {
 constexpr int kMaxSpecularDepth = 3;
 
 // Directions per texel for the emission seen in texels a light may cover, in units of spp
-// (one ray each): 64 x 4 = 256 at the default spp, and 4x as many where the light's
-// outline crosses the texel (EmitterFootprints::kEdge), since a stratified estimate of
+// (one ray each): 16 x 4 = 64 at the default spp where the texel is wholly inside or
+// outside the lights' outlines (occluders aside, few directions find that), and 256 x 4 =
+// 1024 where an outline crosses it (EmitterFootprints::kEdge): a stratified estimate of
 // partial coverage converges only as N^-3/4 (~1% of the light's radiance at 256).
 constexpr int kEmissionSppFactor = 16;
 constexpr int kEmissionEdgeSppFactor = 256;

@@ -24,7 +24,7 @@
 //    (probe_sharing.h).
 //    "Hard" texels are re-estimated from hard_spp_factor x spp fresh directions: those the
 //    scene's emissive triangles can cover (projected onto the probe before sampling; their
-//    directly seen emission is estimated apart from 64 x spp more one-ray directions,
+//    directly seen emission is estimated apart from 16 x spp more one-ray directions,
 //    256 x spp where a light's outline crosses the texel) and
 //    those whose first spp directions met a light, glass or a glossy surface.
 // Random numbers: sample s of texel t of probe p draws from streams keyed by
