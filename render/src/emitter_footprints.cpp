@@ -46,60 +46,78 @@ EmitterFootprints::EmitterFootprints(const scenes::Scene& scene) {
   }
 }
 
+namespace {
+
+// Calls fn(uv) with the equirectangular position, seen from `origin`, of the points k / n of
+// the edge a -> b, k = 0 .. n - 1 (and n too when `with_end`).
+template <class Fn>
+void for_edge_points(const glm::vec3& origin, const glm::vec3& a, const glm::vec3& b, int n, bool with_end, Fn fn) {
+  for (int k = 0; k < n + (with_end ? 1 : 0); ++k) {
+    const glm::vec3 d = glm::mix(a, b, float(k) / float(n)) - origin;
+    const float len = glm::length(d);
+    if (len > 0.0f) fn(equirect_uv(d / len));
+  }
+}
+
+constexpr int kEdgeSamples = 16;  // points per edge for the box, at least, for the outline
+
+}  // namespace
+
 void EmitterFootprints::mark(const glm::vec3& origin, int h, int w, std::vector<uint8_t>* flags) const {
-  constexpr int kEdgeSamples = 16;
-  std::vector<float> us;
   for (const Triangle& tri : triangles_) {
     if (!tri.two_sided && !(glm::dot(tri.normal, origin - tri.p[0]) > 0.0f)) continue;  // its back
-    us.clear();
-    float vmin = 1.0f, vmax = 0.0f;
-    for (int e = 0; e < 3; ++e)
-      for (int k = 0; k < kEdgeSamples; ++k) {
-        const glm::vec3 q = glm::mix(tri.p[e], tri.p[(e + 1) % 3], float(k) / kEdgeSamples);
-        const glm::vec3 d = q - origin;
-        const float len = glm::length(d);
-        if (!(len > 0.0f)) continue;
-        const glm::vec2 uv = equirect_uv(d / len);
-        us.push_back(uv.x);
-        vmin = std::min(vmin, uv.y);
-        vmax = std::max(vmax, uv.y);
-      }
-    if (us.empty()) continue;
-    const bool up = surrounds(tri, origin, glm::vec3(0, 1, 0)), down = surrounds(tri, origin, glm::vec3(0, -1, 0));
-    const int r0 = up ? 0 : std::max(int(vmin * h) - 1, 0);
-    const int r1 = down ? h - 1 : std::min(int(vmax * h) + 1, h - 1);
-    // The columns: the circle of u minus its largest empty gap.
-    std::sort(us.begin(), us.end());
-    float gap = us.front() + 1.0f - us.back();
-    float start = us.front(), end = us.back();
-    for (size_t k = 1; k < us.size(); ++k)
-      if (us[k] - us[k - 1] > gap) gap = us[k] - us[k - 1], start = us[k], end = us[k - 1];
-    int c0 = int(std::floor(start * w)) - 1, c1 = int(std::floor(end * w)) + 1;
-    if (c1 < c0) c1 += w;
-    const bool all_columns = up || down || c1 - c0 + 1 >= w;
-    if (all_columns) c0 = 0, c1 = w - 1;
-    for (int r = r0; r <= r1; ++r)
-      for (int c = c0; c <= c1; ++c) {
-        uint8_t& f = (*flags)[size_t(r) * w + size_t(((c % w) + w) % w)];
-        f = std::max(f, kCovered);
-      }
-    // The outline, at 1/8 of a texel's height (at least 16 points per edge).
-    for (int e = 0; e < 3; ++e) {
-      if (!tri.outline[e]) continue;
-      const glm::vec3 a = tri.p[e] - origin, b = tri.p[(e + 1) % 3] - origin;
-      const float la = glm::length(a), lb = glm::length(b);
-      if (!(la > 0.0f) || !(lb > 0.0f)) continue;
-      const float angle = std::acos(std::clamp(glm::dot(a / la, b / lb), -1.0f, 1.0f));
-      const int n = std::clamp(int(std::ceil(angle / (kPi / float(h)) * 8.0f)), kEdgeSamples, 4096);
-      for (int k = 0; k <= n; ++k) {
-        const glm::vec3 d = glm::mix(a, b, float(k) / float(n));
-        const float len = glm::length(d);
-        if (!(len > 0.0f)) continue;
-        const glm::vec2 uv = equirect_uv(d / len);
-        const int r = std::clamp(int(uv.y * float(h)), 0, h - 1), c = std::clamp(int(uv.x * float(w)), 0, w - 1);
-        (*flags)[size_t(r) * w + size_t(c)] = kEdge;
-      }
+    mark_box(tri, origin, h, w, flags);
+    mark_outline(tri, origin, h, w, flags);
+  }
+}
+
+void EmitterFootprints::mark_box(const Triangle& tri, const glm::vec3& origin, int h, int w,
+                                 std::vector<uint8_t>* flags) const {
+  thread_local std::vector<float> us;
+  us.clear();
+  float vmin = 1.0f, vmax = 0.0f;
+  for (int e = 0; e < 3; ++e)
+    for_edge_points(origin, tri.p[e], tri.p[(e + 1) % 3], kEdgeSamples, false, [&](const glm::vec2& uv) {
+      us.push_back(uv.x);
+      vmin = std::min(vmin, uv.y);
+      vmax = std::max(vmax, uv.y);
+    });
+  if (us.empty()) return;
+  const bool up = surrounds(tri, origin, glm::vec3(0, 1, 0)), down = surrounds(tri, origin, glm::vec3(0, -1, 0));
+  const int r0 = up ? 0 : std::max(int(vmin * h) - 1, 0);
+  const int r1 = down ? h - 1 : std::min(int(vmax * h) + 1, h - 1);
+  // The columns: the circle of u minus its largest empty gap.
+  std::sort(us.begin(), us.end());
+  float gap = us.front() + 1.0f - us.back();
+  float start = us.front(), end = us.back();
+  for (size_t k = 1; k < us.size(); ++k)
+    if (us[k] - us[k - 1] > gap) gap = us[k] - us[k - 1], start = us[k], end = us[k - 1];
+  int c0 = int(std::floor(start * w)) - 1, c1 = int(std::floor(end * w)) + 1;
+  if (c1 < c0) c1 += w;
+  const bool all_columns = up || down || c1 - c0 + 1 >= w;
+  if (all_columns) c0 = 0, c1 = w - 1;
+  for (int r = r0; r <= r1; ++r)
+    for (int c = c0; c <= c1; ++c) {
+      uint8_t& f = (*flags)[size_t(r) * w + size_t(((c % w) + w) % w)];
+      f = std::max(f, kCovered);
     }
+}
+
+void EmitterFootprints::mark_outline(const Triangle& tri, const glm::vec3& origin, int h, int w,
+                                     std::vector<uint8_t>* flags) const {
+  // Points every 1/8 of a texel's height.
+  for (int e = 0; e < 3; ++e) {
+    if (!tri.outline[e]) continue;
+    const glm::vec3& a = tri.p[e];
+    const glm::vec3& b = tri.p[(e + 1) % 3];
+    const float la = glm::length(a - origin), lb = glm::length(b - origin);
+    if (!(la > 0.0f) || !(lb > 0.0f)) continue;
+    const float angle = std::acos(std::clamp(glm::dot((a - origin) / la, (b - origin) / lb), -1.0f, 1.0f));
+    const int n = std::clamp(int(std::ceil(angle / (kPi / float(h)) * 8.0f)), kEdgeSamples, 4096);
+    for_edge_points(origin, a, b, n, true, [&](const glm::vec2& uv) {
+      const int r = std::clamp(int(uv.y * float(h)), 0, h - 1), c = std::clamp(int(uv.x * float(w)), 0, w - 1);
+      (*flags)[size_t(r) * w + size_t(c)] = kEdge;
+    });
   }
 }
 

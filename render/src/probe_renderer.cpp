@@ -670,12 +670,13 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
               records.distance[size_t(texel_id(p, t))] = distance;
               records.samples[size_t(texel_id(p, t))] = float(hard && adaptive ? hard_spp : spp);
               // Emission seen directly is not shared: a light's edge moves across a texel
-              // with the slightest parallax, and its 64 x spp directions make it exact already.
+              // with the slightest parallax, and its own directions already resolve it.
               if (lit[size_t(t)]) emission_seen.local().push_back({texel_id(p, t), seen_emission});
             } else {
               value += seen_emission;
             }
-            for (int ch = 0; ch < 3; ++ch) out.mosaic.at(j * layout.res_width + col, i * layout.res_height + row, ch) = value[ch];
+            const glm::ivec2 at = layout.mosaic_pixel(p, t);
+            for (int ch = 0; ch < 3; ++ch) out.mosaic.at(at.x, at.y, ch) = value[ch];
           }
         }
         supersampled += extra;
@@ -699,10 +700,8 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
                                           &stats.shared_texels);
     for (const auto& list : emission_seen) {
       for (const auto& [id, emission] : list) {
-        const int p = int(id / uint64_t(texels)), t = int(id % uint64_t(texels));
-        const int x = (p % layout.grid_width) * layout.res_width + t % layout.res_width;
-        const int y = (p / layout.grid_width) * layout.res_height + t / layout.res_width;
-        for (int ch = 0; ch < 3; ++ch) out.mosaic.at(x, y, ch) += emission[ch];
+        const glm::ivec2 at = layout.mosaic_pixel(int(id / uint64_t(texels)), int(id % uint64_t(texels)));
+        for (int ch = 0; ch < 3; ++ch) out.mosaic.at(at.x, at.y, ch) += emission[ch];
       }
     }
     stats.share_seconds = seconds_since(share_start);

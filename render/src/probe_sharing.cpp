@@ -69,12 +69,13 @@ Image share_between_neighbours(const Image& mosaic, const ProbeLayout& layout, c
       const int i = p / layout.grid_width, j = p % layout.grid_width;
       const ProbeSite& site = sites[size_t(p)];
       const size_t base_p = size_t(p) * size_t(texels);
-      auto texel = [&](int probe, int t, int ch) {
-        return mosaic.at((probe % layout.grid_width) * w + t % w, (probe / layout.grid_width) * h + t / w, ch);
+      auto texel = [&](int probe, int t) {
+        const glm::ivec2 at = layout.mosaic_pixel(probe, t);
+        return glm::dvec3(mosaic.at(at.x, at.y, 0), mosaic.at(at.x, at.y, 1), mosaic.at(at.x, at.y, 2));
       };
       for (int t = 0; t < texels; ++t) {
         const double n = records.samples[base_p + size_t(t)];
-        sum[size_t(t)] = n * glm::dvec3(texel(p, t, 0), texel(p, t, 1), texel(p, t, 2));
+        sum[size_t(t)] = n * texel(p, t);
         weight[size_t(t)] = n;
         took[size_t(t)] = 0;
       }
@@ -93,7 +94,7 @@ Image share_between_neighbours(const Image& mosaic, const ProbeLayout& layout, c
             const glm::vec3 across = baseline - glm::dot(baseline, dir) * dir;
             if (!(std::sqrt(glm::dot(across, across)) <= max_angle[size_t(t)] * std::min(dp, dq))) continue;
             const double n = records.samples[base_q + size_t(t)];
-            sum[size_t(t)] += n * glm::dvec3(texel(q, t, 0), texel(q, t, 1), texel(q, t, 2));
+            sum[size_t(t)] += n * texel(q, t);
             weight[size_t(t)] += n;
             took[size_t(t)] = 1;
           }
@@ -103,7 +104,8 @@ Image share_between_neighbours(const Image& mosaic, const ProbeLayout& layout, c
         if (!took[size_t(t)]) continue;
         ++local_shared;
         const glm::dvec3 v = sum[size_t(t)] / weight[size_t(t)];
-        for (int ch = 0; ch < 3; ++ch) out.at(j * w + t % w, i * h + t / w, ch) = float(v[ch]);
+        const glm::ivec2 at = layout.mosaic_pixel(p, t);
+        for (int ch = 0; ch < 3; ++ch) out.at(at.x, at.y, ch) = float(v[ch]);
       }
     }
     shared += local_shared;

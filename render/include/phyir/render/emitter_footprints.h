@@ -35,6 +35,9 @@ class EmitterFootprints {
     bool two_sided;
     bool outline[3];  // edge p[e] -> p[e+1] is on the light's outline (not shared in its mesh)
   };
+  // The two steps of mark(): the texel box (kCovered), the outline's texels (kEdge).
+  void mark_box(const Triangle& tri, const glm::vec3& origin, int h, int w, std::vector<uint8_t>* flags) const;
+  void mark_outline(const Triangle& tri, const glm::vec3& origin, int h, int w, std::vector<uint8_t>* flags) const;
   // Whether the ray from `o` along `d` crosses the triangle (Moller-Trumbore).
   static bool surrounds(const Triangle& t, const glm::vec3& o, const glm::vec3& d);
   std::vector<Triangle> triangles_;

@@ -35,6 +35,10 @@ struct ProbeLayout {
   int texels_per_probe() const { return res_height * res_width; }
   int mosaic_width() const { return grid_width * res_width; }
   int mosaic_height() const { return grid_height * res_height; }
+  // The mosaic pixel (column, row) of texel t (row-major in the probe) of probe p (row-major in the grid).
+  glm::ivec2 mosaic_pixel(int p, int t) const {
+    return {(p % grid_width) * res_width + t % res_width, (p / grid_width) * res_height + t / res_width};
+  }
   // Throws phyir::Error naming the flag when a size is out of range.
   void validate() const;
 };
