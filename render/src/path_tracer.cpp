@@ -101,8 +101,7 @@ glm::vec3 trace_path(const RenderScene& scene, const PathSettings& settings, con
         const glm::vec3 wi = frame.to_local(ls.wi);
         const glm::vec3 f = brdf_eval(si.brdf, wo, wi);
         if (wi.z > 0.0f && glm::dot(ls.wi, si.geometric_normal) > 0.0f && max_component(f) > 0.0f) {
-          Ray shadow{spawn_origin(si.position, si.geometric_normal, ls.wi), ls.wi};
-          shadow.tmax = ls.distance * (1.0f - kShadowRayShortening);  // stop short of the light itself
+          const Ray shadow = shadow_ray_to(si.position, si.geometric_normal, ls.position, ls.normal);
           ++counters->rays;
           if (!scene.accelerator().occluded(shadow)) {
             const float w = power_heuristic(ls.pdf, brdf_pdf(si.brdf, wo, wi));

@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -75,12 +76,21 @@ std::vector<ProbeSite> place_probes(const RenderScene& scene, const CameraModel&
 }
 
 glm::vec3 probe_texel_direction(int row, int col, int height, int width, const glm::vec2& a) {
-  const double cos0 = std::cos(double(kPi) * row / height);
-  const double cos1 = std::cos(double(kPi) * (row + 1) / height);
-  const double cos_theta = cos0 + (cos1 - cos0) * double(a.y);
-  const float u = (float(col) + a.x) / float(width);
-  const float v = float(std::acos(std::clamp(cos_theta, -1.0, 1.0)) / double(kPi));
-  return equirect_direction(glm::vec2(u, v));
+  return ProbeTexel(row, col, height, width).direction(a);
+}
+
+ProbeTexel::ProbeTexel(int row, int col, int height, int width)
+    : cos0_(std::cos(double(kPi) * row / height)),
+      cos1_(std::cos(double(kPi) * (row + 1) / height)),
+      col_(float(col)),
+      width_(float(width)) {}
+
+glm::vec3 ProbeTexel::direction(const glm::vec2& a) const {
+  // equirect_direction() at u = (col + a.x) / width and cos(theta) = the interpolated cosine.
+  const double cos_theta = std::clamp(cos0_ + (cos1_ - cos0_) * double(a.y), -1.0, 1.0);
+  const float sin_theta = float(std::sqrt(1.0 - cos_theta * cos_theta));
+  const float phi = ((col_ + a.x) / width_ - 0.5f) * kTwoPi;
+  return glm::vec3(sin_theta * std::sin(phi), float(cos_theta), -sin_theta * std::cos(phi));
 }
 
 void stratified_square(int count, Rng& rng, std::vector<glm::vec2>* points, const Interleave& interleave) {

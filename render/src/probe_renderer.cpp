@@ -109,6 +109,13 @@ float specular_pdf(const glm::vec3& wo, const glm::vec3& wi, float alpha) {
   return D_GGX(NoH, alpha) * NoH / (4.0f * VoH);
 }
 
+// Directional albedo of the specular lobe alone towards wo (from the table below).
+glm::vec3 specular_albedo(const BrdfParams& p, float NoV) {
+  const glm::vec2 terms = specular_albedo_terms(NoV, p.roughness);
+  const glm::vec3 F0 = specular_F0(p.base_color, p.metalness);
+  return F0 * terms.x + (glm::vec3(1.0f) - F0) * terms.y;
+}
+
 CachePoint cache_point(const SurfaceInteraction& si, const glm::vec3& shading_normal) {
   return CachePoint{si.position, shading_normal, si.geometric_normal};
 }
@@ -184,6 +191,14 @@ class TexelEstimator {
     const int light_samples = depth == 0 ? kNearLightSamples : 1;
     if (emitters) L += direct_light(si, frame, wo, p, Lobes::kAll, depth, key, /*mis=*/true, c, 1.0f, light_samples);
 
+    // The control variate of reflected_split(), for every sample of a rough surface (the
+    // roulette below depends on the sample, so it cannot be the condition).
+    const int next = depth + 1;
+    const glm::vec3 uniform = (next < settings_.path.max_bounces && p.roughness >= settings_.glossy_roughness)
+                                  ? E.indirect * kInvPi
+                                  : glm::vec3(0.0f);
+    L += specular_albedo(p, wo.z) * uniform;
+
     // One direction from the BRDF.
     Rng rng = shading_rng(key, depth, kBrdfSample);
     const float u_lobe = rng.next_float();
@@ -198,19 +213,18 @@ class TexelEstimator {
     const Ray ray{spawn_origin(si.position, ng, wi_world), wi_world};
     SurfaceInteraction y;
     ++c->rays;
-    if (!scene_.trace(ray, &y)) return L + weight_specular * miss(wi_world);  // the diffuse share is in E
+    if (!scene_.trace(ray, &y)) return L + weight_specular * (miss(wi_world) - uniform);  // the diffuse share is in E
     if (y.emits) {
       const float w = (emitters && !bs.delta)
-                          ? power_heuristic(bs.pdf, scene_.emitters().pdf(si.position, y.mesh, y.triangle, y.position))
+                          ? power_heuristic(bs.pdf, float(light_samples) * scene_.emitters().pdf(si.position, y.mesh, y.triangle, y.position))
                           : 1.0f;
       L += bs.weight * y.emission * w;
     }
-    const int next = depth + 1;
     if (next >= settings_.path.max_bounces || !(max_component(weight_specular) > 0.0f)) return L;
     const float share = safe_div(luminance(weight_specular), luminance(bs.weight));
     const float keep = std::clamp(kSpecularKeepScale * share, kMinSpecularKeep, 1.0f);
     if (keep < 1.0f && !(shading_rng(key, depth, kSpecularRoulette).next_float() < keep)) return L;
-    return L + weight_specular * reflected_at(ray, y, next, depth, key, c) / keep;
+    return L + weight_specular * (reflected_at(ray, y, next, depth, key, c) - uniform) / keep;
   }
 
   // Light that y, the hit of a specular ray from a scattering event at depth - 1, reflects
@@ -240,14 +254,19 @@ class TexelEstimator {
                             const glm::vec3& fd, const CachedIrradiance& E, int depth, uint64_t key,
                             PathCounters* c) const {
     glm::vec3 L = fd * (E.indirect + E.direct);
-    const glm::vec2 terms = specular_albedo_terms(wo.z, p.roughness);
-    const glm::vec3 F0 = specular_F0(p.base_color, p.metalness);
-    const float albedo_s = luminance(F0 * terms.x + (glm::vec3(1.0f) - F0) * terms.y);
+    const glm::vec3 albedo = specular_albedo(p, wo.z);
+    const float albedo_s = luminance(albedo);
     const float share = safe_div(albedo_s, albedo_s + kPi * luminance(fd));
     if (!(share > 0.0f)) return L;
     const float keep = std::clamp(kSpecularKeepScale * share, kMinSpecularKeep, 1.0f);
     const bool emitters = !scene_.emitters().empty();
     if (emitters) L += direct_light(si, frame, wo, p, Lobes::kSpecular, depth, key, /*mis=*/true, c, keep);
+    const int next = depth + 1;
+    // Control variate (rouletted rays only): the specular lobe under uniform light of the
+    // cached mean radiance E.indirect / pi is known exactly; the ray estimates only the
+    // difference between the light it finds and that mean, so a skipped ray costs far less.
+    const glm::vec3 uniform = (keep < 1.0f && next < settings_.path.max_bounces) ? E.indirect * kInvPi : glm::vec3(0.0f);
+    L += albedo * uniform;
     if (keep < 1.0f && !(shading_rng(key, depth, kSpecularRoulette).next_float() < keep)) return L;
 
     const float alpha = p.roughness * p.roughness;
@@ -263,13 +282,12 @@ class TexelEstimator {
     const Ray ray{spawn_origin(si.position, ng, wi_world), wi_world};
     SurfaceInteraction y;
     ++c->rays;
-    if (!scene_.trace(ray, &y)) return L + weight * miss(wi_world);
+    if (!scene_.trace(ray, &y)) return L + weight * (miss(wi_world) - uniform);
     if (y.emits) {
       const float w = emitters ? power_heuristic(pdf, scene_.emitters().pdf(si.position, y.mesh, y.triangle, y.position)) : 1.0f;
       L += weight * y.emission * w;
     }
-    const int next = depth + 1;
-    if (next < settings_.path.max_bounces) L += weight * reflected_at(ray, y, next, depth, key, c);
+    if (next < settings_.path.max_bounces) L += weight * (reflected_at(ray, y, next, depth, key, c) - uniform);
     return L;
   }
 
@@ -302,22 +320,21 @@ class TexelEstimator {
   // BRDF (or its specular lobe), the mean of `count` light samples; `mis`: weighted by the
   // power heuristic against the BRDF-sampled (or GGX-sampled) ray of the same event, which
   // is traced with probability `brdf_strategy_probability` (its effective density is that
-  // times its pdf). Each light sample keeps the one-sample weight, so the weights still sum
-  // to one with that ray's for any count. (The count-scaled weights of multi-sample MIS came
-  // out 11% low in ProbeCache.NearAndFarFromALightMatchesThePathMode: docs/probes.md.)
+  // times its pdf). Multi-sample MIS: `count` light samples against one ray, so the light
+  // strategy's density counts `count` times in both weights (the caller's ray uses the same).
   glm::vec3 direct_light(const SurfaceInteraction& si, const Frame& frame, const glm::vec3& wo, const BrdfParams& p,
                          Lobes lobes, int depth, uint64_t key, bool mis, PathCounters* c,
                          float brdf_strategy_probability = 1.0f, int count = 1) const {
     glm::vec3 sum(0.0f);
     for (int k = 0; k < count; ++k)
       sum += light_sample(si, frame, wo, p, lobes, k == 0 ? key : mix64(key ^ uint64_t(k)), depth, mis, c,
-                          brdf_strategy_probability);
+                          brdf_strategy_probability, count);
     return sum / float(count);
   }
 
   glm::vec3 light_sample(const SurfaceInteraction& si, const Frame& frame, const glm::vec3& wo, const BrdfParams& p,
                          Lobes lobes, uint64_t key, int depth, bool mis, PathCounters* c,
-                         float brdf_strategy_probability) const {
+                         float brdf_strategy_probability, int count) const {
     Rng rng = shading_rng(key, depth, kLightSample);
     const float u_select = rng.next_float();
     const glm::vec2 u_point = rng.next_2d();
@@ -330,13 +347,12 @@ class TexelEstimator {
     const glm::vec3 f = all ? brdf_eval(p, wo, wi) : specular_eval(p, wo, wi);
     const glm::vec3& ng = si.geometric_normal;
     if (!(wi.z > 0.0f) || !(glm::dot(ls.wi, ng) > 0.0f) || !(max_component(f) > 0.0f)) return glm::vec3(0.0f);
-    Ray shadow{spawn_origin(si.position, ng, ls.wi), ls.wi};
-    shadow.tmax = ls.distance * (1.0f - kShadowRayShortening);
+    const Ray shadow = shadow_ray_to(si.position, ng, ls.position, ls.normal);
     ++c->rays;
     if (scene_.accelerator().occluded(shadow)) return glm::vec3(0.0f);
     const float pdf_brdf =
         brdf_strategy_probability * (all ? brdf_pdf(p, wo, wi) : specular_pdf(wo, wi, p.roughness * p.roughness));
-    const float w = mis ? power_heuristic(ls.pdf, pdf_brdf) : 1.0f;
+    const float w = mis ? power_heuristic(float(count) * ls.pdf, pdf_brdf) : 1.0f;
     return f * ls.radiance * (wi.z * w / ls.pdf);
   }
 
@@ -458,6 +474,7 @@ nlohmann::json ProbeStats::to_json() const {
           {"shared_texels", shared_texels},
           {"light_texels", light_texels},
           {"light_edge_texels", light_edge_texels},
+          {"negative_texels_clamped", negative_texels},
           {"cache", {{"cells", cache_cells}, {"cells_with_direct_light", cache_direct_cells}, {"fill_samples", cache_fill_samples}, {"fallback_lookups", cache_fallbacks}}},
           {"nonfinite_samples_caught", counters.nonfinite_samples}};
 }
@@ -587,7 +604,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
     records.distance.assign(size_t(layout.probe_count()) * size_t(texels), std::numeric_limits<float>::infinity());
     records.samples.assign(size_t(layout.probe_count()) * size_t(texels), 0.0f);
   }
-  std::atomic<uint64_t> supersampled{0}, light_texels{0}, light_edge_texels{0};
+  std::atomic<uint64_t> supersampled{0}, light_texels{0}, light_edge_texels{0}, negative_texels{0};
   Progress progress("probes", todo.size(), "probes", settings.progress);
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, todo.size(), 4),
@@ -595,7 +612,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
         PathCounters& c = local.local();
         std::vector<glm::vec2> strata;
         std::vector<uint8_t> lit(static_cast<size_t>(texels));
-        uint64_t extra = 0, lit_texels = 0, edge_texels = 0;
+        uint64_t extra = 0, lit_texels = 0, edge_texels = 0, negative = 0;
         for (size_t k = r.begin(); k < r.end(); ++k) {
           const int p = todo[k];
           const int i = p / layout.grid_width, j = p % layout.grid_width;
@@ -614,6 +631,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
             using Part = TexelEstimator::Part;
             // `spread` (if given) receives the range of the samples' luminances.
             float distance = std::numeric_limits<float>::infinity();
+            const ProbeTexel texel(row, col, layout.res_height, layout.res_width);
             auto estimate = [&](int first, int count, Part part, bool* saw_hard, float* spread = nullptr) {
               Rng permutation(PathTracer::path_key(probe_seed, texel_id(p, t), kStrataStream + uint64_t(first)), 0);
               // The interleaving key is the same for every probe (texel and pass only).
@@ -623,7 +641,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
               float lo = std::numeric_limits<float>::infinity(), hi = 0.0f;
               for (int s = 0; s < count; ++s) {
                 const uint64_t key = PathTracer::path_key(probe_seed, texel_id(p, t), uint64_t(first + s));
-                const Ray ray{origin, probe_texel_direction(row, col, layout.res_height, layout.res_width, strata[size_t(s)])};
+                const Ray ray{origin, texel.direction(strata[size_t(s)])};
                 glm::vec3 L = estimator.sample(ray, key, part, saw_hard, &distance, &c);
                 if (!is_finite(L)) {
                   ++c.nonfinite_samples;
@@ -666,6 +684,12 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
               }
               ++extra;
             }
+            // The control variate's corrections can be negative on their own; a texel whose
+            // mean still is (dark, grazing, a few directions) is clamped, and counted.
+            if (!(glm::min(value.x, glm::min(value.y, value.z)) >= 0.0f)) {
+              value = glm::max(value, glm::vec3(0.0f));
+              ++negative;
+            }
             if (share) {
               records.distance[size_t(texel_id(p, t))] = distance;
               records.samples[size_t(texel_id(p, t))] = float(hard && adaptive ? hard_spp : spp);
@@ -682,6 +706,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
         supersampled += extra;
         light_texels += lit_texels;
         light_edge_texels += edge_texels;
+        negative_texels += negative;
         progress.advance(r.size());
       },
       tbb::simple_partitioner());
@@ -690,6 +715,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
   stats.supersampled_texels = supersampled.load();
   stats.light_texels = light_texels.load();
   stats.light_edge_texels = light_edge_texels.load();
+  stats.negative_texels = negative_texels.load();
   if (cache) stats.cache_fallbacks = cache->fallbacks();
   stats.shade_seconds = seconds_since(shade_start);
   if (share) {

@@ -141,6 +141,24 @@ void RadianceCache::build(const std::vector<const Collector*>& collectors, PathC
     progress.advance(r.size());
   });
   for (const PathCounters& c : local) *counters += c;
+  values_.resize(cells_.size());
+  neighbours_.resize(cells_.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, cells_.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i < r.end(); ++i) {
+      const Cell& cell = cells_[i];
+      values_[i] = Value{cell.indirect, cell.direct, cell.has_direct};
+      const int bucket = int(cell.key & 63);
+      glm::ivec3 at;
+      for (int a = 0; a < 3; ++a)
+        at[a] = int(int64_t((cell.key >> (6 + kCoordBits * (2 - a))) & kCoordMask) - kCoordBias);
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dz = -1; dz <= 1; ++dz) {
+            const glm::ivec3 d(dx, dy, dz);
+            neighbours_[i][size_t(neighbour_slot(d))] = find(pack(at + d, bucket));
+          }
+    }
+  });
   direct_cells_ = size_t(std::count_if(cells_.begin(), cells_.end(), [](const Cell& c) { return c.has_direct; }));
 }
 
@@ -150,12 +168,12 @@ float RadianceCache::mean_irradiance_luminance() const {
   return cells_.empty() ? 0.0f : float(sum / double(cells_.size()));
 }
 
-const RadianceCache::Cell* RadianceCache::find(uint64_t key) const {
-  if (table_.empty()) return nullptr;
+int RadianceCache::find(uint64_t key) const {
+  if (table_.empty()) return -1;
   const size_t mask = table_.size() - 1;
   for (size_t slot = mix64(key) & mask;; slot = (slot + 1) & mask) {
-    if (table_[slot].first == key) return &cells_[size_t(table_[slot].second)];
-    if (table_[slot].first == kEmptySlot) return nullptr;
+    if (table_[slot].first == key) return table_[slot].second;
+    if (table_[slot].first == kEmptySlot) return -1;
   }
 }
 
@@ -202,37 +220,39 @@ CachedIrradiance RadianceCache::lookup(const CachePoint& point, uint64_t key, Pa
   const int bucket = normal_bucket(point.shading_normal);
   const glm::dvec3 c = lattice(point.position);
   const glm::ivec3 own = cell_of(c);
-  const Cell* self = find(pack(own, bucket));
-  if (!self) {
+  const int self_index = find(pack(own, bucket));
+  if (self_index < 0) {
     fallbacks_.fetch_add(1, std::memory_order_relaxed);
     Rng rng = purpose_rng(key, kFallbackDirection);
     return estimate(point, rng.next_2d(), false, 0.0f, glm::vec2(0.0f), key, counters);
   }
+  const Value& self = values_[size_t(self_index)];
+  const Neighbours& around = neighbours_[size_t(self_index)];
   // Linear interpolation between the centres of the 8 cells round the point (own included),
   // same normal bucket; absent neighbours (off the surface, another bucket) left out.
   const glm::dvec3 t = c - 0.5;
   const glm::dvec3 base = glm::floor(t), f = t - base;
-  const glm::ivec3 b = cell_of(base);
+  const glm::ivec3 b = cell_of(base) - own;  // each axis -1 or 0
   glm::dvec3 indirect(0.0), direct(0.0);
   double w_all = 0.0, w_direct = 0.0;
   for (int corner = 0; corner < 8; ++corner) {
     const glm::ivec3 d(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
     const double w = (d.x ? f.x : 1.0 - f.x) * (d.y ? f.y : 1.0 - f.y) * (d.z ? f.z : 1.0 - f.z);
     if (!(w > 0.0)) continue;
-    const glm::ivec3 at = b + d;
-    const Cell* cell = at == own ? self : find(pack(at, bucket));
-    if (!cell) continue;
-    indirect += w * glm::dvec3(cell->indirect);
+    const int index = around[size_t(neighbour_slot(b + d))];
+    if (index < 0) continue;
+    const Value& cell = values_[size_t(index)];
+    indirect += w * glm::dvec3(cell.indirect);
     w_all += w;
-    if (self->has_direct && cell->has_direct) {  // direct light is only used where the point's own cell holds it
-      direct += w * glm::dvec3(cell->direct);
+    if (self.has_direct && cell.has_direct) {  // direct light is only used where the point's own cell holds it
+      direct += w * glm::dvec3(cell.direct);
       w_direct += w;
     }
   }
   CachedIrradiance out;
-  out.indirect = w_all > 0.0 ? glm::vec3(indirect / w_all) : self->indirect;
-  out.has_direct = self->has_direct;
-  out.direct = w_direct > 0.0 ? glm::vec3(direct / w_direct) : self->direct;
+  out.indirect = w_all > 0.0 ? glm::vec3(indirect / w_all) : self.indirect;
+  out.has_direct = self.has_direct;
+  out.direct = w_direct > 0.0 ? glm::vec3(direct / w_direct) : self.direct;
   return out;
 }
 
@@ -254,8 +274,7 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
     if (emitters.sample(point.position, u_select, u_light, &ls) && ls.pdf > 0.0f && max_component(ls.radiance) > 0.0f) {
       const float cos_s = glm::dot(ls.wi, ns);
       if (cos_s >= kMinCosine && glm::dot(ls.wi, ng) > 0.0f) {
-        Ray shadow{spawn_origin(point.position, ng, ls.wi), ls.wi};
-        shadow.tmax = ls.distance * (1.0f - kShadowRayShortening);
+        const Ray shadow = shadow_ray_to(point.position, ng, ls.position, ls.normal);
         ++counters->rays;
         if (!scene.accelerator().occluded(shadow)) {
           const glm::vec3 E = ls.radiance * (cos_s * power_heuristic(ls.pdf, cos_s * kInvPi) / ls.pdf);

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include "phyir/core/safe_math.h"
+
 namespace phyir::render {
 
 namespace {
@@ -34,6 +36,22 @@ glm::vec3 offset_ray_origin(const glm::vec3& p, const glm::vec3& n) {
 
 glm::vec3 spawn_origin(const glm::vec3& p, const glm::vec3& geometric_normal, const glm::vec3& direction) {
   return offset_ray_origin(p, glm::dot(direction, geometric_normal) >= 0.0f ? geometric_normal : -geometric_normal);
+}
+
+Ray shadow_ray_to(const glm::vec3& p, const glm::vec3& geometric_normal, const glm::vec3& target,
+                  const glm::vec3& target_normal) {
+  Ray ray;
+  ray.origin = spawn_origin(p, geometric_normal, target - p);
+  const glm::vec3 end = spawn_origin(target, target_normal, ray.origin - target);
+  const glm::vec3 d = end - ray.origin;
+  const float length = std::sqrt(glm::dot(d, d));
+  if (!(length > 0.0f) || !std::isfinite(length)) {
+    ray.tmax = 0.0f;  // the ends coincide: nothing between them
+    return ray;
+  }
+  ray.direction = d / length;
+  ray.tmax = length * (1.0f - kShadowRayShortening);
+  return ray;
 }
 
 }  // namespace phyir::render

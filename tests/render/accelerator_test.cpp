@@ -181,6 +181,37 @@ TEST(RayOffset, OffsetMovesToTheNormalSideByFewUlps) {
   EXPECT_LT(spawn_origin({0, 2, 0}, n, {0.3f, -0.1f, 0.0f}).y, 2.0f);
 }
 
+// A shadow ray from a surface to a point on a light close above it, parallel to it, must
+// reach the light unoccluded at any coordinate magnitude, and still stop at a real occluder
+// between them. (With only the origin offset, the offset's 256 ulps, 61 um at 2.4 m, cut
+// the way to the light's plane by more than the 1e-4 x distance margin whenever the light
+// was within ~0.6 m: every sample was occluded by the light itself.)
+TEST(RayOffset, ShadowRayReachesANearbyLight) {
+  for (const glm::vec3 centre : {glm::vec3(0.0f), glm::vec3(0.1f, 2.4f, 0.05f), glm::vec3(-7.0f, 5.0f, 30.0f),
+                                 glm::vec3(300.0f, -40.0f, 100.0f)}) {
+    for (float height : {0.01f, 0.2f, 0.6f, 2.0f}) {
+      scenes::Scene scene;
+      // A 0.4 m light facing down (cross(edge_u, edge_v) = -Y) `height` above `centre`.
+      add_quad(scene, centre + glm::vec3(-0.2f, height, -0.2f), {0.4f, 0, 0}, {0, 0, 0.4f}, add_material(scene, make_material()));
+      const Accelerator accel(scene);
+      const glm::vec3 up(0, 1, 0), down(0, -1, 0);
+      Rng rng(11, 3);
+      int occluded = 0;
+      for (int i = 0; i < 1000; ++i) {
+        const glm::vec3 p = centre + glm::vec3(0.8f * rng.next_float() - 0.4f, 0.0f, 0.8f * rng.next_float() - 0.4f);
+        const glm::vec3 q = centre + glm::vec3(0.4f * rng.next_float() - 0.2f, height, 0.4f * rng.next_float() - 0.2f);
+        occluded += accel.occluded(shadow_ray_to(p, up, q, down));
+      }
+      EXPECT_EQ(occluded, 0) << "light " << height << " m above (" << centre.x << ", " << centre.y << ", " << centre.z << ")";
+      // A plate halfway blocks them all.
+      add_quad(scene, centre + glm::vec3(-1.0f, 0.5f * height, -1.0f), {2.0f, 0, 0}, {0, 0, 2.0f}, add_material(scene, make_material()));
+      const Accelerator blocked(scene);
+      const glm::vec3 q = centre + glm::vec3(0.0f, height, 0.0f);
+      EXPECT_TRUE(blocked.occluded(shadow_ray_to(centre, up, q, down))) << height;
+    }
+  }
+}
+
 TEST(RayOffset, ThinSlabDoesNotLeak) {
   // A closed 2 m x 2 m slab 1 mm thick with outward normals. Rays from above must stop at
   // its top face; continued through (refraction-like), they must stop at its bottom face

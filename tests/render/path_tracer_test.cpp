@@ -143,22 +143,23 @@ TEST(GlassFurnace, LosslessGlassSphereReturnsTheEnclosureRadiance) {
 }
 
 // A glossy-ish floor point under a 1 m x 0.5 m light `height` metres up, facing down: the
-// path tracer's value (next-event estimation + BRDF sampling, MIS) against quadrature.
-void check_plane_under_area_light(float height) {
-  SCOPED_TRACE(height);
+// path tracer's value (next-event estimation + BRDF sampling, MIS) against quadrature. The
+// floor is at y = `floor_y` (ray offsets scale with the coordinates' magnitude).
+void check_plane_under_area_light(float height, float floor_y = 0.0f) {
+  SCOPED_TRACE(testing::Message() << height << " m above a floor at y = " << floor_y);
   const glm::vec3 Le(5.0f);
   const BrdfParams floor_brdf{glm::vec3(0.6f), 0.4f, 0.0f};
   scenes::Scene scene;
   const int floor_m = test::add_material(scene, test::make_material(floor_brdf.base_color, floor_brdf.roughness, 0.0f));
   const int light_m = test::add_material(scene, test::make_emitter(Le));
-  test::add_quad(scene, glm::vec3(-20, 0, 20), glm::vec3(40, 0, 0), glm::vec3(0, 0, -40), floor_m, "floor");
+  test::add_quad(scene, glm::vec3(-20, floor_y, 20), glm::vec3(40, 0, 0), glm::vec3(0, 0, -40), floor_m, "floor");
   // Edges chosen so cross(edge_u, edge_v) = -Y.
-  const glm::vec3 corner(-0.3f, height, -0.2f), eu(1.0f, 0, 0), ev(0, 0, 0.5f);
+  const glm::vec3 corner(-0.3f, floor_y + height, -0.2f), eu(1.0f, 0, 0), ev(0, 0, 0.5f);
   test::add_quad(scene, corner, eu, ev, light_m, "light");
   const RenderScene rs(scene);
   const PathTracer tracer(rs, analyse_effects(scene, false), PathSettings{});
 
-  const glm::vec3 shading_point(0.4f, 0.0f, 0.3f);
+  const glm::vec3 shading_point(0.4f, floor_y, 0.3f);
   const glm::vec3 wo_world = glm::normalize(glm::vec3(-1.0f, 1.2f, 0.5f));
   Ray ray;
   ray.origin = shading_point + 2.0f * wo_world;
@@ -197,6 +198,13 @@ TEST(DirectLighting, DiffusePlaneUnderAreaLightMatchesQuadrature) { check_plane_
 // 20 cm under the light, where next-event estimation's samples reach the light at up to
 // 70 degrees off its normal (the distance at which the probes' cache samples light per direction).
 TEST(DirectLighting, DiffusePlaneCloseUnderAreaLightMatchesQuadrature) { check_plane_under_area_light(0.2f); }
+
+// The same at the height of a room's furniture (a pillar top at 2.4 m), where a spawn
+// offset is 61 um rather than 15 um at y = 0: shadow rays that offset only their origin
+// all ended on the light itself there, and the estimate lost its next-event part.
+TEST(DirectLighting, PlaneCloseUnderAreaLightAwayFromTheOriginMatchesQuadrature) {
+  check_plane_under_area_light(0.2f, 2.4f);
+}
 
 TEST(Effects, SceneAnalysisFindsOnlyWhatIsThere) {
   scenes::Scene scene = test::make_box_room(glm::vec3(-1), glm::vec3(1));

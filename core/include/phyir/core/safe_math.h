@@ -40,9 +40,12 @@ constexpr float kMinLength2 = 1e-30f;
 constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 
 // Shadow rays towards a sampled point on a light stop this fraction short of it
-// (tmax = distance * (1 - kShadowRayShortening)), so the light's own triangle is not
-// reported as the occluder. 1e-4 of the distance is 0.1 mm at 1 m, well above float
-// rounding of the hit distance (~6e-8 relative) and far below any real gap.
+// (tmax = distance * (1 - kShadowRayShortening)), a second guard against the light's own
+// triangle being reported as the occluder (the first: both ends are offset off their
+// surfaces, render/ray_offset.h shadow_ray_to; this margin alone is smaller than the
+// origin's offset when a light is within ~0.6 m at room coordinates). 1e-4 of the
+// distance is 0.1 mm at 1 m, well above float rounding of the hit distance (~6e-8
+// relative) and far below any real gap.
 constexpr float kShadowRayShortening = 1e-4f;
 
 inline float safe_sqrt(float x) { return std::sqrt(std::max(x, 0.0f)); }

@@ -80,6 +80,18 @@ std::vector<ProbeSite> place_probes(const RenderScene& scene, const CameraModel&
 // uniform between its rows' edges, then equirect_direction() of the result.
 glm::vec3 probe_texel_direction(int row, int col, int height, int width, const glm::vec2& a);
 
+// The same directions with the texel's row-edge cosines computed once, for loops that ask
+// for many directions of one texel (and no inverse trigonometry per direction).
+class ProbeTexel {
+ public:
+  ProbeTexel(int row, int col, int height, int width);
+  glm::vec3 direction(const glm::vec2& a) const;
+
+ private:
+  double cos0_, cos1_;
+  float col_, width_;
+};
+
 // `count` points of [0,1)^2 stratified on the smallest s x t grid with s t >= count
 // (s = ceil(sqrt(count))): distinct cells picked by a random permutation, one jittered point
 // in each. Every point is uniform over the square on its own, so any average over them is

@@ -86,7 +86,8 @@ struct ProbeStats {
   uint64_t supersampled_texels = 0;
   uint64_t shared_texels = 0;     // texels averaged with at least one neighbour's
   uint64_t light_texels = 0;      // texels a light may cover (emission estimated apart)
-  uint64_t light_edge_texels = 0; // of those, texels a light's outline crosses (4x the emission directions)
+  uint64_t light_edge_texels = 0; // of those, texels a light's outline crosses (16x the emission directions)
+  uint64_t negative_texels = 0;   // texel estimates below zero (the control variate's), clamped to 0
   double share_seconds = 0.0;
   uint64_t cache_cells = 0, cache_direct_cells = 0, cache_fill_samples = 0, cache_fallbacks = 0;
   nlohmann::json to_json() const;

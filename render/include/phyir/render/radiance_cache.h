@@ -33,6 +33,7 @@
 // shared by every lookup. A point whose own cell was never discovered gets a one-sample
 // estimate of the indirect light instead (unbiased, noisy; counted as a fallback) and no
 // direct light.
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <unordered_map>
@@ -133,8 +134,20 @@ class RadianceCache {
     glm::vec3 direct{0.0f};
     bool has_direct = false;
   };
+  // What a lookup reads of a cell, packed apart from the fill's points (cache lines).
+  struct Value {
+    glm::vec3 indirect{0.0f};
+    glm::vec3 direct{0.0f};
+    bool has_direct = false;
+  };
+  // A cell's 3 x 3 x 3 neighbourhood in its own normal bucket: indices into values_, -1
+  // where absent (x-major, each offset -1..1). A lookup's 8 corners lie inside it, so it
+  // costs one hash probe instead of eight.
+  using Neighbours = std::array<int32_t, 27>;
+  static int neighbour_slot(const glm::ivec3& offset) { return (offset.x + 1) * 9 + (offset.y + 1) * 3 + (offset.z + 1); }
+
   void fill(Cell* cell, PathCounters* counters) const;
-  const Cell* find(uint64_t key) const;
+  int find(uint64_t key) const;  // index into cells_, -1 if absent
   // Lattice coordinates (with the grid shift) of a position, in cells.
   glm::dvec3 lattice(const glm::vec3& position) const;
   static uint64_t pack(const glm::ivec3& cell, int bucket);
@@ -145,6 +158,8 @@ class RadianceCache {
   PathTracer continuation_;  // max_bounces - 1: the paths after a cosine ray's hit
   std::vector<Cell> cells_;  // sorted by key
   std::vector<std::pair<uint64_t, int>> table_;  // open addressing, power-of-two size
+  std::vector<Value> values_;            // per cell, as cells_
+  std::vector<Neighbours> neighbours_;  // per cell, as cells_
   size_t direct_cells_ = 0;
   mutable std::atomic<uint64_t> fallbacks_{0};
 };
