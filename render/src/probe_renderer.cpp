@@ -3,6 +3,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <limits>
@@ -12,6 +13,7 @@
 #include "phyir/core/progress.h"
 #include "phyir/core/safe_math.h"
 #include "phyir/render/brdf.h"
+#include "phyir/render/emitter_coverage.h"
 #include "phyir/render/emitter_footprints.h"
 #include "phyir/render/equirect.h"
 #include "phyir/render/frame.h"
@@ -36,10 +38,12 @@ double seconds_since(Clock::time_point start) {
 constexpr int kMaxSpecularDepth = 3;
 
 // Directions per texel for the emission seen in texels a light may cover, in units of spp
-// (one ray each): 16 x 4 = 64 at the default spp where the texel is wholly inside or
-// outside the lights' outlines (occluders aside, few directions find that), and 256 x 4 =
-// 1024 where an outline crosses it (EmitterFootprints::kEdge): a stratified estimate of
-// partial coverage converges only as N^-3/4 (~1% of the light's radiance at 256).
+// (one ray each): 16 x 5 = 80 at the default spp where the texel is wholly inside or
+// outside the lights' outlines (occluders aside, few directions find that), and 256 x 5 =
+// 1280 where an outline crosses it (EmitterFootprints::kEdge). There the lights' exact
+// coverage (EmitterCoverage) is a control variate, so the directions mostly estimate what
+// occluders hide; measured on the bench (docs/probes.md), 64 x spp there doubles the error
+// of those texels: a housing's rim in front of a panel is an outline as sharp as its own.
 constexpr int kEmissionSppFactor = 16;
 constexpr int kEmissionEdgeSppFactor = 256;
 
@@ -120,6 +124,38 @@ CachePoint cache_point(const SurfaceInteraction& si, const glm::vec3& shading_no
   return CachePoint{si.position, shading_normal, si.geometric_normal};
 }
 
+// The emission a light texel sees, with the lights' exact unoccluded coverage of the texel
+// (EmitterCoverage) as a control variate: mean(L) + beta (exact - mean(unoccluded)), beta
+// the regression coefficient of the samples (luminance), clamped to [0, 1]. Where the
+// light is in full view beta is 1 and the estimate is the exact coverage; where an occluder
+// hides it beta falls towards 0 and the plain mean is kept (with beta fixed at 1 a hidden
+// light would trade an exact 0 for the noise of estimating its coverage). Choosing beta
+// from the same samples leaves a bias of order 1/count.
+class CoverageControl {
+ public:
+  explicit CoverageControl(const EmitterCoverage::View& lights) : lights_(lights) {}
+  void add(const glm::vec3& direction, const glm::vec3& L) {
+    const glm::vec3 g = lights_.along(direction);
+    const double l = luminance(L), gl = luminance(g);
+    sum_L_ += glm::dvec3(L);
+    sum_g_ += gl, sum_gg_ += gl * gl, sum_l_ += l, sum_lg_ += l * gl, sum_g_rgb_ += glm::dvec3(g);
+    ++n_;
+  }
+  glm::vec3 estimate(const glm::vec3& exact_mean) const {
+    if (n_ == 0) return glm::vec3(0.0f);
+    const double n = double(n_);
+    const double var = sum_gg_ - sum_g_ * sum_g_ / n, cov = sum_lg_ - sum_l_ * sum_g_ / n;
+    const double beta = var > 0.0 ? std::clamp(cov / var, 0.0, 1.0) : 1.0;
+    return glm::vec3(sum_L_ / n + beta * (glm::dvec3(exact_mean) - sum_g_rgb_ / n));
+  }
+
+ private:
+  const EmitterCoverage::View& lights_;
+  glm::dvec3 sum_L_{0.0}, sum_g_rgb_{0.0};
+  double sum_g_ = 0.0, sum_gg_ = 0.0, sum_l_ = 0.0, sum_lg_ = 0.0;
+  int n_ = 0;
+};
+
 // Everything one thread needs to estimate probe texels.
 class TexelEstimator {
  public:
@@ -142,12 +178,19 @@ class TexelEstimator {
   // *distance is lowered to the first hit's distance (cache mode; unchanged on a miss).
   glm::vec3 sample(const Ray& ray, uint64_t key, Part part, bool* saw_hard, float* distance, PathCounters* c) const {
     if (settings_.mode == ProbeMode::kPath) return full_.radiance(ray, key, c);
+    if (part == Part::kEmission) {  // most of these rays: a light texel's many directions
+      glm::vec3 Le;
+      float t = 0.0f;
+      ++c->rays;
+      if (!scene_.trace_emission(ray, &Le, &t)) return miss(ray.direction);
+      *distance = std::min(*distance, t);
+      return Le;
+    }
     SurfaceInteraction si;
     ++c->rays;
     if (!scene_.trace(ray, &si)) return part == Part::kRest ? glm::vec3(0.0f) : miss(ray.direction);
     *distance = std::min(*distance, si.distance);
     const glm::vec3 Le = si.emits ? si.emission : glm::vec3(0.0f);
-    if (part == Part::kEmission) return Le;
     // The texel sees something small and bright or hard to sample: a light, glass, or a
     // glossy surface (whose highlights are small images of the lights).
     if (si.emits || si.transmission > 0.0f || si.brdf.roughness < settings_.glossy_roughness) *saw_hard = true;
@@ -596,6 +639,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
   const auto shade_start = Clock::now();
   const TexelEstimator estimator(scene, effects, settings, cache.get());
   const EmitterFootprints footprints(scene.scene());
+  const EmitterCoverage coverage(scene.scene());
   const bool adaptive = settings.mode == ProbeMode::kCache && settings.hard_spp_factor > 1;
   const bool share = settings.mode == ProbeMode::kCache && settings.sharing.radius > 0;
   TexelRecords records;
@@ -625,6 +669,11 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
           }
           std::fill(lit.begin(), lit.end(), uint8_t(0));
           if (adaptive) footprints.mark(origin, layout.res_height, layout.res_width, &lit);
+          // The lights' exact coverage of each texel, for the emission's control variate.
+          EmitterCoverage::View lights;
+          const bool analytic = adaptive && coverage.usable() &&
+                                std::any_of(lit.begin(), lit.end(), [](uint8_t f) { return f != 0; }) &&
+                                (lights = coverage.view(origin)).valid();
           for (int t = 0; t < texels; ++t) {
             const int row = t / layout.res_width, col = t % layout.res_width;
             // `count` fresh samples from sample id `first` on, stratified over the texel.
@@ -632,7 +681,9 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
             // `spread` (if given) receives the range of the samples' luminances.
             float distance = std::numeric_limits<float>::infinity();
             const ProbeTexel texel(row, col, layout.res_height, layout.res_width);
-            auto estimate = [&](int first, int count, Part part, bool* saw_hard, float* spread = nullptr) {
+            // `control` (if given) receives every direction and its value.
+            auto estimate = [&](int first, int count, Part part, bool* saw_hard, float* spread = nullptr,
+                                CoverageControl* control = nullptr) {
               Rng permutation(PathTracer::path_key(probe_seed, texel_id(p, t), kStrataStream + uint64_t(first)), 0);
               // The interleaving key is the same for every probe (texel and pass only).
               interleave.key = PathTracer::path_key(probe_seed, uint64_t(t), kInterleaveStream + uint64_t(first));
@@ -647,6 +698,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
                   ++c.nonfinite_samples;
                   L = glm::vec3(0.0f);
                 }
+                if (control) control->add(ray.direction, L);
                 sum += glm::dvec3(L);
                 lo = std::min(lo, luminance(L));
                 hi = std::max(hi, luminance(L));
@@ -675,8 +727,16 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
               if (lit[size_t(t)]) {
                 value = estimate(spp, hard_spp, Part::kRest, &unused);
                 const bool edge = lit[size_t(t)] == EmitterFootprints::kEdge;
+                CoverageControl control(lights);
                 seen_emission = estimate(spp + hard_spp, spp * (edge ? kEmissionEdgeSppFactor : kEmissionSppFactor),
-                                         Part::kEmission, &unused);
+                                         Part::kEmission, &unused, nullptr, analytic ? &control : nullptr);
+                if (analytic) {
+                  seen_emission = control.estimate(lights.texel_mean(row, col, layout.res_height, layout.res_width));
+                  if (!(glm::min(seen_emission.x, glm::min(seen_emission.y, seen_emission.z)) >= 0.0f)) {
+                    seen_emission = glm::max(seen_emission, glm::vec3(0.0f));
+                    ++negative;
+                  }
+                }
                 edge_texels += edge;
                 ++lit_texels;
               } else {

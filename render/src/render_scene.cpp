@@ -153,4 +153,17 @@ bool RenderScene::trace(const Ray& ray, SurfaceInteraction* si) const {
   return true;
 }
 
+bool RenderScene::trace_emission(const Ray& ray, glm::vec3* emission, float* distance) const {
+  Hit hit;
+  if (!accelerator_.intersect(ray, &hit)) return false;
+  *distance = hit.t;
+  *emission = glm::vec3(0.0f);
+  const bool known = hit.mesh >= 0 && static_cast<size_t>(hit.mesh) < scene_->meshes.size();
+  const int material = known ? scene_->meshes[size_t(hit.mesh)].material : -1;
+  const bool can_emit = !known || material < 0 || static_cast<size_t>(material) >= scene_->materials.size() ||
+                        scene_->materials[size_t(material)].is_emissive();
+  if (can_emit) *emission = interact(ray, hit).emission;
+  return true;
+}
+
 }  // namespace phyir::render

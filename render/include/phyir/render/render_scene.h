@@ -30,6 +30,11 @@ class RenderScene {
   // Closest surface along the ray; false on a miss.
   bool trace(const Ray& ray, SurfaceInteraction* si) const;
 
+  // Only the emission of the closest surface (zero if it does not emit) and its distance;
+  // false on a miss. The same values as trace(), without evaluating a surface that cannot
+  // emit (for rays that only look for lights).
+  bool trace_emission(const Ray& ray, glm::vec3* emission, float* distance) const;
+
  private:
   const scenes::Scene* scene_;
   Accelerator accelerator_;

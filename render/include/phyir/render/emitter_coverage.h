@@ -1,0 +1,66 @@
+#pragma once
+// How much of a probe texel each light covers, exactly and occlusion ignored: the known
+// mean of a control variate for the emission a texel sees (probe_renderer.cpp). A texel's
+// partial coverage of a light is the largest error of a stratified estimate (it converges
+// only as N^-3/4); with the control variate the directions estimate only what the exact
+// coverage leaves out, the part of the light hidden by an occluder.
+//
+// Why it is exact: (phi, cos theta) is an equal-area map of the sphere (Lambert's
+// cylindrical projection), and an equirectangular texel is a rectangle in it, so a texel's
+// covered solid angle is the planar area of the light's image clipped to that rectangle.
+// The image of a triangle is bounded by great-circle arcs, traced as polylines (the light's
+// total solid angle comes out within ~1e-4 of the exact value), and closed along the
+// pole's line when the triangle surrounds a pole.
+#include <glm/glm.hpp>
+
+#include <vector>
+
+#include "phyir/scenes/scene.h"
+
+namespace phyir::render {
+
+class EmitterCoverage {
+ public:
+  explicit EmitterCoverage(const scenes::Scene& scene);
+
+  // False when a light's emission is textured (not one value per triangle), or there are
+  // no lights: then no texel gets the control variate.
+  bool usable() const { return usable_; }
+
+  // The lights as seen from one probe origin.
+  class View {
+   public:
+    // False when an arc passes too close to a pole to be traced reliably (the probe's
+    // texels keep the plain estimate).
+    bool valid() const { return valid_; }
+    // Mean over texel (row, col) of an h x w probe of the emission arriving with no occluder.
+    glm::vec3 texel_mean(int row, int col, int h, int w) const;
+    // The emission arriving along unit direction d with no occluder.
+    glm::vec3 along(const glm::vec3& d) const;
+
+   private:
+    friend class EmitterCoverage;
+    struct Seen {
+      glm::vec3 edge_normal[3];            // inside: d . edge_normal[e] >= 0 for all e
+      glm::vec3 emission;
+      std::vector<glm::dvec2> outline;     // (phi unwrapped, cos theta), closed
+      double phi_min = 0.0, phi_max = 0.0;
+      double z_min = 0.0, z_max = 0.0;
+    };
+    std::vector<Seen> seen_;
+    bool valid_ = true;
+  };
+  View view(const glm::vec3& origin) const;
+
+ private:
+  struct Triangle {
+    glm::vec3 p[3];
+    glm::vec3 normal;
+    glm::vec3 emission;
+    bool two_sided;
+  };
+  std::vector<Triangle> triangles_;
+  bool usable_ = false;
+};
+
+}  // namespace phyir::render

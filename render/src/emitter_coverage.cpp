@@ -1,0 +1,188 @@
+#include "phyir/render/emitter_coverage.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "phyir/core/safe_math.h"
+
+namespace phyir::render {
+
+namespace {
+
+// Points per triangle edge on the traced outline, at least: the chords between them put the
+// light's total solid angle within ~1e-4 of the exact value (emitter_coverage_test.cpp).
+constexpr int kArcPoints = 96;
+// Largest phi step between two outline points: near a pole an arc turns fast in phi, and
+// its steps are halved until they are below this (unwrapping stays unambiguous).
+constexpr double kMaxPhiStep = 0.05;
+constexpr int kMaxHalvings = 30;
+
+// phi of the equirectangular map (equirect.cpp): 0 towards -Z, increasing towards +X.
+double phi_of(const glm::dvec3& d) { return std::atan2(d.x, -d.z); }
+
+// Appends the outline points of the arc from a (already in `out`, at unwrapped `phi_a`) to
+// b, b included, halving steps that turn more than kMaxPhiStep. False if the arc passes
+// through a pole (phi undefined there).
+bool append_arc(const glm::dvec3& a, double phi_a, const glm::dvec3& b, int depth, std::vector<glm::dvec2>* out,
+                double* phi_end) {
+  const glm::dvec3 u = glm::normalize(b);
+  if (!(std::hypot(u.x, u.z) > 1e-12)) return false;
+  double phi = phi_of(u);
+  phi += kTwoPi * std::round((phi_a - phi) / kTwoPi);
+  if (std::abs(phi - phi_a) > kMaxPhiStep) {
+    if (depth >= kMaxHalvings) return false;
+    const glm::dvec3 m = 0.5 * (a + b);
+    double phi_m = 0.0;
+    return append_arc(a, phi_a, m, depth + 1, out, &phi_m) && append_arc(m, phi_m, b, depth + 1, out, phi_end);
+  }
+  out->push_back({phi, u.y});
+  *phi_end = phi;
+  return true;
+}
+
+// Area of the part of the closed polygon `poly` inside [x0, x1] x [y0, y1]
+// (Sutherland-Hodgman against each side in turn, then the shoelace formula; a concave
+// polygon may leave zero-width bridges along the window's sides, which add no area).
+double clipped_area(const std::vector<glm::dvec2>& poly, double x0, double x1, double y0, double y1) {
+  thread_local std::vector<glm::dvec2> a, b;
+  a = poly;
+  auto clip = [&](int axis, double bound, bool keep_above) {
+    b.clear();
+    auto inside = [&](const glm::dvec2& p) { return keep_above ? p[axis] >= bound : p[axis] <= bound; };
+    for (size_t i = 0; i < a.size(); ++i) {
+      const glm::dvec2& p = a[i];
+      const glm::dvec2& q = a[(i + 1) % a.size()];
+      const bool pin = inside(p), qin = inside(q);
+      if (pin) b.push_back(p);
+      if (pin != qin) {
+        const double t = (bound - p[axis]) / (q[axis] - p[axis]);
+        b.push_back(p + t * (q - p));
+      }
+    }
+    std::swap(a, b);
+  };
+  clip(0, x0, true);
+  clip(0, x1, false);
+  clip(1, y0, true);
+  clip(1, y1, false);
+  double twice = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const glm::dvec2& p = a[i];
+    const glm::dvec2& q = a[(i + 1) % a.size()];
+    twice += p.x * q.y - q.x * p.y;
+  }
+  return 0.5 * std::abs(twice);
+}
+
+}  // namespace
+
+EmitterCoverage::EmitterCoverage(const scenes::Scene& scene) {
+  bool uniform = true;
+  for (const scenes::Mesh& mesh : scene.meshes) {
+    if (mesh.material < 0 || size_t(mesh.material) >= scene.materials.size()) continue;
+    const scenes::Material& material = scene.materials[size_t(mesh.material)];
+    if (!material.is_emissive()) continue;
+    // One value per triangle only without an emissive texture or an alpha cut-out.
+    if (material.emissive_texture.present() || material.alpha_mode == scenes::AlphaMode::Mask) uniform = false;
+    const glm::vec3 emission = glm::max(material.emission(), glm::vec3(0.0f));
+    if (!is_finite(emission)) uniform = false;
+    for (const glm::uvec3& t : mesh.triangles) {
+      if (t.x >= mesh.positions.size() || t.y >= mesh.positions.size() || t.z >= mesh.positions.size()) continue;
+      Triangle tri{{mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]}, glm::vec3(0.0f), emission,
+                   material.double_sided};
+      const glm::vec3 n = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
+      if (!(glm::dot(n, n) > 0.0f) || !is_finite(n)) continue;  // no area: never hit
+      tri.normal = glm::normalize(n);
+      triangles_.push_back(tri);
+    }
+  }
+  usable_ = uniform && !triangles_.empty();
+}
+
+EmitterCoverage::View EmitterCoverage::view(const glm::vec3& origin) const {
+  View v;
+  if (!usable_) {
+    v.valid_ = false;
+    return v;
+  }
+  for (const Triangle& tri : triangles_) {
+    const float side = glm::dot(tri.normal, origin - tri.p[0]);
+    if (!(side > 0.0f) && !(tri.two_sided && side < 0.0f)) continue;  // its back, or edge-on
+    View::Seen s;
+    s.emission = tri.emission;
+    glm::dvec3 d[3];
+    for (int k = 0; k < 3; ++k) d[k] = glm::dvec3(tri.p[k]) - glm::dvec3(origin);
+    // Inside the spherical triangle: on the inner side of the three great circles.
+    const double orientation = glm::dot(d[0], glm::cross(d[1], d[2]));
+    if (!(std::abs(orientation) > 0.0)) continue;  // seen edge-on
+    for (int e = 0; e < 3; ++e)
+      s.edge_normal[e] = glm::vec3(glm::cross(d[e], d[(e + 1) % 3]) * (orientation > 0.0 ? 1.0 : -1.0));
+    // The outline in (phi unwrapped, cos theta), from d[0] round to d[0] again.
+    const glm::dvec3 u0 = glm::normalize(d[0]);
+    if (!(std::hypot(u0.x, u0.z) > 1e-12)) {
+      v.valid_ = false;
+      return v;
+    }
+    const double start = phi_of(u0);
+    s.outline.push_back({start, u0.y});
+    double phi = start;
+    for (int e = 0; e < 3; ++e) {
+      for (int k = 1; k <= kArcPoints; ++k) {
+        const glm::dvec3 a = glm::mix(d[e], d[(e + 1) % 3], double(k - 1) / kArcPoints);
+        const glm::dvec3 b = glm::mix(d[e], d[(e + 1) % 3], double(k) / kArcPoints);
+        if (!append_arc(a, phi, b, 0, &s.outline, &phi)) {
+          v.valid_ = false;
+          return v;
+        }
+      }
+    }
+    // Back at d[0]: a turn of 2 pi means the triangle surrounds a pole; close the outline
+    // along that pole's line (cos theta = +-1).
+    if (std::abs(phi - start) > 1.0) {
+      const glm::vec3 up(0.0f, 1.0f, 0.0f);
+      const bool surrounds_up = glm::dot(up, s.edge_normal[0]) >= 0.0f && glm::dot(up, s.edge_normal[1]) >= 0.0f &&
+                                glm::dot(up, s.edge_normal[2]) >= 0.0f;
+      const double z = surrounds_up ? 1.0 : -1.0;
+      s.outline.push_back({phi, z});
+      s.outline.push_back({start, z});
+    }
+    s.phi_min = s.phi_max = s.outline.front().x;
+    s.z_min = s.z_max = s.outline.front().y;
+    for (const glm::dvec2& q : s.outline) {
+      s.phi_min = std::min(s.phi_min, q.x), s.phi_max = std::max(s.phi_max, q.x);
+      s.z_min = std::min(s.z_min, q.y), s.z_max = std::max(s.z_max, q.y);
+    }
+    v.seen_.push_back(std::move(s));
+  }
+  return v;
+}
+
+glm::vec3 EmitterCoverage::View::texel_mean(int row, int col, int h, int w) const {
+  const double z0 = std::cos(kPi * double(row + 1) / h), z1 = std::cos(kPi * double(row) / h);
+  const double p0 = (double(col) / w - 0.5) * kTwoPi, p1 = (double(col + 1) / w - 0.5) * kTwoPi;
+  const double area = (p1 - p0) * (z1 - z0);
+  glm::dvec3 sum(0.0);
+  for (const Seen& s : seen_) {
+    if (s.z_max < z0 || s.z_min > z1) continue;
+    double covered = 0.0;
+    // The outline's phi is unwrapped: try the texel at every turn it may overlap.
+    for (int k = -2; k <= 2; ++k) {
+      const double q0 = p0 + k * kTwoPi, q1 = p1 + k * kTwoPi;
+      if (s.phi_max < q0 || s.phi_min > q1) continue;
+      covered += clipped_area(s.outline, q0, q1, z0, z1);
+    }
+    sum += glm::dvec3(s.emission) * std::min(covered / area, 1.0);
+  }
+  return glm::vec3(sum);
+}
+
+glm::vec3 EmitterCoverage::View::along(const glm::vec3& d) const {
+  glm::vec3 sum(0.0f);
+  for (const Seen& s : seen_)
+    if (glm::dot(d, s.edge_normal[0]) >= 0.0f && glm::dot(d, s.edge_normal[1]) >= 0.0f &&
+        glm::dot(d, s.edge_normal[2]) >= 0.0f)
+      sum += s.emission;
+  return sum;
+}
+
+}  // namespace phyir::render
