@@ -237,10 +237,9 @@ class TexelEstimator {
     // The control variate of reflected_split(), for every sample of a rough surface (the
     // roulette below depends on the sample, so it cannot be the condition).
     const int next = depth + 1;
-    const glm::vec3 uniform = (next < settings_.path.max_bounces && p.roughness >= settings_.glossy_roughness)
-                                  ? E.indirect * kInvPi
-                                  : glm::vec3(0.0f);
-    L += specular_albedo(p, wo.z) * uniform;
+    const bool controlled = next < settings_.path.max_bounces && p.roughness >= settings_.glossy_roughness;
+    const glm::vec3 uniform = controlled ? E.indirect * kInvPi : glm::vec3(0.0f);
+    if (controlled) L += specular_albedo(p, wo.z) * uniform;
 
     // One direction from the BRDF.
     Rng rng = shading_rng(key, depth, kBrdfSample);

@@ -73,6 +73,12 @@ uint64_t RadianceCache::pack(const glm::ivec3& cell, int bucket) {
   return (key << 6) | uint64_t(bucket);
 }
 
+glm::ivec3 RadianceCache::unpack(uint64_t key) {
+  glm::ivec3 cell;
+  for (int a = 0; a < 3; ++a) cell[a] = int(int64_t((key >> (6 + kCoordBits * (2 - a))) & kCoordMask) - kCoordBias);
+  return cell;
+}
+
 namespace {
 // The integer cell of lattice coordinates, clamped far outside any packable range first.
 glm::ivec3 cell_of(const glm::dvec3& c) {
@@ -148,9 +154,7 @@ void RadianceCache::build(const std::vector<const Collector*>& collectors, PathC
       const Cell& cell = cells_[i];
       values_[i] = Value{cell.indirect, cell.direct, cell.has_direct};
       const int bucket = int(cell.key & 63);
-      glm::ivec3 at;
-      for (int a = 0; a < 3; ++a)
-        at[a] = int(int64_t((cell.key >> (6 + kCoordBits * (2 - a))) & kCoordMask) - kCoordBias);
+      const glm::ivec3 at = unpack(cell.key);
       for (int dx = -1; dx <= 1; ++dx)
         for (int dy = -1; dy <= 1; ++dy)
           for (int dz = -1; dz <= 1; ++dz) {

@@ -18,14 +18,16 @@
 //    times the light its hit y reflects, followed recursively for glossy y (roughness below
 //    glossy_roughness, up to kMaxSpecularDepth) and otherwise next-event estimation at y
 //    plus (f_d(y) + specular albedo(y)/pi) E(y); on rough dielectrics that evaluation is
-//    Russian-rouletted by the specular share of the weight. Glass at x is path traced.
+//    Russian-rouletted by the specular share of the weight, with the lobe under uniform light
+//    of E's mean radiance as a control variate. Glass at x is path traced.
 //    Afterwards each texel is averaged with the same texel of neighbouring probes on the
 //    same surface where its content is far enough for the parallax to be small
 //    (probe_sharing.h).
 //    "Hard" texels are re-estimated from hard_spp_factor x spp fresh directions: those the
 //    scene's emissive triangles can cover (projected onto the probe before sampling; their
 //    directly seen emission is estimated apart from 16 x spp more one-ray directions,
-//    256 x spp where a light's outline crosses the texel) and
+//    256 x spp where a light's outline crosses the texel, with the lights' exact coverage
+//    of the texel as a control variate: EmitterCoverage) and
 //    those whose first spp directions met a light, glass or a glossy surface.
 // Random numbers: sample s of texel t of probe p draws from streams keyed by
 // (seed, p, t, s) (PathTracer::path_key of a probe seed), the cache's from (seed, cell,

@@ -151,6 +151,7 @@ class RadianceCache {
   // Lattice coordinates (with the grid shift) of a position, in cells.
   glm::dvec3 lattice(const glm::vec3& position) const;
   static uint64_t pack(const glm::ivec3& cell, int bucket);
+  static glm::ivec3 unpack(uint64_t key);  // pack's cell (as clamped there)
 
   const RenderScene* scene_;
   RadianceCacheSettings settings_;
