@@ -656,6 +656,13 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
         std::vector<glm::vec2> strata;
         std::vector<uint8_t> lit(static_cast<size_t>(texels));
         uint64_t extra = 0, lit_texels = 0, edge_texels = 0, negative = 0;
+        // The control variates' corrections can be negative on their own; a texel whose
+        // mean still is (dark, grazing, few directions) is clamped to 0, and counted.
+        auto clamp_at_zero = [&negative](glm::vec3* v) {
+          if (glm::min(v->x, glm::min(v->y, v->z)) >= 0.0f) return;
+          *v = glm::max(*v, glm::vec3(0.0f));
+          ++negative;
+        };
         for (size_t k = r.begin(); k < r.end(); ++k) {
           const int p = todo[k];
           const int i = p / layout.grid_width, j = p % layout.grid_width;
@@ -670,9 +677,11 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
           if (adaptive) footprints.mark(origin, layout.res_height, layout.res_width, &lit);
           // The lights' exact coverage of each texel, for the emission's control variate.
           EmitterCoverage::View lights;
-          const bool analytic = adaptive && coverage.usable() &&
-                                std::any_of(lit.begin(), lit.end(), [](uint8_t f) { return f != 0; }) &&
-                                (lights = coverage.view(origin)).valid();
+          bool analytic = false;
+          if (adaptive && coverage.usable() && std::any_of(lit.begin(), lit.end(), [](uint8_t f) { return f != 0; })) {
+            lights = coverage.view(origin);
+            analytic = lights.valid();
+          }
           for (int t = 0; t < texels; ++t) {
             const int row = t / layout.res_width, col = t % layout.res_width;
             // `count` fresh samples from sample id `first` on, stratified over the texel.
@@ -731,10 +740,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
                                          Part::kEmission, &unused, nullptr, analytic ? &control : nullptr);
                 if (analytic) {
                   seen_emission = control.estimate(lights.texel_mean(row, col, layout.res_height, layout.res_width));
-                  if (!(glm::min(seen_emission.x, glm::min(seen_emission.y, seen_emission.z)) >= 0.0f)) {
-                    seen_emission = glm::max(seen_emission, glm::vec3(0.0f));
-                    ++negative;
-                  }
+                  clamp_at_zero(&seen_emission);
                 }
                 edge_texels += edge;
                 ++lit_texels;
@@ -743,12 +749,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
               }
               ++extra;
             }
-            // The control variate's corrections can be negative on their own; a texel whose
-            // mean still is (dark, grazing, a few directions) is clamped, and counted.
-            if (!(glm::min(value.x, glm::min(value.y, value.z)) >= 0.0f)) {
-              value = glm::max(value, glm::vec3(0.0f));
-              ++negative;
-            }
+            clamp_at_zero(&value);
             if (share) {
               records.distance[size_t(texel_id(p, t))] = distance;
               records.samples[size_t(texel_id(p, t))] = float(hard && adaptive ? hard_spp : spp);
