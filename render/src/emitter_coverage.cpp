@@ -76,27 +76,9 @@ double clipped_area(const std::vector<glm::dvec2>& poly, double x0, double x1, d
 
 }  // namespace
 
-EmitterCoverage::EmitterCoverage(const scenes::Scene& scene) {
-  bool uniform = true;
-  for (const scenes::Mesh& mesh : scene.meshes) {
-    if (mesh.material < 0 || size_t(mesh.material) >= scene.materials.size()) continue;
-    const scenes::Material& material = scene.materials[size_t(mesh.material)];
-    if (!material.is_emissive()) continue;
-    // One value per triangle only without an emissive texture or an alpha cut-out.
-    if (material.emissive_texture.present() || material.alpha_mode == scenes::AlphaMode::Mask) uniform = false;
-    const glm::vec3 emission = glm::max(material.emission(), glm::vec3(0.0f));
-    if (!is_finite(emission)) uniform = false;
-    for (const glm::uvec3& t : mesh.triangles) {
-      if (t.x >= mesh.positions.size() || t.y >= mesh.positions.size() || t.z >= mesh.positions.size()) continue;
-      Triangle tri{{mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]}, glm::vec3(0.0f), emission,
-                   material.double_sided};
-      const glm::vec3 n = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
-      if (!(glm::dot(n, n) > 0.0f) || !is_finite(n)) continue;  // no area: never hit
-      tri.normal = glm::normalize(n);
-      triangles_.push_back(tri);
-    }
-  }
-  usable_ = uniform && !triangles_.empty();
+EmitterCoverage::EmitterCoverage(const scenes::Scene& scene) : triangles_(light_triangles(scene)) {
+  usable_ = !triangles_.empty() &&
+            std::all_of(triangles_.begin(), triangles_.end(), [](const LightTriangle& t) { return t.uniform; });
 }
 
 EmitterCoverage::View EmitterCoverage::view(const glm::vec3& origin) const {
@@ -105,9 +87,8 @@ EmitterCoverage::View EmitterCoverage::view(const glm::vec3& origin) const {
     v.valid_ = false;
     return v;
   }
-  for (const Triangle& tri : triangles_) {
-    const float side = glm::dot(tri.normal, origin - tri.p[0]);
-    if (!(side > 0.0f) && !(tri.two_sided && side < 0.0f)) continue;  // its back, or edge-on
+  for (const LightTriangle& tri : triangles_) {
+    if (!tri.seen_from(origin)) continue;
     View::Seen s;
     s.emission = tri.emission;
     glm::dvec3 d[3];

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -12,37 +13,20 @@
 namespace phyir::render {
 
 EmitterFootprints::EmitterFootprints(const scenes::Scene& scene) {
-  for (const scenes::Mesh& mesh : scene.meshes) {
-    if (mesh.material < 0 || size_t(mesh.material) >= scene.materials.size()) continue;
-    const scenes::Material& material = scene.materials[size_t(mesh.material)];
-    if (!material.is_emissive()) continue;
-    // An edge two coplanar triangles of the mesh share is inside the light (a panel's
-    // diagonal), not on its outline; a crease (a box light's corner) is an outline.
-    auto edge = [](uint32_t a, uint32_t b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
-    auto normal_of = [&](const glm::uvec3& t) {
-      const glm::vec3 n = glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]);
-      const float len = glm::length(n);
-      return len > 0.0f ? n / len : glm::vec3(0.0f);
-    };
-    std::map<std::pair<uint32_t, uint32_t>, std::vector<glm::vec3>> edge_normals;
-    for (const glm::uvec3& t : mesh.triangles) {
-      if (t.x >= mesh.positions.size() || t.y >= mesh.positions.size() || t.z >= mesh.positions.size()) continue;
-      for (int e = 0; e < 3; ++e) edge_normals[edge(t[e], t[(e + 1) % 3])].push_back(normal_of(t));
+  const std::vector<LightTriangle> lights = light_triangles(scene);
+  // An edge two coplanar triangles of one mesh share is inside the light (a panel's
+  // diagonal), not on its outline; a crease (a box light's corner) is an outline.
+  auto edge = [](int mesh, uint32_t a, uint32_t b) { return std::make_tuple(mesh, std::min(a, b), std::max(a, b)); };
+  std::map<std::tuple<int, uint32_t, uint32_t>, std::vector<glm::vec3>> edge_normals;
+  for (const LightTriangle& t : lights)
+    for (int e = 0; e < 3; ++e) edge_normals[edge(t.mesh, t.vertices[e], t.vertices[(e + 1) % 3])].push_back(t.normal);
+  for (const LightTriangle& t : lights) {
+    Triangle tri{t, {}};
+    for (int e = 0; e < 3; ++e) {
+      const std::vector<glm::vec3>& n = edge_normals[edge(t.mesh, t.vertices[e], t.vertices[(e + 1) % 3])];
+      tri.outline[e] = !(n.size() == 2 && glm::dot(n[0], n[1]) > 0.999f);
     }
-    auto on_outline = [&](uint32_t a, uint32_t b) {
-      const std::vector<glm::vec3>& n = edge_normals[edge(a, b)];
-      return !(n.size() == 2 && glm::dot(n[0], n[1]) > 0.999f);
-    };
-    for (const glm::uvec3& t : mesh.triangles) {
-      if (t.x >= mesh.positions.size() || t.y >= mesh.positions.size() || t.z >= mesh.positions.size()) continue;
-      Triangle tri{{mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]}, glm::vec3(0.0f), material.double_sided,
-                   {}};
-      for (int e = 0; e < 3; ++e) tri.outline[e] = on_outline(t[e], t[(e + 1) % 3]);
-      const glm::vec3 n = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
-      if (!(glm::dot(n, n) > 0.0f) || !is_finite(n)) continue;
-      tri.normal = glm::normalize(n);
-      triangles_.push_back(tri);
-    }
+    triangles_.push_back(tri);
   }
 }
 
@@ -65,7 +49,7 @@ constexpr int kEdgeSamples = 16;  // points per edge for the box, at least, for 
 
 void EmitterFootprints::mark(const glm::vec3& origin, int h, int w, std::vector<uint8_t>* flags) const {
   for (const Triangle& tri : triangles_) {
-    if (!tri.two_sided && !(glm::dot(tri.normal, origin - tri.p[0]) > 0.0f)) continue;  // its back
+    if (!tri.seen_from(origin)) continue;  // its back
     mark_box(tri, origin, h, w, flags);
     mark_outline(tri, origin, h, w, flags);
   }

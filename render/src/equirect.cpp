@@ -7,10 +7,13 @@
 namespace phyir::render {
 
 glm::vec3 equirect_direction(glm::vec2 uv) {
-  const float phi = (uv.x - 0.5f) * kTwoPi;  // 0 at the centre column (-Z), + towards +X
-  const float theta = uv.y * kPi;            // 0 = straight up (+Y)
-  const float sin_theta = std::sin(theta);
-  return glm::vec3(sin_theta * std::sin(phi), std::cos(theta), -sin_theta * std::cos(phi));
+  const float theta = uv.y * kPi;  // 0 = straight up (+Y)
+  return equirect_direction(uv.x, std::cos(theta), std::sin(theta));
+}
+
+glm::vec3 equirect_direction(float u, float cos_theta, float sin_theta) {
+  const float phi = (u - 0.5f) * kTwoPi;  // 0 at the centre column (-Z), + towards +X
+  return glm::vec3(sin_theta * std::sin(phi), cos_theta, -sin_theta * std::cos(phi));
 }
 
 glm::vec2 equirect_uv(const glm::vec3& d) {

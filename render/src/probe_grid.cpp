@@ -86,11 +86,8 @@ ProbeTexel::ProbeTexel(int row, int col, int height, int width)
       width_(float(width)) {}
 
 glm::vec3 ProbeTexel::direction(const glm::vec2& a) const {
-  // equirect_direction() at u = (col + a.x) / width and cos(theta) = the interpolated cosine.
   const double cos_theta = std::clamp(cos0_ + (cos1_ - cos0_) * double(a.y), -1.0, 1.0);
-  const float sin_theta = float(std::sqrt(1.0 - cos_theta * cos_theta));
-  const float phi = ((col_ + a.x) / width_ - 0.5f) * kTwoPi;
-  return glm::vec3(sin_theta * std::sin(phi), float(cos_theta), -sin_theta * std::cos(phi));
+  return equirect_direction((col_ + a.x) / width_, float(cos_theta), float(std::sqrt(1.0 - cos_theta * cos_theta)));
 }
 
 void stratified_square(int count, Rng& rng, std::vector<glm::vec2>* points, const Interleave& interleave) {

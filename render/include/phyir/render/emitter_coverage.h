@@ -15,6 +15,7 @@
 
 #include <vector>
 
+#include "phyir/render/light_triangles.h"
 #include "phyir/scenes/scene.h"
 
 namespace phyir::render {
@@ -53,13 +54,7 @@ class EmitterCoverage {
   View view(const glm::vec3& origin) const;
 
  private:
-  struct Triangle {
-    glm::vec3 p[3];
-    glm::vec3 normal;
-    glm::vec3 emission;
-    bool two_sided;
-  };
-  std::vector<Triangle> triangles_;
+  std::vector<LightTriangle> triangles_;
   bool usable_ = false;
 };
 

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "phyir/render/light_triangles.h"
 #include "phyir/scenes/scene.h"
 
 namespace phyir::render {
@@ -29,10 +30,7 @@ class EmitterFootprints {
   void mark(const glm::vec3& origin, int h, int w, std::vector<uint8_t>* flags) const;
 
  private:
-  struct Triangle {
-    glm::vec3 p[3];
-    glm::vec3 normal;
-    bool two_sided;
+  struct Triangle : LightTriangle {
     bool outline[3];  // edge p[e] -> p[e+1] is on the light's outline (not shared in its mesh)
   };
   // The two steps of mark(): the texel box (kCovered), the outline's texels (kEdge).

@@ -14,6 +14,10 @@ namespace phyir::render {
 // (u, v) in [0,1]^2 to a unit world direction.
 glm::vec3 equirect_direction(glm::vec2 uv);
 
+// The same at column coordinate u, with the polar angle given by its cosine and sine (for
+// callers that have them without theta: no inverse trigonometry).
+glm::vec3 equirect_direction(float u, float cos_theta, float sin_theta);
+
 // Unit direction to (u, v) in [0,1]^2 (u in [0,1), v in [0,1]).
 glm::vec2 equirect_uv(const glm::vec3& direction);
 

@@ -1,0 +1,31 @@
+#pragma once
+// The emissive triangles of a scene as the probe renderer's light helpers see them
+// (EmitterFootprints: which texels a light may cover; EmitterCoverage: how much of them).
+// Triangles without area (or with non-finite vertices) are left out: nothing hits them.
+#include <glm/glm.hpp>
+
+#include <vector>
+
+#include "phyir/scenes/scene.h"
+
+namespace phyir::render {
+
+struct LightTriangle {
+  int mesh = -1;
+  glm::uvec3 vertices{0};   // indices into the mesh's positions
+  glm::vec3 p[3];
+  glm::vec3 normal{0.0f};   // unit, as wound (the emitting side unless two-sided)
+  glm::vec3 emission{0.0f}; // the material's emission (emissive factor x strength), >= 0
+  bool two_sided = false;
+  bool uniform = true;      // `emission` everywhere on it: no emissive texture, no alpha cut-out
+
+  // Whether `origin` sees its emitting side (edge-on: no).
+  bool seen_from(const glm::vec3& origin) const {
+    const float side = glm::dot(normal, origin - p[0]);
+    return side > 0.0f || (two_sided && side < 0.0f);
+  }
+};
+
+std::vector<LightTriangle> light_triangles(const scenes::Scene& scene);
+
+}  // namespace phyir::render
