@@ -42,8 +42,10 @@ bool append_arc(const glm::dvec3& a, double phi_a, const glm::dvec3& b, int dept
 
 // Area of the part of the closed polygon `poly` inside [x0, x1] x [y0, y1]
 // (Sutherland-Hodgman against each side in turn, then the shoelace formula; a concave
-// polygon may leave zero-width bridges along the window's sides, which add no area).
-double clipped_area(const std::vector<glm::dvec2>& poly, double x0, double x1, double y0, double y1) {
+// polygon may leave zero-width bridges along the window's sides, which add no area), and
+// that part's bounding box.
+double clipped_area(const std::vector<glm::dvec2>& poly, double x0, double x1, double y0, double y1, glm::dvec2* lo,
+                    glm::dvec2* hi) {
   thread_local std::vector<glm::dvec2> a, b;
   a = poly;
   auto clip = [&](int axis, double bound, bool keep_above) {
@@ -66,10 +68,12 @@ double clipped_area(const std::vector<glm::dvec2>& poly, double x0, double x1, d
   clip(1, y0, true);
   clip(1, y1, false);
   double twice = 0.0;
+  *lo = glm::dvec2(x1, y1), *hi = glm::dvec2(x0, y0);
   for (size_t i = 0; i < a.size(); ++i) {
     const glm::dvec2& p = a[i];
     const glm::dvec2& q = a[(i + 1) % a.size()];
     twice += p.x * q.y - q.x * p.y;
+    *lo = glm::min(*lo, p), *hi = glm::max(*hi, p);
   }
   return 0.5 * std::abs(twice);
 }
@@ -98,6 +102,8 @@ EmitterCoverage::View EmitterCoverage::view(const glm::vec3& origin) const {
     if (!(std::abs(orientation) > 0.0)) continue;  // seen edge-on
     for (int e = 0; e < 3; ++e)
       s.edge_normal[e] = glm::vec3(glm::cross(d[e], d[(e + 1) % 3]) * (orientation > 0.0 ? 1.0 : -1.0));
+    s.to_plane = glm::vec3(d[0]);
+    s.plane_normal = tri.normal;
     // The outline in (phi unwrapped, cos theta), from d[0] round to d[0] again.
     const glm::dvec3 u0 = glm::normalize(d[0]);
     if (!(std::hypot(u0.x, u0.z) > 1e-12)) {
@@ -138,32 +144,50 @@ EmitterCoverage::View EmitterCoverage::view(const glm::vec3& origin) const {
   return v;
 }
 
-glm::vec3 EmitterCoverage::View::texel_mean(int row, int col, int h, int w) const {
+void EmitterCoverage::View::texel_pieces(int row, int col, int h, int w, std::vector<Piece>* pieces) const {
+  pieces->clear();
   const double z0 = std::cos(kPi * double(row + 1) / h), z1 = std::cos(kPi * double(row) / h);
   const double p0 = (double(col) / w - 0.5) * kTwoPi, p1 = (double(col + 1) / w - 0.5) * kTwoPi;
   const double area = (p1 - p0) * (z1 - z0);
-  glm::dvec3 sum(0.0);
-  for (const Seen& s : seen_) {
+  for (size_t i = 0; i < seen_.size(); ++i) {
+    const Seen& s = seen_[i];
     if (s.z_max < z0 || s.z_min > z1) continue;
-    double covered = 0.0;
     // The outline's phi is unwrapped: try the texel at every turn it may overlap.
     for (int k = -2; k <= 2; ++k) {
       const double q0 = p0 + k * kTwoPi, q1 = p1 + k * kTwoPi;
       if (s.phi_max < q0 || s.phi_min > q1) continue;
-      covered += clipped_area(s.outline, q0, q1, z0, z1);
+      Piece piece;
+      piece.fraction = std::min(clipped_area(s.outline, q0, q1, z0, z1, &piece.lo, &piece.hi) / area, 1.0);
+      if (!(piece.fraction > 0.0)) continue;
+      piece.light = int(i);
+      piece.emission = s.emission;
+      pieces->push_back(piece);
     }
-    sum += glm::dvec3(s.emission) * std::min(covered / area, 1.0);
   }
+}
+
+glm::vec3 EmitterCoverage::View::texel_mean(int row, int col, int h, int w) const {
+  thread_local std::vector<Piece> pieces;
+  texel_pieces(row, col, h, w, &pieces);
+  glm::dvec3 sum(0.0);
+  for (const Piece& piece : pieces) sum += glm::dvec3(piece.emission) * piece.fraction;
   return glm::vec3(sum);
 }
 
 glm::vec3 EmitterCoverage::View::along(const glm::vec3& d) const {
   glm::vec3 sum(0.0f);
   for (const Seen& s : seen_)
-    if (glm::dot(d, s.edge_normal[0]) >= 0.0f && glm::dot(d, s.edge_normal[1]) >= 0.0f &&
-        glm::dot(d, s.edge_normal[2]) >= 0.0f)
-      sum += s.emission;
+    if (inside(s, d)) sum += s.emission;
   return sum;
+}
+
+bool EmitterCoverage::View::hits(int light, const glm::vec3& d, float* distance) const {
+  const Seen& s = seen_[size_t(light)];
+  if (!inside(s, d)) return false;
+  const float toward = glm::dot(d, s.plane_normal);
+  if (!(std::abs(toward) > 1e-12f)) return false;  // edge-on: no area to hit
+  *distance = glm::dot(s.to_plane, s.plane_normal) / toward;
+  return *distance > 0.0f && std::isfinite(*distance);
 }
 
 }  // namespace phyir::render

@@ -9,6 +9,7 @@
 #include "phyir/core/safe_math.h"
 #include "phyir/render/emitter_visibility.h"
 #include "phyir/render/material_eval.h"
+#include "phyir/render/spherical_triangle.h"
 
 namespace phyir::render {
 
@@ -41,7 +42,29 @@ Geometry solid_angle_pdf(float pmf, float area, const glm::vec3& normal, const g
   return g;
 }
 
+// The same for a point sampled uniformly in the triangle's solid angle `omega` from
+// `reference`: pmf / omega, with the same grazing rule.
+Geometry solid_angle_geometry(float pmf, double omega, const glm::vec3& normal, const glm::vec3& reference,
+                              const glm::vec3& point) {
+  Geometry g = solid_angle_pdf(pmf, 1.0f, normal, reference, point);
+  if (g.pdf > 0.0f) g.pdf = float(double(pmf) / omega);
+  if (!std::isfinite(g.pdf)) g.pdf = 0.0f;
+  return g;
+}
+
 }  // namespace
+
+// (b1, b2) of a point in the triangle's plane, clamped into the triangle.
+glm::vec2 EmitterSampler::barycentrics_of(const EmissiveTriangle& e, const glm::vec3& point) {
+  const glm::vec3 e1 = e.p1 - e.p0, e2 = e.p2 - e.p0, v = point - e.p0;
+  const float d00 = glm::dot(e1, e1), d01 = glm::dot(e1, e2), d11 = glm::dot(e2, e2);
+  const float d20 = glm::dot(v, e1), d21 = glm::dot(v, e2);
+  const float denominator = d00 * d11 - d01 * d01;
+  glm::vec2 b(safe_div(d11 * d20 - d01 * d21, denominator), safe_div(d00 * d21 - d01 * d20, denominator));
+  b = glm::clamp(b, glm::vec2(0.0f), glm::vec2(1.0f));
+  const float sum = b.x + b.y;
+  return sum > 1.0f ? b / sum : b;
+}
 
 EmitterSampler::EmitterSampler(const scenes::Scene& scene, const Accelerator* occluders) : scene_(&scene) {
   first_of_mesh_.assign(scene.meshes.size(), -1);
@@ -66,7 +89,7 @@ EmitterSampler::EmitterSampler(const scenes::Scene& scene, const Accelerator* oc
       lookup_.push_back(-1);
       if (tri.x >= n || tri.y >= n || tri.z >= n) continue;
       EmissiveTriangle e{static_cast<int>(m), static_cast<int>(t), mesh.positions[tri.x],
-                         mesh.positions[tri.y], mesh.positions[tri.z], glm::vec3(0.0f), 0.0f,
+                         mesh.positions[tri.y], mesh.positions[tri.z], glm::vec3(0.0f), 0.0f, glm::vec3(0.0f), 0.0f,
                          /*cluster=*/-1, /*pmf_in_cluster=*/0.0f};
       const glm::vec3 c = glm::cross(e.p1 - e.p0, e.p2 - e.p0);
       const float len = glm::length(c);
@@ -75,6 +98,9 @@ EmitterSampler::EmitterSampler(const scenes::Scene& scene, const Accelerator* oc
         continue;
       e.normal = c / len;
       e.area = 0.5f * len;
+      e.centroid = (e.p0 + e.p1 + e.p2) / 3.0f;
+      e.longest_edge2 = std::max({glm::dot(e.p1 - e.p0, e.p1 - e.p0), glm::dot(e.p2 - e.p1, e.p2 - e.p1),
+                                  glm::dot(e.p0 - e.p2, e.p0 - e.p2)});
       const float weight = e.area * power_density;
       if (!(weight > 0.0f) || !std::isfinite(weight)) continue;
       if (occluders && emits_only_into_solids(scene, *occluders, e.p0, e.p1, e.p2, e.normal, material.double_sided)) {
@@ -231,11 +257,27 @@ bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const gl
   }
   if (index < 0) return false;
   const EmissiveTriangle& e = triangles_[index];
-  const glm::vec2 b12 = sample_uniform_triangle(u_point);
-  const glm::vec3 bary = barycentrics(b12);
-  const glm::vec3 point = e.p0 + (e.p1 - e.p0) * bary.y + (e.p2 - e.p0) * bary.z;
-  const Geometry g = solid_angle_pdf(pmf, e.area, e.normal, reference, point);
+  glm::vec2 b12;
+  glm::vec3 point;
+  Geometry g;
+  SphericalTriangle seen;
+  if (by_solid_angle(e, reference) && seen.set(reference, e.p0, e.p1, e.p2)) {
+    // The point where the sampled direction meets the triangle's plane.
+    const glm::vec3 wi = seen.sample(u_point);
+    const float toward = glm::dot(e.normal, wi);
+    const float t = safe_div(glm::dot(e.normal, e.p0 - reference), toward);
+    if (!(t > 0.0f) || !std::isfinite(t)) return false;
+    point = reference + t * wi;
+    b12 = barycentrics_of(e, point);
+    g = solid_angle_geometry(pmf, seen.solid_angle(), e.normal, reference, point);
+  } else {
+    b12 = sample_uniform_triangle(u_point);
+    const glm::vec3 b = barycentrics(b12);
+    point = e.p0 + (e.p1 - e.p0) * b.y + (e.p2 - e.p0) * b.z;
+    g = solid_angle_pdf(pmf, e.area, e.normal, reference, point);
+  }
   if (!(g.pdf > 0.0f)) return false;
+  const glm::vec3 bary = barycentrics(b12);
 
   const scenes::Mesh& mesh = scene_->meshes[e.mesh];
   const scenes::Material& material = scene_->materials[mesh.material];
@@ -263,7 +305,16 @@ float EmitterSampler::pdf(const glm::vec3& reference, int mesh, int triangle, co
   const int index = lookup_[first_of_mesh_[mesh] + triangle];
   if (index < 0) return 0.0f;
   const EmissiveTriangle& e = triangles_[index];
-  return solid_angle_pdf(selection_pmf(reference, index), e.area, e.normal, reference, point).pdf;
+  const float pmf = selection_pmf(reference, index);
+  SphericalTriangle seen;
+  if (by_solid_angle(e, reference) && seen.set(reference, e.p0, e.p1, e.p2))
+    return solid_angle_geometry(pmf, seen.solid_angle(), e.normal, reference, point).pdf;
+  return solid_angle_pdf(pmf, e.area, e.normal, reference, point).pdf;
+}
+
+bool EmitterSampler::by_solid_angle(const EmissiveTriangle& e, const glm::vec3& reference) {
+  const glm::vec3 d = e.centroid - reference;
+  return e.longest_edge2 > kSolidAngleExtent * kSolidAngleExtent * glm::dot(d, d);
 }
 
 }  // namespace phyir::render

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 
@@ -52,6 +53,7 @@ constexpr int kEmissionEdgeSppFactor = 256;
 constexpr uint64_t kDiscoverySample = uint64_t(1) << 40;
 constexpr uint64_t kStrataStream = uint64_t(1) << 41;
 constexpr uint64_t kInterleaveStream = uint64_t(1) << 42;
+constexpr uint64_t kLightPartStream = uint64_t(1) << 43;
 
 // Streams of the cache-mode shading, per specular depth (distinct from the path tracer's
 // purposes 1..5 and the cache's 101..103).
@@ -124,37 +126,45 @@ CachePoint cache_point(const SurfaceInteraction& si, const glm::vec3& shading_no
   return CachePoint{si.position, shading_normal, si.geometric_normal};
 }
 
-// The emission a light texel sees, with the lights' exact unoccluded coverage of the texel
-// (EmitterCoverage) as a control variate: mean(L) + beta (exact - mean(unoccluded)), beta
-// the regression coefficient of the samples (luminance), clamped to [0, 1]. Where the
-// light is in full view beta is 1 and the estimate is the exact coverage; where an occluder
-// hides it beta falls towards 0 and the plain mean is kept (with beta fixed at 1 a hidden
-// light would trade an exact 0 for the noise of estimating its coverage). Choosing beta
-// from the same samples leaves a bias of order 1/count.
-class CoverageControl {
- public:
-  explicit CoverageControl(const EmitterCoverage::View& lights) : lights_(lights) {}
-  void add(const glm::vec3& direction, const glm::vec3& L) {
-    const glm::vec3 g = lights_.along(direction);
-    const double l = luminance(L), gl = luminance(g);
-    sum_L_ += glm::dvec3(L);
-    sum_g_ += gl, sum_gg_ += gl * gl, sum_l_ += l, sum_lg_ += l * gl, sum_g_rgb_ += glm::dvec3(g);
-    ++n_;
+// The emission a light texel sees, sampled only where the lights cover it. Each light
+// triangle's part of the texel is known exactly (EmitterCoverage); `count` directions, split
+// between the parts by their size, are drawn uniformly in solid angle inside them (stratified
+// points of a part's bounding box in the equal-area (phi, cos theta) map, kept where they fall
+// inside the triangle: the others cost no ray), and each asks only whether something hides
+// the light. Where a light is in full view the estimate is exact; elsewhere every direction
+// lands on the light, where an occluder's edge cuts it, none on the rest of the texel.
+glm::vec3 visible_emission(const EmitterCoverage::View& lights, const std::vector<EmitterCoverage::View::Piece>& pieces,
+                           const Accelerator& accelerator, const glm::vec3& origin, int count, Rng& rng,
+                           std::vector<glm::vec2>* strata, uint64_t* rays) {
+  // A part's box is tight, so most points fall inside; a sliver may need a few rounds.
+  constexpr int kMaxRounds = 4;
+  // The occlusion test stops this fraction of the way short of the light's plane.
+  constexpr float kShortOfTheLight = 1e-4f;
+  double covered = 0.0;
+  for (const auto& piece : pieces) covered += piece.fraction;
+  glm::dvec3 sum(0.0);
+  for (const auto& piece : pieces) {
+    const int wanted = std::max(1, int(std::lround(count * piece.fraction / covered)));
+    int inside = 0, visible = 0;
+    for (int round = 0; round < kMaxRounds && 2 * inside < wanted; ++round) {
+      stratified_square(wanted, rng, strata);
+      for (const glm::vec2& a : *strata) {
+        const double phi = piece.lo.x + double(a.x) * (piece.hi.x - piece.lo.x);
+        const double z = std::clamp(piece.lo.y + double(a.y) * (piece.hi.y - piece.lo.y), -1.0, 1.0);
+        const glm::vec3 d = equirect_direction(float(phi / kTwoPi + 0.5), float(z), float(std::sqrt(1.0 - z * z)));
+        float distance = 0.0f;
+        if (!lights.hits(piece.light, d, &distance)) continue;
+        ++inside;
+        ++*rays;
+        visible += !accelerator.occluded(Ray{origin, d, 0.0f, distance * (1.0f - kShortOfTheLight)});
+      }
+    }
+    // A sliver no point found is taken as in view (its share of the texel is negligible).
+    const double seen = inside > 0 ? double(visible) / inside : 1.0;
+    sum += glm::dvec3(piece.emission) * (piece.fraction * seen);
   }
-  glm::vec3 estimate(const glm::vec3& exact_mean) const {
-    if (n_ == 0) return glm::vec3(0.0f);
-    const double n = double(n_);
-    const double var = sum_gg_ - sum_g_ * sum_g_ / n, cov = sum_lg_ - sum_l_ * sum_g_ / n;
-    const double beta = var > 0.0 ? std::clamp(cov / var, 0.0, 1.0) : 1.0;
-    return glm::vec3(sum_L_ / n + beta * (glm::dvec3(exact_mean) - sum_g_rgb_ / n));
-  }
-
- private:
-  const EmitterCoverage::View& lights_;
-  glm::dvec3 sum_L_{0.0}, sum_g_rgb_{0.0};
-  double sum_g_ = 0.0, sum_gg_ = 0.0, sum_l_ = 0.0, sum_lg_ = 0.0;
-  int n_ = 0;
-};
+  return glm::vec3(sum);
+}
 
 // Everything one thread needs to estimate probe texels.
 class TexelEstimator {
@@ -296,6 +306,8 @@ class TexelEstimator {
                             const glm::vec3& fd, const CachedIrradiance& E, int depth, uint64_t key,
                             PathCounters* c) const {
     glm::vec3 L = fd * (E.indirect + E.direct);
+    static const bool exp_nospec = getenv("EXP_NOSPEC") != nullptr;
+    if (exp_nospec) return L;
     const glm::vec3 albedo = specular_albedo(p, wo.z);
     const float albedo_s = luminance(albedo);
     const float share = safe_div(albedo_s, albedo_s + kPi * luminance(fd));
@@ -640,6 +652,8 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
   const EmitterFootprints footprints(scene.scene());
   const EmitterCoverage coverage(scene.scene());
   const bool adaptive = settings.mode == ProbeMode::kCache && settings.hard_spp_factor > 1;
+  const int edge_factor = getenv("EXP_EDGE") ? atoi(getenv("EXP_EDGE")) : kEmissionEdgeSppFactor;
+  const int lit_factor = getenv("EXP_LIT") ? atoi(getenv("EXP_LIT")) : kEmissionSppFactor;
   const bool share = settings.mode == ProbeMode::kCache && settings.sharing.radius > 0;
   TexelRecords records;
   tbb::enumerable_thread_specific<std::vector<std::pair<uint64_t, glm::vec3>>> emission_seen;  // sharing: added after
@@ -654,6 +668,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
       [&](const tbb::blocked_range<size_t>& r) {
         PathCounters& c = local.local();
         std::vector<glm::vec2> strata;
+        std::vector<EmitterCoverage::View::Piece> pieces;
         std::vector<uint8_t> lit(static_cast<size_t>(texels));
         uint64_t extra = 0, lit_texels = 0, edge_texels = 0, negative = 0;
         // The control variates' corrections can be negative on their own; a texel whose
@@ -675,10 +690,11 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
           }
           std::fill(lit.begin(), lit.end(), uint8_t(0));
           if (adaptive) footprints.mark(origin, layout.res_height, layout.res_width, &lit);
-          // The lights' exact coverage of each texel, for the emission's control variate.
+          // The lights' exact coverage of each texel, where the emission a texel sees is the
+          // lights' alone (no environment).
           EmitterCoverage::View lights;
           bool analytic = false;
-          if (adaptive && coverage.usable() && std::any_of(lit.begin(), lit.end(), [](uint8_t f) { return f != 0; })) {
+          if (adaptive && coverage.usable() && !effects.environment && std::any_of(lit.begin(), lit.end(), [](uint8_t f) { return f != 0; })) {
             lights = coverage.view(origin);
             analytic = lights.valid();
           }
@@ -689,9 +705,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
             // `spread` (if given) receives the range of the samples' luminances.
             float distance = std::numeric_limits<float>::infinity();
             const ProbeTexel texel(row, col, layout.res_height, layout.res_width);
-            // `control` (if given) receives every direction and its value.
-            auto estimate = [&](int first, int count, Part part, bool* saw_hard, float* spread = nullptr,
-                                CoverageControl* control = nullptr) {
+            auto estimate = [&](int first, int count, Part part, bool* saw_hard, float* spread = nullptr) {
               Rng permutation(PathTracer::path_key(probe_seed, texel_id(p, t), kStrataStream + uint64_t(first)), 0);
               // The interleaving key is the same for every probe (texel and pass only).
               interleave.key = PathTracer::path_key(probe_seed, uint64_t(t), kInterleaveStream + uint64_t(first));
@@ -706,7 +720,6 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
                   ++c.nonfinite_samples;
                   L = glm::vec3(0.0f);
                 }
-                if (control) control->add(ray.direction, L);
                 sum += glm::dvec3(L);
                 lo = std::min(lo, luminance(L));
                 hi = std::max(hi, luminance(L));
@@ -722,7 +735,8 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
             // there is estimated apart, from kEmissionSppFactor x spp more directions (one
             // ray each): partial coverage of a light is the largest error otherwise. No
             // decision looks at the samples it selects, so none biases the value.
-            const int spp = settings.spp, hard_spp = spp * settings.hard_spp_factor;
+            static const int exp_hard = getenv("EXP_HARD") ? atoi(getenv("EXP_HARD")) : 0;
+            const int spp = settings.spp, hard_spp = spp * (exp_hard ? exp_hard : settings.hard_spp_factor);
             bool hard = lit[size_t(t)] != 0;
             glm::vec3 value(0.0f), seen_emission(0.0f);
             if (!hard) {
@@ -735,12 +749,14 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
               if (lit[size_t(t)]) {
                 value = estimate(spp, hard_spp, Part::kRest, &unused);
                 const bool edge = lit[size_t(t)] == EmitterFootprints::kEdge;
-                CoverageControl control(lights);
-                seen_emission = estimate(spp + hard_spp, spp * (edge ? kEmissionEdgeSppFactor : kEmissionSppFactor),
-                                         Part::kEmission, &unused, nullptr, analytic ? &control : nullptr);
+                const int directions = spp * (edge ? edge_factor : lit_factor);
                 if (analytic) {
-                  seen_emission = control.estimate(lights.texel_mean(row, col, layout.res_height, layout.res_width));
-                  clamp_at_zero(&seen_emission);
+                  lights.texel_pieces(row, col, layout.res_height, layout.res_width, &pieces);
+                  Rng rng(PathTracer::path_key(probe_seed, texel_id(p, t), kLightPartStream), 0);
+                  seen_emission = visible_emission(lights, pieces, scene.accelerator(), origin, directions, rng,
+                                                   &strata, &c.rays);
+                } else {
+                  seen_emission = estimate(spp + hard_spp, directions, Part::kEmission, &unused);
                 }
                 edge_texels += edge;
                 ++lit_texels;

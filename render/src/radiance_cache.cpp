@@ -163,7 +163,25 @@ void RadianceCache::build(const std::vector<const Collector*>& collectors, PathC
           }
     }
   });
+  if (settings_.smooth_indirect) smooth_indirect();
   direct_cells_ = size_t(std::count_if(cells_.begin(), cells_.end(), [](const Cell& c) { return c.has_direct; }));
+}
+
+void RadianceCache::smooth_indirect() {
+  std::vector<glm::vec3> smoothed(cells_.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, cells_.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i < r.end(); ++i) {
+      glm::dvec3 sum(0.0);
+      int count = 0;
+      for (int index : neighbours_[i]) {
+        if (index < 0) continue;
+        sum += glm::dvec3(cells_[size_t(index)].indirect);
+        ++count;
+      }
+      smoothed[i] = glm::vec3(sum / double(count));  // count >= 1: the cell is its own neighbour
+    }
+  });
+  for (size_t i = 0; i < cells_.size(); ++i) values_[i].indirect = smoothed[i];
 }
 
 float RadianceCache::mean_irradiance_luminance() const {

@@ -76,6 +76,59 @@ TEST(EmitterCoverage, TexelMeansMatchDenseSamplingAndSumToTheLightsSolidAngle) {
   }
 }
 
+// The pieces the probe renderer samples the emission in: each piece's box holds its part of
+// the texel (points of the box inside the triangle, scaled by the box's share of the texel,
+// give the piece's exact fraction back), and hits() reports the distance to a point that
+// lies on the light.
+TEST(EmitterCoverage, EachPieceBoxesItsPartAndHitsLandsOnTheLight) {
+  for (const Case& c : kCases) {
+    SCOPED_TRACE(c.name);
+    scenes::Scene scene;
+    test::add_quad(scene, c.corner, c.edge_u, c.edge_v, test::add_material(scene, test::make_emitter(glm::vec3(2.0f), true)),
+                   "light");
+    const EmitterCoverage::View view = EmitterCoverage(scene).view(c.origin);
+    ASSERT_TRUE(view.valid());
+    std::vector<EmitterCoverage::View::Piece> pieces;
+    int checked = 0;
+    double worst = 0.0, worst_plane = 0.0;
+    for (int row = 0; row < kH; ++row)
+      for (int col = 0; col < kW; ++col) {
+        view.texel_pieces(row, col, kH, kW, &pieces);
+        double sum = 0.0;
+        for (const auto& piece : pieces) {
+          sum += piece.fraction;
+          constexpr int n = 64;
+          int inside = 0;
+          for (int a = 0; a < n; ++a)
+            for (int b = 0; b < n; ++b) {
+              const double phi = piece.lo.x + (a + 0.5) / n * (piece.hi.x - piece.lo.x);
+              const double z = piece.lo.y + (b + 0.5) / n * (piece.hi.y - piece.lo.y);
+              const glm::vec3 d = equirect_direction(float(phi / kTwoPi + 0.5), float(z), float(std::sqrt(1.0 - z * z)));
+              float t = 0.0f;
+              if (!view.hits(piece.light, d, &t)) continue;
+              ++inside;
+              // The point lies in the quad's plane, inside the quad.
+              const glm::vec3 q = c.origin + t * d - c.corner;
+              const glm::vec3 n_quad = glm::normalize(glm::cross(c.edge_u, c.edge_v));
+              worst_plane = std::max(worst_plane, double(std::abs(glm::dot(q, n_quad))));
+              const float u = glm::dot(q, c.edge_u) / glm::dot(c.edge_u, c.edge_u);
+              const float v = glm::dot(q, c.edge_v) / glm::dot(c.edge_v, c.edge_v);
+              EXPECT_TRUE(u > -1e-3f && u < 1.001f && v > -1e-3f && v < 1.001f) << u << " " << v;
+            }
+          const double z0 = std::cos(kPi * (row + 1) / kH), z1 = std::cos(kPi * row / kH);
+          const double box = (piece.hi.x - piece.lo.x) * (piece.hi.y - piece.lo.y) / ((kTwoPi / kW) * (z1 - z0));
+          worst = std::max(worst, std::abs(double(inside) / (n * n) * box - piece.fraction));
+          ++checked;
+        }
+        EXPECT_NEAR(sum * 2.0, view.texel_mean(row, col, kH, kW).x, 1e-5);
+      }
+    EXPECT_GT(checked, 0);
+    // A 64 x 64 grid of the box resolves an edge through it to ~2% of the box.
+    EXPECT_LT(worst, 0.02);
+    EXPECT_LT(worst_plane, 1e-4);
+  }
+}
+
 TEST(EmitterCoverage, OneSidedLightsAreOnlySeenFromTheFrontAndTexturedOnesAreNotUsable) {
   scenes::Scene scene;
   // cross(edge_u, edge_v) = -Y: emits downwards.

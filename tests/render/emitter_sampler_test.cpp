@@ -1,12 +1,15 @@
 // Next-event estimation on emissive triangles: the solid-angle pdf against analytic solid
 // angles, its normalisation over the sphere, sample() == pdf(), power-proportional
-// selection, one-sided emission and textured emitters.
+// selection, solid-angle sampling of a strip light beside the point, one-sided emission and
+// textured emitters.
 #include "phyir/render/emitter_sampler.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <iostream>
+#include <vector>
 
 #include "phyir/core/safe_math.h"
 #include "phyir/render/ray_offset.h"
@@ -216,6 +219,47 @@ TEST(EmitterSampler, NearerAndFacingLightsArePickedMore) {
   EXPECT_NEAR(fraction_picking_mesh(sampler, far_light, n, {0, 0, 0}), 1.0 - p_near, 4.0 * std::sqrt(0.1 / n));
   // Above every light only the up-facing one can light the point.
   EXPECT_EQ(fraction_picking_mesh(sampler, up_light, n, {0, 5.0f, 3.5f}), 1.0);
+}
+
+// The edge of a ceiling fixture seen from the ceiling beside it: a 60 cm x 2 mm strip
+// facing the point, 3 cm below it and 10 cm away. Light samples uniform in solid angle give
+// Lambert's irradiance with a small spread; uniform points on the strip's area (what the
+// sampler did before) have a spread several times larger, from the rare samples on its
+// nearest part.
+TEST(EmitterSampler, AStripLightBesideThePointIsSampledInSolidAngle) {
+  scenes::Scene scene;
+  const float Le = 20.0f;
+  // cross(edge_u, edge_v) = +X: faces the point at x = 0.1.
+  const glm::vec3 corner(0.0f, -0.032f, 0.3f), edge_u(0.0f, 0.0f, -0.6f), edge_v(0.0f, 0.002f, 0.0f);
+  add_quad(scene, corner, edge_u, edge_v, add_material(scene, make_emitter(glm::vec3(Le))), "strip");
+  const RenderScene render_scene(scene);
+  const EmitterSampler& sampler = render_scene.emitters();
+  const glm::vec3 point(0.1f, 0.0f, 0.05f), normal(0.0f, -1.0f, 0.0f);  // a ceiling point, facing down
+  std::vector<glm::dvec3> polygon;
+  for (const glm::vec3& v : {corner, corner + edge_u, corner + edge_u + edge_v, corner + edge_v})
+    polygon.push_back(glm::dvec3(v - point));
+  const double exact = test::polygon_irradiance(polygon, glm::dvec3(normal), Le);
+  constexpr int n = 20000;
+  Rng rng(11, 0);
+  const MeanAndError solid = monte_carlo(n, [&](int) {
+    EmitterSample ls;
+    const float u = rng.next_float();
+    if (!sampler.sample(point, u, rng.next_2d(), &ls)) return 0.0;
+    return double(ls.radiance.x) * std::max(0.0, double(glm::dot(ls.wi, normal))) / double(ls.pdf);
+  });
+  const double strip_area = glm::length(glm::cross(edge_u, edge_v));
+  const MeanAndError area = monte_carlo(n, [&](int) {
+    const glm::vec2 u = rng.next_2d();
+    const glm::vec3 q = corner + u.x * edge_u + u.y * edge_v, d = q - point;
+    const double r2 = glm::dot(d, d), r = std::sqrt(r2);
+    const double cos_point = std::max(0.0, double(glm::dot(d, normal)) / r), cos_light = std::max(0.0, -double(d.x) / r);
+    return Le * cos_point * cos_light / r2 * strip_area;
+  });
+  std::printf("[ strip light ] exact %.4f, solid angle %.4f +- %.4f, area %.4f +- %.4f (same count)\n", exact, solid.mean,
+              solid.standard_error, area.mean, area.standard_error);
+  EXPECT_NEAR(solid.mean, exact, 4.0 * solid.standard_error + 1e-3 * exact);
+  EXPECT_NEAR(area.mean, exact, 4.0 * area.standard_error + 1e-3 * exact);
+  EXPECT_LT(solid.standard_error, 0.5 * area.standard_error);
 }
 
 TEST(EmitterSampler, OneSidedEmitterIsDarkFromBehind) {

@@ -2,10 +2,13 @@
 // floor under a square light is Lambert's polygon formula at every point (which a
 // cell-wide box filter would miss by several percent where the irradiance falls off;
 // the interpolated lookup must not), cells near the light keep no direct light, and with
-// one bounce there is no indirect light at all.
+// one bounce there is no indirect light at all, and smoothing the indirect light cuts its
+// noise without moving its mean.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <numeric>
 #include <vector>
 
 #include "phyir/render/effects.h"
@@ -110,6 +113,54 @@ TEST(RadianceCacheDirect, CellsNearALightKeepNoDirectLightAndZeroDisablesIt) {
   cache.build({&collector}, &counters);
   EXPECT_EQ(cache.direct_cell_count(), 0u);
   EXPECT_FALSE(cache.lookup(floor_point(0.0f, 0.0f), 3, &counters).has_direct);
+}
+
+// Smoothing the indirect light over a cell's neighbourhood: a floor lit only indirectly,
+// by a wall a light shines on. Two caches of different seeds differ by far less with it
+// than without, and the mean over the floor stays the same (the light changes slowly).
+TEST(RadianceCacheFill, SmoothingTheIndirectLightCutsItsNoiseAndKeepsItsMean) {
+  scenes::Scene scene;
+  const int white = test::add_material(scene, test::make_material(glm::vec3(0.8f), 1.0f, 0.0f));
+  test::add_quad(scene, glm::vec3(-2, 0, 2), glm::vec3(4, 0, 0), glm::vec3(0, 0, -4), white, "floor");
+  test::add_quad(scene, glm::vec3(0.6f, 0, 2), glm::vec3(0, 0, -4), glm::vec3(0, 2, 0), white, "wall");
+  // Facing +X, towards the wall: the floor's indirect light is what the wall reflects.
+  test::add_quad(scene, glm::vec3(-0.3f, 1.0f, -0.3f), glm::vec3(0, 0.4f, 0), glm::vec3(0, 0, 0.6f),
+                 test::add_material(scene, test::make_emitter(glm::vec3(10.0f))), "light");
+  const RenderScene render_scene(scene);
+  auto lookups = [&](bool smooth, uint64_t seed) {
+    RadianceCacheSettings settings;
+    settings.samples_per_cell = 32;
+    settings.smooth_indirect = smooth;
+    settings.seed = seed;
+    RadianceCache cache(render_scene, analyse_effects(scene, false), PathSettings{2, 3}, settings);
+    RadianceCache::Collector collector;
+    uint64_t k = 0;
+    for (float x = -0.5f; x <= 0.5f; x += 0.01f)
+      for (float z = -0.5f; z <= 0.5f; z += 0.01f) collector.offer(cache, floor_point(x, z), mix64(++k));
+    PathCounters counters;
+    cache.build({&collector}, &counters);
+    std::vector<double> out;
+    Rng rng(5, 0);
+    for (int n = 0; n < 400; ++n) {
+      const glm::vec2 u = rng.next_2d();
+      out.push_back(cache.lookup(floor_point(-0.4f + 0.8f * u.x, -0.4f + 0.8f * u.y), uint64_t(n), &counters).indirect.x);
+    }
+    return out;
+  };
+  auto rms_difference = [](const std::vector<double>& a, const std::vector<double>& b) {
+    double sum = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) sum += (a[i] - b[i]) * (a[i] - b[i]);
+    return std::sqrt(sum / double(a.size()));
+  };
+  auto mean = [](const std::vector<double>& a) { return std::accumulate(a.begin(), a.end(), 0.0) / double(a.size()); };
+  const auto raw1 = lookups(false, 1), raw2 = lookups(false, 2), smooth1 = lookups(true, 1), smooth2 = lookups(true, 2);
+  const double raw_noise = rms_difference(raw1, raw2), smooth_noise = rms_difference(smooth1, smooth2);
+  const double raw_mean = 0.5 * (mean(raw1) + mean(raw2)), smooth_mean = 0.5 * (mean(smooth1) + mean(smooth2));
+  std::printf("[ smoothing ] indirect mean %.4f -> %.4f, seed-to-seed RMS %.4f -> %.4f\n", raw_mean, smooth_mean,
+              raw_noise, smooth_noise);
+  ASSERT_GT(raw_mean, 0.0);
+  EXPECT_LT(smooth_noise, 0.6 * raw_noise);
+  EXPECT_NEAR(smooth_mean / raw_mean, 1.0, 0.02);
 }
 
 }  // namespace

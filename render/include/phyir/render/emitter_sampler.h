@@ -6,7 +6,12 @@
 //     clusters) / distance^2 from the reference point; zero when a one-sided planar
 //     cluster faces away from it (it cannot light the point);
 //  2. a triangle of that cluster proportionally to its power (area x luminance of the
-//     emission x mean of the emissive texture), then a uniform point on it.
+//     emission x mean of the emissive texture), then a point on it: uniform in solid angle
+//     (spherical_triangle.h) where the triangle is long for its distance (its longest edge
+//     more than kSolidAngleExtent x the distance to its centroid: a strip light seen from
+//     beside it, a panel from under it), where a uniform point on its area would leave the
+//     estimate dominated by the rare samples on its nearest part; uniform on its area
+//     elsewhere (cheaper, and there 1 / distance^2 hardly varies over it).
 // Step 1 is what keeps a ceiling lit by a lamp from wasting its samples on down-facing
 // panels. Scenes with more than kMaxSpatialClusters clusters fall back to pure power
 // selection, which keeps the per-sample cost bounded.
@@ -40,6 +45,7 @@ struct EmitterSample {
 class EmitterSampler {
  public:
   static constexpr int kMaxSpatialClusters = 64;
+  static constexpr float kSolidAngleExtent = 0.5f;
 
   explicit EmitterSampler(const scenes::Scene& scene, const Accelerator* occluders = nullptr);
 
@@ -70,6 +76,8 @@ class EmitterSampler {
     glm::vec3 p0, p1, p2;
     glm::vec3 normal;  // unit
     float area;
+    glm::vec3 centroid;
+    float longest_edge2;   // squared
     int cluster;           // index in clusters_
     float pmf_in_cluster;  // probability of this triangle once its cluster is picked
   };
@@ -89,6 +97,9 @@ class EmitterSampler {
   // Selection weights of every cluster seen from `reference`; returns their sum.
   float cluster_weights(const glm::vec3& reference, float* weights) const;
   float selection_pmf(const glm::vec3& reference, int index) const;
+  // Whether points on `e` are sampled uniformly in solid angle from `reference` (step 2).
+  static bool by_solid_angle(const EmissiveTriangle& e, const glm::vec3& reference);
+  static glm::vec2 barycentrics_of(const EmissiveTriangle& e, const glm::vec3& point);
   const scenes::Scene* scene_;
   std::vector<EmissiveTriangle> triangles_;
   // (mesh, triangle) -> index in triangles_: lookup_[first_of_mesh_[mesh] + triangle],

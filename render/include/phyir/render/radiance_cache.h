@@ -25,6 +25,13 @@
 // heuristic. Near an emitter direct irradiance changes too fast across a cell (the bright
 // rim on a ceiling round a lamp), so there the probes keep sampling it per direction.
 //
+// Smoothing. Indirect light comes from whole walls and changes over tens of centimetres,
+// while a cell's fill noise is its own and is shared by every lookup of the cell (the
+// ceiling 1 cm above a probe fills half of that probe's texels from a cell or two). So
+// lookups read each cell's indirect value as the mean over its 3 x 3 x 3 neighbourhood of
+// the same normal bucket: on a flat surface about 9 cells, a third of the noise, for a blur of one cell. Direct
+// light, with its shadow edges, is not smoothed.
+//
 // Use. Outgoing diffuse radiance at a point is f_d E (f_d = B (1 - M) / pi, eq. 13), with B
 // and M taken at the point itself (textures stay sharp). E is interpolated linearly between
 // the centres of the point's cell and its neighbours of the same normal bucket (missing
@@ -54,6 +61,9 @@ struct RadianceCacheSettings {
   // (0: never). Linear interpolation's error is about 0.75 (cell / distance)^2 of the
   // irradiance under a point light: 2% at 6 cells.
   float direct_distance_cells = 6.0f;
+  // Lookups read each cell's indirect light as the mean over its 3 x 3 x 3 neighbourhood in
+  // its normal bucket (see the header note).
+  bool smooth_indirect = true;
   uint64_t seed = 0;
   bool progress = false;
 };
@@ -147,6 +157,7 @@ class RadianceCache {
   static int neighbour_slot(const glm::ivec3& offset) { return (offset.x + 1) * 9 + (offset.y + 1) * 3 + (offset.z + 1); }
 
   void fill(Cell* cell, PathCounters* counters) const;
+  void smooth_indirect();  // values_[i].indirect from the cells' own means
   int find(uint64_t key) const;  // index into cells_, -1 if absent
   // Lattice coordinates (with the grid shift) of a position, in cells.
   glm::dvec3 lattice(const glm::vec3& position) const;
