@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cstdlib>
 #include <limits>
 #include <memory>
 
@@ -38,13 +37,17 @@ double seconds_since(Clock::time_point start) {
 // (a mirror facing a mirror would otherwise recurse to max_bounces).
 constexpr int kMaxSpecularDepth = 3;
 
-// Directions per texel for the emission seen in texels a light may cover, in units of spp
-// (one ray each): 16 x 5 = 80 at the default spp where the texel is wholly inside or
-// outside the lights' outlines (occluders aside, few directions find that), and 256 x 5 =
-// 1280 where an outline crosses it (EmitterFootprints::kEdge). There the lights' exact
-// coverage (EmitterCoverage) is a control variate, so the directions mostly estimate what
-// occluders hide; measured on the bench (docs/probes.md), 64 x spp there doubles the error
-// of those texels: a housing's rim in front of a panel is an outline as sharp as its own.
+// Directions per texel for the emission seen in texels a light may cover, in units of spp.
+// Where the lights' exact coverage is known (EmitterCoverage) they are drawn inside the
+// covered parts and ask only whether an occluder hides the light (visible_emission): 4 x 5
+// = 20 at the default spp, 64 x 5 = 320 where a light's outline crosses the texel
+// (EmitterFootprints::kEdge), where an occluder's edge may too (a housing's rim in front of
+// a panel). Measured on the bench (docs/probes.md): 2 and 32 x spp raise the error by 3%;
+// 16 and 256 x spp, which session 5 spent over the whole texel, change nothing. Otherwise
+// (textured lights, an environment) they are spread over the texel, one ray each: 16 and
+// 256 x spp.
+constexpr int kLightPartSppFactor = 4;
+constexpr int kLightPartEdgeSppFactor = 64;
 constexpr int kEmissionSppFactor = 16;
 constexpr int kEmissionEdgeSppFactor = 256;
 
@@ -276,21 +279,29 @@ class TexelEstimator {
     const float share = safe_div(luminance(weight_specular), luminance(bs.weight));
     const float keep = std::clamp(kSpecularKeepScale * share, kMinSpecularKeep, 1.0f);
     if (keep < 1.0f && !(shading_rng(key, depth, kSpecularRoulette).next_float() < keep)) return L;
-    return L + weight_specular * (reflected_at(ray, y, next, depth, key, c) - uniform) / keep;
+    return L + weight_specular * (reflected_at(ray, y, next, depth, key, c, glossy(p)) - uniform) / keep;
   }
 
+  bool glossy(const BrdfParams& p) const { return p.roughness < settings_.glossy_roughness; }
+
   // Light that y, the hit of a specular ray from a scattering event at depth - 1, reflects
-  // back along it (its emission excluded): glass is path traced, a glossy y followed, any
-  // other y ends the chain in the cache.
+  // back along it (its emission excluded): glass is path traced, a glossy y seen from a
+  // glossy surface followed, any other y ends the chain in the cache. A glossy y seen in a
+  // rough surface's broad lobe is not followed (path regularisation): the lights' images
+  // in a small polished object, seen through a wall's lobe, are caustics a few directions
+  // per texel almost never find, and then as fireflies up to 30 times the texel (measured:
+  // one bench texel 0.61 against 0.29, a third of that run's squared error). Its lobe is
+  // taken as lit uniformly by the cached irradiance instead.
   glm::vec3 reflected_at(const Ray& ray, const SurfaceInteraction& y, int next, int depth, uint64_t key,
-                         PathCounters* c) const {
+                         PathCounters* c, bool from_glossy) const {
     const glm::vec3 Le = y.emits ? y.emission : glm::vec3(0.0f);
     if (y.transmission > 0.0f) {
       // Glass: the path tracer from here (it re-adds y's emission at full weight: removed).
       return glm::max(tracers_[std::min(next, kMaxSpecularDepth)]->radiance(ray, derived_key(key, depth, kGlassContinuation), c) - Le,
                       glm::vec3(0.0f));
     }
-    if (y.brdf.roughness < settings_.glossy_roughness && next < kMaxSpecularDepth) return reflected(y, -ray.direction, next, key, c);
+    if (from_glossy && y.brdf.roughness < settings_.glossy_roughness && next < kMaxSpecularDepth)
+      return reflected(y, -ray.direction, next, key, c);
     return terminal(y, -ray.direction, next, key, c);
   }
 
@@ -306,8 +317,6 @@ class TexelEstimator {
                             const glm::vec3& fd, const CachedIrradiance& E, int depth, uint64_t key,
                             PathCounters* c) const {
     glm::vec3 L = fd * (E.indirect + E.direct);
-    static const bool exp_nospec = getenv("EXP_NOSPEC") != nullptr;
-    if (exp_nospec) return L;
     const glm::vec3 albedo = specular_albedo(p, wo.z);
     const float albedo_s = luminance(albedo);
     const float share = safe_div(albedo_s, albedo_s + kPi * luminance(fd));
@@ -341,7 +350,7 @@ class TexelEstimator {
       const float w = emitters ? power_heuristic(pdf, scene_.emitters().pdf(si.position, y.mesh, y.triangle, y.position)) : 1.0f;
       L += weight * y.emission * w;
     }
-    if (next < settings_.path.max_bounces) L += weight * (reflected_at(ray, y, next, depth, key, c) - uniform);
+    if (next < settings_.path.max_bounces) L += weight * (reflected_at(ray, y, next, depth, key, c, glossy(p)) - uniform);
     return L;
   }
 
@@ -652,8 +661,6 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
   const EmitterFootprints footprints(scene.scene());
   const EmitterCoverage coverage(scene.scene());
   const bool adaptive = settings.mode == ProbeMode::kCache && settings.hard_spp_factor > 1;
-  const int edge_factor = getenv("EXP_EDGE") ? atoi(getenv("EXP_EDGE")) : kEmissionEdgeSppFactor;
-  const int lit_factor = getenv("EXP_LIT") ? atoi(getenv("EXP_LIT")) : kEmissionSppFactor;
   const bool share = settings.mode == ProbeMode::kCache && settings.sharing.radius > 0;
   TexelRecords records;
   tbb::enumerable_thread_specific<std::vector<std::pair<uint64_t, glm::vec3>>> emission_seen;  // sharing: added after
@@ -732,11 +739,10 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
             // the texel straddles an edge or a highlight) are estimated again from
             // hard_spp_factor x spp fresh samples. Texels a light may cover
             // (EmitterFootprints) are hard from the start, and the emission seen first
-            // there is estimated apart, from kEmissionSppFactor x spp more directions (one
-            // ray each): partial coverage of a light is the largest error otherwise. No
-            // decision looks at the samples it selects, so none biases the value.
-            static const int exp_hard = getenv("EXP_HARD") ? atoi(getenv("EXP_HARD")) : 0;
-            const int spp = settings.spp, hard_spp = spp * (exp_hard ? exp_hard : settings.hard_spp_factor);
+            // there is estimated apart (inside the lights' coverage where it is known):
+            // partial coverage of a light is the largest error otherwise. No decision looks
+            // at the samples it selects, so none biases the value.
+            const int spp = settings.spp, hard_spp = spp * settings.hard_spp_factor;
             bool hard = lit[size_t(t)] != 0;
             glm::vec3 value(0.0f), seen_emission(0.0f);
             if (!hard) {
@@ -749,14 +755,15 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
               if (lit[size_t(t)]) {
                 value = estimate(spp, hard_spp, Part::kRest, &unused);
                 const bool edge = lit[size_t(t)] == EmitterFootprints::kEdge;
-                const int directions = spp * (edge ? edge_factor : lit_factor);
                 if (analytic) {
                   lights.texel_pieces(row, col, layout.res_height, layout.res_width, &pieces);
                   Rng rng(PathTracer::path_key(probe_seed, texel_id(p, t), kLightPartStream), 0);
-                  seen_emission = visible_emission(lights, pieces, scene.accelerator(), origin, directions, rng,
+                  seen_emission = visible_emission(lights, pieces, scene.accelerator(), origin,
+                                                   spp * (edge ? kLightPartEdgeSppFactor : kLightPartSppFactor), rng,
                                                    &strata, &c.rays);
                 } else {
-                  seen_emission = estimate(spp + hard_spp, directions, Part::kEmission, &unused);
+                  seen_emission = estimate(spp + hard_spp, spp * (edge ? kEmissionEdgeSppFactor : kEmissionSppFactor),
+                                           Part::kEmission, &unused);
                 }
                 edge_texels += edge;
                 ++lit_texels;

@@ -15,8 +15,9 @@
 //    as the integrator does (next-event estimation, with 8 light samples at x, plus one
 //    BRDF-sampled ray, power-heuristic MIS); indirect diffuse light is f_d(x) E(x) with E's indirect part;
 //    indirect specular light comes through the BRDF-sampled ray: the specular part of its weight
-//    times the light its hit y reflects, followed recursively for glossy y (roughness below
-//    glossy_roughness, up to kMaxSpecularDepth) and otherwise next-event estimation at y
+//    times the light its hit y reflects, followed recursively for glossy y seen from a
+//    glossy x (roughness below glossy_roughness, up to kMaxSpecularDepth) and otherwise
+//    next-event estimation at y
 //    plus (f_d(y) + specular albedo(y)/pi) E(y); on rough dielectrics that evaluation is
 //    Russian-rouletted by the specular share of the weight, with the lobe under uniform light
 //    of E's mean radiance as a control variate. Glass at x is path traced.
@@ -25,10 +26,9 @@
 //    (probe_sharing.h).
 //    "Hard" texels are re-estimated from hard_spp_factor x spp fresh directions: those the
 //    scene's emissive triangles can cover (projected onto the probe before sampling; their
-//    directly seen emission is estimated apart from 16 x spp more one-ray directions,
-//    256 x spp where a light's outline crosses the texel, with the lights' exact coverage
-//    of the texel as a control variate: EmitterCoverage) and
-//    those whose first spp directions met a light, glass or a glossy surface.
+//    directly seen emission is estimated apart, from directions drawn inside the lights'
+//    exact coverage of the texel, EmitterCoverage, that only ask whether an occluder hides
+//    the light) and those whose first spp directions met a light, glass or a glossy surface.
 // Random numbers: sample s of texel t of probe p draws from streams keyed by
 // (seed, p, t, s) (PathTracer::path_key of a probe seed), the cache's from (seed, cell,
 // sample); so probes.exr is bit-identical for a seed whatever the thread count. Non-finite
@@ -62,9 +62,9 @@ struct ProbeSettings {
   PathSettings path;              // max_bounces counts scattering after the probe ray's hit
   // kCache only.
   float cache_cell = 0.05f;       // metres
-  int cache_spp = 256;            // irradiance estimates per cache cell
+  int cache_spp = 128;            // irradiance estimates per cache cell
   float cache_direct_cells = 6.0f;  // direct light cached this many cells from emitters (0: never)
-  int hard_spp_factor = 8;        // hard texels (lights, glass, glossy, edges) get this many times spp
+  int hard_spp_factor = 6;        // hard texels (lights, glass, glossy, edges) get this many times spp
   // A texel whose first spp samples' luminances spread over more than this times their
   // mean (plus a small floor) is hard: an edge, a highlight or a shadow boundary in it.
   float spread_threshold = 0.75f;
