@@ -174,13 +174,6 @@ glm::vec3 EmitterCoverage::View::texel_mean(int row, int col, int h, int w) cons
   return glm::vec3(sum);
 }
 
-glm::vec3 EmitterCoverage::View::along(const glm::vec3& d) const {
-  glm::vec3 sum(0.0f);
-  for (const Seen& s : seen_)
-    if (inside(s, d)) sum += s.emission;
-  return sum;
-}
-
 bool EmitterCoverage::View::hits(int light, const glm::vec3& d, float* distance) const {
   const Seen& s = seen_[size_t(light)];
   if (!inside(s, d)) return false;

@@ -678,8 +678,8 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
         std::vector<EmitterCoverage::View::Piece> pieces;
         std::vector<uint8_t> lit(static_cast<size_t>(texels));
         uint64_t extra = 0, lit_texels = 0, edge_texels = 0, negative = 0;
-        // The control variates' corrections can be negative on their own; a texel whose
-        // mean still is (dark, grazing, few directions) is clamped to 0, and counted.
+        // The specular control variate's corrections can be negative on their own; a texel
+        // whose mean still is (dark, grazing, few directions) is clamped to 0, and counted.
         auto clamp_at_zero = [&negative](glm::vec3* v) {
           if (glm::min(v->x, glm::min(v->y, v->z)) >= 0.0f) return;
           *v = glm::max(*v, glm::vec3(0.0f));

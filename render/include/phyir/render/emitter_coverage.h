@@ -1,9 +1,9 @@
 #pragma once
-// How much of a probe texel each light covers, exactly and occlusion ignored: the known
-// mean of a control variate for the emission a texel sees (probe_renderer.cpp). A texel's
-// partial coverage of a light is the largest error of a stratified estimate (it converges
-// only as N^-3/4); with the control variate the directions estimate only what the exact
-// coverage leaves out, the part of the light hidden by an occluder.
+// How much of a probe texel each light covers, exactly and occlusion ignored, and where:
+// the probe renderer draws the directions for the emission a texel sees inside those parts
+// only (probe_renderer.cpp, visible_emission). A texel's partial coverage of a light is the
+// largest error of a stratified estimate over the texel (it converges only as N^-3/4); with
+// the coverage exact, the directions estimate only the part an occluder hides.
 //
 // Why it is exact: (phi, cos theta) is an equal-area map of the sphere (Lambert's
 // cylindrical projection), and an equirectangular texel is a rectangle in it, so a texel's
@@ -36,9 +36,6 @@ class EmitterCoverage {
     bool valid() const { return valid_; }
     // Mean over texel (row, col) of an h x w probe of the emission arriving with no occluder.
     glm::vec3 texel_mean(int row, int col, int h, int w) const;
-    // The emission arriving along unit direction d with no occluder.
-    glm::vec3 along(const glm::vec3& d) const;
-
     // One light triangle's part of a texel, occlusion ignored.
     struct Piece {
       int light = 0;                  // which triangle (for hits())
