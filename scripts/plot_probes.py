@@ -41,8 +41,19 @@ def main():
             label = f"{scene}: {label}"
         if mode == "path":
             label += " (time extrapolated)"
-        ax.plot(x, y, marker=markers.get(mode, "x"), linestyle="-" if mode == "cache" else "--", label=label)
+        # The line joins the plain MODE:SPP[:CACHE_SPP] settings; variants (another seed,
+        # sharing off, ...) and repeated runs are points of the same colour.
+        plain = [i for i, r in enumerate(points) if len(r["config"].split(":")) <= 3]
+        line = ax.plot([x[i] for i in plain], [y[i] for i in plain], marker=markers.get(mode, "x"),
+                       linestyle="-" if mode == "cache" else "--", label=label)[0]
+        others = [i for i in range(len(points)) if i not in plain]
+        ax.plot([x[i] for i in others], [y[i] for i in others], marker=markers.get(mode, "x"), linestyle="none",
+                color=line.get_color(), fillstyle="none")
+        named = set()
         for r, xi, yi in zip(points, x, y):
+            if r["config"] in named:
+                continue
+            named.add(r["config"])
             tag = f"{r['spp']} spp" + (f"/{r['cache_spp']}" if mode == "cache" else "")
             # Settings past MODE:SPP:CACHE_SPP (cell, seed, direct cells, spread) are named
             # as given, so that two runs of one spp stay apart.
