@@ -22,12 +22,12 @@ struct Geometry {
   float cos_light = 0.0f;  // signed: > 0 when the reference sees the front face
 };
 
-// The solid-angle density at `reference` of picking `point` uniformly on a triangle chosen
-// with probability `pmf`: pmf / area * d^2 / |cos_light|. Shared by sample() and pdf() so
-// the two agree bit for bit. Grazing (|cos| < kMinCosine) and coincident points get
-// density 0 in both, so multiple importance sampling stays consistent.
-Geometry solid_angle_pdf(float pmf, float area, const glm::vec3& normal, const glm::vec3& reference,
-                         const glm::vec3& point) {
+// Direction, distance and cosine at the emitter of `point` seen from `reference`, with the
+// solid-angle density `pdf` of having sampled it, where pdf_of(dist2, |cos|) gives it. Shared
+// by sample() and pdf() so the two agree bit for bit. Grazing (|cos| < kMinCosine) and
+// coincident points get density 0 in both, so multiple importance sampling stays consistent.
+template <typename Density>
+Geometry point_geometry(const glm::vec3& normal, const glm::vec3& reference, const glm::vec3& point, Density pdf_of) {
   Geometry g;
   const glm::vec3 d = point - reference;
   const float dist2 = glm::dot(d, d);
@@ -37,19 +37,22 @@ Geometry solid_angle_pdf(float pmf, float area, const glm::vec3& normal, const g
   g.cos_light = -glm::dot(normal, g.wi);
   const float abs_cos = std::abs(g.cos_light);
   if (abs_cos < kMinCosine) return g;
-  g.pdf = pmf * dist2 / (area * abs_cos);
+  g.pdf = pdf_of(dist2, abs_cos);
   if (!std::isfinite(g.pdf)) g.pdf = 0.0f;
   return g;
 }
 
-// The same for a point sampled uniformly in the triangle's solid angle `omega` from
-// `reference`: pmf / omega, with the same grazing rule.
-Geometry solid_angle_geometry(float pmf, double omega, const glm::vec3& normal, const glm::vec3& reference,
-                              const glm::vec3& point) {
-  Geometry g = solid_angle_pdf(pmf, 1.0f, normal, reference, point);
-  if (g.pdf > 0.0f) g.pdf = float(double(pmf) / omega);
-  if (!std::isfinite(g.pdf)) g.pdf = 0.0f;
-  return g;
+// A point uniform on a triangle of `area` picked with probability `pmf`: pmf / area * d^2 / |cos|.
+Geometry area_sampled(float pmf, float area, const glm::vec3& normal, const glm::vec3& reference,
+                      const glm::vec3& point) {
+  return point_geometry(normal, reference, point,
+                        [&](float dist2, float abs_cos) { return pmf * dist2 / (area * abs_cos); });
+}
+
+// A point uniform in the triangle's solid angle `omega`: pmf / omega.
+Geometry solid_angle_sampled(float pmf, double omega, const glm::vec3& normal, const glm::vec3& reference,
+                             const glm::vec3& point) {
+  return point_geometry(normal, reference, point, [&](float, float) { return float(double(pmf) / omega); });
 }
 
 }  // namespace
@@ -269,12 +272,12 @@ bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const gl
     if (!(t > 0.0f) || !std::isfinite(t)) return false;
     point = reference + t * wi;
     b12 = barycentrics_of(e, point);
-    g = solid_angle_geometry(pmf, seen.solid_angle(), e.normal, reference, point);
+    g = solid_angle_sampled(pmf, seen.solid_angle(), e.normal, reference, point);
   } else {
     b12 = sample_uniform_triangle(u_point);
     const glm::vec3 b = barycentrics(b12);
     point = e.p0 + (e.p1 - e.p0) * b.y + (e.p2 - e.p0) * b.z;
-    g = solid_angle_pdf(pmf, e.area, e.normal, reference, point);
+    g = area_sampled(pmf, e.area, e.normal, reference, point);
   }
   if (!(g.pdf > 0.0f)) return false;
   const glm::vec3 bary = barycentrics(b12);
@@ -308,8 +311,8 @@ float EmitterSampler::pdf(const glm::vec3& reference, int mesh, int triangle, co
   const float pmf = selection_pmf(reference, index);
   SphericalTriangle seen;
   if (by_solid_angle(e, reference) && seen.set(reference, e.p0, e.p1, e.p2))
-    return solid_angle_geometry(pmf, seen.solid_angle(), e.normal, reference, point).pdf;
-  return solid_angle_pdf(pmf, e.area, e.normal, reference, point).pdf;
+    return solid_angle_sampled(pmf, seen.solid_angle(), e.normal, reference, point).pdf;
+  return area_sampled(pmf, e.area, e.normal, reference, point).pdf;
 }
 
 bool EmitterSampler::by_solid_angle(const EmissiveTriangle& e, const glm::vec3& reference) {

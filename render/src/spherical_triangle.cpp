@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/gtc/constants.hpp>
+
 namespace phyir::render {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 bool unit(const glm::dvec3& v, glm::dvec3* out) {
   const double length = glm::length(v);
@@ -38,7 +38,7 @@ bool SphericalTriangle::set(const glm::vec3& reference, const glm::vec3& p0, con
   if (!unit(glm::dvec3(p0) - r, &a_) || !unit(glm::dvec3(p1) - r, &b_) || !unit(glm::dvec3(p2) - r, &c_)) return false;
   alpha_ = corner_angle(a_, b_, c_);
   const double beta = corner_angle(b_, c_, a_), gamma = corner_angle(c_, a_, b_);
-  solid_angle_ = alpha_ + beta + gamma - kPi;
+  solid_angle_ = alpha_ + beta + gamma - glm::pi<double>();  // double: the sum cancels
   return solid_angle_ > 0.0 && std::isfinite(solid_angle_);
 }
 

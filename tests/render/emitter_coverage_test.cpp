@@ -18,14 +18,6 @@ namespace {
 
 constexpr int kH = 16, kW = 32;
 
-// Solid angle of the triangle a, b, c seen from the origin (Van Oosterom & Strackee 1983).
-double solid_angle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-  const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
-  const double numerator = std::abs(glm::dot(a, glm::cross(b, c)));
-  const double denominator = la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
-  return 2.0 * std::atan2(numerator, denominator);
-}
-
 struct Case {
   const char* name;
   glm::vec3 origin;
@@ -82,7 +74,8 @@ TEST(EmitterCoverage, TexelMeansMatchDenseSamplingAndSumToTheLightsSolidAngle) {
     // A 96 x 96 grid resolves a straight edge through a texel to ~1% of the texel.
     EXPECT_LT(worst, 0.02);
     const glm::dvec3 o(c.origin), p0 = glm::dvec3(c.corner) - o, u(c.edge_u), v(c.edge_v);
-    const double omega = solid_angle(p0, p0 + u, p0 + u + v) + solid_angle(p0, p0 + u + v, p0 + v);
+    const double omega =
+        test::triangle_solid_angle(p0, p0 + u, p0 + u + v) + test::triangle_solid_angle(p0, p0 + u + v, p0 + v);
     EXPECT_NEAR(total, omega, 2e-4 * omega) << "largest texel difference to sampling " << worst;
   }
 }

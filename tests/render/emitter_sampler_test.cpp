@@ -26,20 +26,12 @@ using test::add_texture;
 using test::add_uv_sphere;
 using test::make_emitter;
 
-// Solid angle of triangle (a, b, c) seen from r (Van Oosterom & Strackee 1983).
-double triangle_solid_angle(const glm::dvec3& r, const glm::dvec3& pa, const glm::dvec3& pb, const glm::dvec3& pc) {
-  const glm::dvec3 a = pa - r, b = pb - r, c = pc - r;
-  const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
-  const double num = std::abs(glm::dot(a, glm::cross(b, c)));
-  const double den = la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
-  return 2.0 * std::atan2(num, den);
-}
-
 double mesh_solid_angle(const scenes::Mesh& mesh, const glm::vec3& r) {
   double sum = 0.0;
   for (const glm::uvec3& t : mesh.triangles)
-    sum += triangle_solid_angle(glm::dvec3(r), glm::dvec3(mesh.positions[t.x]), glm::dvec3(mesh.positions[t.y]),
-                                glm::dvec3(mesh.positions[t.z]));
+    sum += test::triangle_solid_angle(glm::dvec3(mesh.positions[t.x]) - glm::dvec3(r),
+                                      glm::dvec3(mesh.positions[t.y]) - glm::dvec3(r),
+                                      glm::dvec3(mesh.positions[t.z]) - glm::dvec3(r));
   return sum;
 }
 

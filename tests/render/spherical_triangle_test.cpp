@@ -7,16 +7,10 @@
 #include <cmath>
 
 #include "phyir/render/spherical_triangle.h"
+#include "test_scenes.h"
 
 namespace phyir::render {
 namespace {
-
-double van_oosterom(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-  const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
-  const double numerator = std::abs(glm::dot(a, glm::cross(b, c)));
-  const double denominator = la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
-  return 2.0 * std::atan2(numerator, denominator);
-}
 
 // Whether unit d points into the triangle (p0, p1, p2) seen from the origin.
 bool inside(const glm::dvec3& d, const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2) {
@@ -42,11 +36,11 @@ TEST(SphericalTriangle, SolidAngleIsVanOosteromsAndSamplesAreInsideAndUniform) {
     SphericalTriangle triangle;
     ASSERT_TRUE(triangle.set(glm::vec3(0.0f), c.p0, c.p1, c.p2));
     const glm::dvec3 p0(c.p0), p1(c.p1), p2(c.p2);
-    const double omega = van_oosterom(p0, p1, p2);
+    const double omega = test::triangle_solid_angle(p0, p1, p2);
     EXPECT_NEAR(triangle.solid_angle(), omega, 1e-6 * omega);
     // A part of it: the triangle (p0, p1, m), m the midpoint of the edge p0-p2.
     const glm::dvec3 m = 0.5 * (p0 + p2);
-    const double share = van_oosterom(p0, p1, m) / omega;
+    const double share = test::triangle_solid_angle(p0, p1, m) / omega;
     constexpr int n = 256;
     int in_part = 0, outside = 0;
     for (int i = 0; i < n; ++i)

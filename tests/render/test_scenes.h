@@ -186,4 +186,12 @@ inline double polygon_irradiance(const std::vector<glm::dvec3>& vertices, const 
   return 0.5 * L * std::abs(sum);
 }
 
+// Solid angle of the triangle a, b, c seen from the origin (Van Oosterom & Strackee 1983).
+inline double triangle_solid_angle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+  const double numerator = std::abs(glm::dot(a, glm::cross(b, c)));
+  const double denominator = la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
+  return 2.0 * std::atan2(numerator, denominator);
+}
+
 }  // namespace phyir::test
