@@ -239,15 +239,19 @@ void RadianceCache::fill(Cell* cell, PathCounters* counters) const {
 }
 
 CachedIrradiance RadianceCache::lookup(const CachePoint& point, uint64_t key, PathCounters* counters) const {
+  CachedIrradiance out;
+  if (interpolate(point, &out)) return out;
+  fallbacks_.fetch_add(1, std::memory_order_relaxed);
+  Rng rng = purpose_rng(key, kFallbackDirection);
+  return estimate(point, rng.next_2d(), false, 0.0f, glm::vec2(0.0f), key, counters);
+}
+
+bool RadianceCache::interpolate(const CachePoint& point, CachedIrradiance* out) const {
   const int bucket = normal_bucket(point.shading_normal);
   const glm::dvec3 c = lattice(point.position);
   const glm::ivec3 own = cell_of(c);
   const int self_index = find(pack(own, bucket));
-  if (self_index < 0) {
-    fallbacks_.fetch_add(1, std::memory_order_relaxed);
-    Rng rng = purpose_rng(key, kFallbackDirection);
-    return estimate(point, rng.next_2d(), false, 0.0f, glm::vec2(0.0f), key, counters);
-  }
+  if (self_index < 0) return false;
   const Value& self = values_[size_t(self_index)];
   const Neighbours& around = neighbours_[size_t(self_index)];
   // Linear interpolation between the centres of the 8 cells round the point (own included),
@@ -271,11 +275,10 @@ CachedIrradiance RadianceCache::lookup(const CachePoint& point, uint64_t key, Pa
       w_direct += w;
     }
   }
-  CachedIrradiance out;
-  out.indirect = w_all > 0.0 ? glm::vec3(indirect / w_all) : self.indirect;
-  out.has_direct = self.has_direct;
-  out.direct = w_direct > 0.0 ? glm::vec3(direct / w_direct) : self.direct;
-  return out;
+  out->indirect = w_all > 0.0 ? glm::vec3(indirect / w_all) : self.indirect;
+  out->has_direct = self.has_direct;
+  out->direct = w_direct > 0.0 ? glm::vec3(direct / w_direct) : self.direct;
+  return true;
 }
 
 CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec2& u, bool direct, float u_select,

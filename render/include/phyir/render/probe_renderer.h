@@ -70,6 +70,7 @@ struct ProbeSettings {
   float spread_threshold = 0.75f;
   float glossy_roughness = 0.3f;  // secondary hits smoother than this are traced on
   ProbeSharing sharing;           // texels averaged with neighbouring probes' (probe_sharing.h)
+  bool correct_foot = true;       // the cache's error at each probe's foot taken out (foot_correction.h)
   bool progress = true;
 
   void validate() const;  // throws phyir::Error naming the flag
@@ -90,6 +91,8 @@ struct ProbeStats {
   uint64_t light_texels = 0;      // texels a light may cover (emission estimated apart)
   uint64_t light_edge_texels = 0; // of those, texels a light's outline crosses (16x the emission directions)
   uint64_t negative_texels = 0;   // texel estimates below zero (the control variate's), clamped to 0
+  uint64_t foot_corrections = 0;  // probes whose own-surface texels took the cache's error out (foot_correction.h)
+  glm::vec3 foot_common_difference{0.0f};  // the difference common to all probes (the last bounce), W/m^2
   double share_seconds = 0.0;
   uint64_t cache_cells = 0, cache_direct_cells = 0, cache_fill_samples = 0, cache_fallbacks = 0;
   nlohmann::json to_json() const;

@@ -117,6 +117,8 @@ class RadianceCache {
   // Irradiance at a point, interpolated between cells; when its own cell is unknown, a
   // one-sample estimate of the indirect part keyed by `key` (no direct part).
   CachedIrradiance lookup(const CachePoint& point, uint64_t key, PathCounters* counters) const;
+  // The interpolation alone: false (and *out untouched) where the point's own cell is unknown.
+  bool interpolate(const CachePoint& point, CachedIrradiance* out) const;
 
   // One estimate of the irradiance at `point` for cosine variate `u` and light variates
   // (u_select, u_light) (see the header note); the direct part only if `direct`.
