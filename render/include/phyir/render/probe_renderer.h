@@ -55,7 +55,7 @@ std::string probe_mode_name(ProbeMode mode);
 
 struct ProbeSettings {
   ProbeLayout layout;
-  int spp = 5;                    // directions per texel (docs/probes.md: the measured default)
+  int spp = 4;                    // directions per texel (docs/probes.md: the measured default)
   ProbeMode mode = ProbeMode::kCache;
   float offset = 0.01f;           // metres off the surface, along its shading normal
   uint64_t seed = 0;
