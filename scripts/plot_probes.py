@@ -28,9 +28,11 @@ def main():
     scenes = sorted({r["scene"] for r in rows})
     fig, ax = plt.subplots(figsize=(7.5, 5))
     series = {}
-    for r in rows:
+    first = {}  # (scene, config) -> position of its first run in the files
+    for position, r in enumerate(rows):
         key = (r["scene"], r["mode"], r["resolution"], r["grid"])
         series.setdefault(key, []).append(r)
+        r["first_run"] = first.setdefault((r["scene"], r["grid"], r["resolution"], r["config"]), position) == position
     markers = {"path": "s", "cache": "o"}
     for (scene, mode, res, grid), points in sorted(series.items()):
         points.sort(key=lambda r: float(r["seconds"]))
@@ -43,7 +45,7 @@ def main():
             label += " (time extrapolated)"
         # The line joins the plain MODE:SPP[:CACHE_SPP] settings; variants (another seed,
         # sharing off, ...) and repeated runs are points of the same colour.
-        plain = [i for i, r in enumerate(points) if len(r["config"].split(":")) <= 3]
+        plain = [i for i, r in enumerate(points) if len(r["config"].split(":")) <= 3 and r["first_run"]]
         line = ax.plot([x[i] for i in plain], [y[i] for i in plain], marker=markers.get(mode, "x"),
                        linestyle="-" if mode == "cache" else "--", label=label)[0]
         others = [i for i in range(len(points)) if i not in plain]
