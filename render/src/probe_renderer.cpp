@@ -579,8 +579,9 @@ nlohmann::json ProbeStats::to_json() const {
           {"light_texels", light_texels},
           {"light_edge_texels", light_edge_texels},
           {"negative_texels_clamped", negative_texels},
-          {"foot_correction", {{"probes", foot_corrections},
-                               {"common_difference", {foot_common_difference.x, foot_common_difference.y, foot_common_difference.z}}}},
+          {"foot_correction",
+           {{"probes", foot_corrections},
+            {"common_difference", {foot_common_difference.x, foot_common_difference.y, foot_common_difference.z}}}},
           {"cache", {{"cells", cache_cells}, {"cells_with_direct_light", cache_direct_cells}, {"fill_samples", cache_fill_samples}, {"fallback_lookups", cache_fallbacks}}},
           {"nonfinite_samples_caught", counters.nonfinite_samples}};
 }
@@ -722,167 +723,169 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
   Progress progress("probes", todo.size() * (correct_foot ? 2 : 1), correct_foot ? "probe halves" : "probes",
                     settings.progress);
   auto shade_pass = [&](int pass) {
-  tbb::parallel_for(
-      tbb::blocked_range<size_t>(0, todo.size(), 4),
-      [&](const tbb::blocked_range<size_t>& r) {
-        PathCounters& c = local.local();
-        std::vector<glm::vec2> strata;
-        std::vector<EmitterCoverage::View::Piece> pieces;
-        std::vector<uint8_t> lit(static_cast<size_t>(texels));
-        uint64_t extra = 0, lit_texels = 0, edge_texels = 0, negative = 0;
-        // The specular control variate's corrections can be negative on their own; a texel
-        // whose mean still is (dark, grazing, few directions) is clamped to 0, and counted.
-        auto clamp_at_zero = [&negative](glm::vec3* v) {
-          if (glm::min(v->x, glm::min(v->y, v->z)) >= 0.0f) return;
-          *v = glm::max(*v, glm::vec3(0.0f));
-          ++negative;
-        };
-        for (size_t k = r.begin(); k < r.end(); ++k) {
-          const int p = todo[k];
-          const int i = p / layout.grid_width, j = p % layout.grid_width;
-          const glm::vec3 origin = out.sites[size_t(p)].origin;
-          // Interleaved strata when texels are shared (probe_sharing.h).
-          Interleave interleave;
-          if (share) {
-            interleave.sub = sub_stratum(i, j, settings.sharing);
-            interleave.count = settings.sharing.window();
-          }
-          const ProbeSite& site = out.sites[size_t(p)];
-          // The texels this pass shades.
-          auto in_pass = [&](int t) { return !correct_foot || (pass == 1) == cones.faces_away(t, site.normal); };
-          std::fill(lit.begin(), lit.end(), uint8_t(0));
-          if (adaptive) footprints.mark(origin, layout.res_height, layout.res_width, &lit);
-          // The lights' exact coverage of each texel, where the emission a texel sees is the
-          // lights' alone (no environment).
-          EmitterCoverage::View lights;
-          bool analytic = false;
-          bool any_lit = false;
-          for (int t = 0; t < texels && !any_lit; ++t) any_lit = lit[size_t(t)] != 0 && in_pass(t);
-          if (adaptive && coverage.usable() && !effects.environment && any_lit) {
-            lights = coverage.view(origin);
-            analytic = lights.valid();
-          }
-          FootIrradiance measured(site.normal);
-          // Texel t, with lookups at its first hits through `foot`; its cosine-weighted
-          // estimate goes to `measure` if given.
-          auto shade_texel = [&](int t, const FootCorrection& foot, FootIrradiance* measure) {
-            const int row = t / layout.res_width, col = t % layout.res_width;
-            // `count` fresh samples from sample id `first` on, stratified over the texel.
-            using Part = TexelEstimator::Part;
-            // `spread` (if given) receives the range of the samples' luminances; *cos_all and
-            // *cos_emitted the sample means of the radiance and its emitted part times the
-            // cosine to the probe's normal (FootIrradiance).
-            float distance = std::numeric_limits<float>::infinity();
-            const ProbeTexel texel(row, col, layout.res_height, layout.res_width);
-            glm::vec3 cos_all(0.0f), cos_emitted(0.0f);
-            auto estimate = [&](int first, int count, Part part, bool* saw_hard, float* spread = nullptr) {
-              Rng permutation(PathTracer::path_key(probe_seed, texel_id(p, t), kStrataStream + uint64_t(first)), 0);
-              // The interleaving key is the same for every probe (texel and pass only).
-              interleave.key = PathTracer::path_key(probe_seed, uint64_t(t), kInterleaveStream + uint64_t(first));
-              stratified_square(count, permutation, &strata, interleave);
-              glm::dvec3 sum(0.0), sum_cos(0.0), sum_emitted_cos(0.0);
-              float lo = std::numeric_limits<float>::infinity(), hi = 0.0f;
-              for (int s = 0; s < count; ++s) {
-                const uint64_t key = PathTracer::path_key(probe_seed, texel_id(p, t), uint64_t(first + s));
-                const Ray ray{origin, texel.direction(strata[size_t(s)])};
-                glm::vec3 emitted;
-                glm::vec3 L = estimator.sample(ray, key, part, foot, saw_hard, &distance, &emitted, &c);
-                if (!is_finite(L) || !is_finite(emitted)) {
-                  ++c.nonfinite_samples;
-                  L = emitted = glm::vec3(0.0f);
-                }
-                sum += glm::dvec3(L);
-                const double cosine = measured.cosine(ray.direction);
-                sum_cos += glm::dvec3(L) * cosine;
-                sum_emitted_cos += glm::dvec3(emitted) * cosine;
-                lo = std::min(lo, luminance(L));
-                hi = std::max(hi, luminance(L));
-              }
-              if (spread) *spread = count > 0 ? hi - lo : 0.0f;
-              cos_all = glm::vec3(sum_cos / double(count));
-              cos_emitted = glm::vec3(sum_emitted_cos / double(count));
-              return glm::vec3(sum / double(count));
-            };
-            // Hard texels (the first samples met a light, glass or a glossy surface, or
-            // their values spread over more than spread_threshold x (their mean + a floor):
-            // the texel straddles an edge or a highlight) are estimated again from
-            // hard_spp_factor x spp fresh samples. Texels a light may cover
-            // (EmitterFootprints) are hard from the start, and the emission seen first
-            // there is estimated apart (inside the lights' coverage where it is known):
-            // partial coverage of a light is the largest error otherwise. No decision looks
-            // at the samples it selects, so none biases the value.
-            const int spp = settings.spp, hard_spp = spp * settings.hard_spp_factor;
-            bool hard = lit[size_t(t)] != 0;
-            glm::vec3 value(0.0f), seen_emission(0.0f), seen_emission_cos(0.0f);
-            if (!hard) {
-              float spread = 0.0f;
-              value = estimate(0, spp, Part::kAll, &hard, &spread);
-              if (spp > 1 && spread > settings.spread_threshold * (luminance(value) + dark_floor)) hard = true;
-            }
-            if (hard && adaptive) {
-              bool unused = false;
-              if (lit[size_t(t)]) {
-                value = estimate(spp, hard_spp, Part::kRest, &unused);
-                const glm::vec3 rest_cos = cos_all;
-                const bool edge = lit[size_t(t)] == EmitterFootprints::kEdge;
-                if (analytic) {
-                  lights.texel_pieces(row, col, layout.res_height, layout.res_width, &pieces);
-                  Rng rng(PathTracer::path_key(probe_seed, texel_id(p, t), kLightPartStream), 0);
-                  seen_emission = visible_emission(lights, pieces, scene.accelerator(), origin,
-                                                   spp * (edge ? kLightPartEdgeSppFactor : kLightPartSppFactor), rng,
-                                                   measured, &seen_emission_cos, &strata, &c.rays);
-                } else {
-                  seen_emission = estimate(spp + hard_spp, spp * (edge ? kEmissionEdgeSppFactor : kEmissionSppFactor),
-                                           Part::kEmission, &unused);
-                  seen_emission_cos = cos_emitted;
-                }
-                // The texel's whole light: its rest (no emission seen first) and its emission.
-                cos_all = rest_cos + seen_emission_cos;
-                cos_emitted = seen_emission_cos;
-                edge_texels += edge;
-                ++lit_texels;
-              } else {
-                value = estimate(spp, hard_spp, Part::kAll, &unused);
-              }
-              ++extra;
-            }
-            if (measure) measure->add_texel(cos_all, cos_emitted, equirect_texel_solid_angle(row, layout.res_width, layout.res_height));
-            clamp_at_zero(&value);
-            if (share) {
-              records.distance[size_t(texel_id(p, t))] = distance;
-              records.samples[size_t(texel_id(p, t))] = float(hard && adaptive ? hard_spp : spp);
-              // Emission seen directly is not shared: a light's edge moves across a texel
-              // with the slightest parallax, and its own directions already resolve it.
-              if (lit[size_t(t)]) emission_seen.local().push_back({texel_id(p, t), seen_emission});
-            } else {
-              value += seen_emission;
-            }
-            const glm::ivec2 at = layout.mosaic_pixel(p, t);
-            for (int ch = 0; ch < 3; ++ch) out.mosaic.at(at.x, at.y, ch) = value[ch];
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, todo.size(), 4),
+        [&](const tbb::blocked_range<size_t>& r) {
+          PathCounters& c = local.local();
+          std::vector<glm::vec2> strata;
+          std::vector<EmitterCoverage::View::Piece> pieces;
+          std::vector<uint8_t> lit(static_cast<size_t>(texels));
+          uint64_t extra = 0, lit_texels = 0, edge_texels = 0, negative = 0;
+          // The specular control variate's corrections can be negative on their own; a texel
+          // whose mean still is (dark, grazing, few directions) is clamped to 0, and counted.
+          auto clamp_at_zero = [&negative](glm::vec3* v) {
+            if (glm::min(v->x, glm::min(v->y, v->z)) >= 0.0f) return;
+            *v = glm::max(*v, glm::vec3(0.0f));
+            ++negative;
           };
-          if (pass == 0) {
-            for (int t = 0; t < texels; ++t)
-              if (in_pass(t)) shade_texel(t, FootCorrection(), &measured);
-            if (correct_foot) feet[k] = FootCorrection::measure(*cache, site, measured);
-          } else {
-            const FootCorrection foot = feet[k].less(common_difference);
-            for (int t = 0; t < texels; ++t)
-              if (in_pass(t)) shade_texel(t, foot, nullptr);
+          for (size_t k = r.begin(); k < r.end(); ++k) {
+            const int p = todo[k];
+            const int i = p / layout.grid_width, j = p % layout.grid_width;
+            const glm::vec3 origin = out.sites[size_t(p)].origin;
+            // Interleaved strata when texels are shared (probe_sharing.h).
+            Interleave interleave;
+            if (share) {
+              interleave.sub = sub_stratum(i, j, settings.sharing);
+              interleave.count = settings.sharing.window();
+            }
+            const ProbeSite& site = out.sites[size_t(p)];
+            // The texels this pass shades.
+            auto in_pass = [&](int t) { return !correct_foot || (pass == 1) == cones.faces_away(t, site.normal); };
+            std::fill(lit.begin(), lit.end(), uint8_t(0));
+            if (adaptive) footprints.mark(origin, layout.res_height, layout.res_width, &lit);
+            // The lights' exact coverage of each texel, where the emission a texel sees is the
+            // lights' alone (no environment).
+            EmitterCoverage::View lights;
+            bool analytic = false;
+            bool any_lit = false;
+            for (int t = 0; t < texels && !any_lit; ++t) any_lit = lit[size_t(t)] != 0 && in_pass(t);
+            if (adaptive && coverage.usable() && !effects.environment && any_lit) {
+              lights = coverage.view(origin);
+              analytic = lights.valid();
+            }
+            FootIrradiance measured(site.normal);
+            // Texel t, with lookups at its first hits through `foot`; its cosine-weighted
+            // estimate goes to `measure` if given.
+            auto shade_texel = [&](int t, const FootCorrection& foot, FootIrradiance* measure) {
+              const int row = t / layout.res_width, col = t % layout.res_width;
+              // `count` fresh samples from sample id `first` on, stratified over the texel.
+              using Part = TexelEstimator::Part;
+              // `spread` (if given) receives the range of the samples' luminances; *cos_all and
+              // *cos_emitted the sample means of the radiance and its emitted part times the
+              // cosine to the probe's normal (FootIrradiance).
+              float distance = std::numeric_limits<float>::infinity();
+              const ProbeTexel texel(row, col, layout.res_height, layout.res_width);
+              glm::vec3 cos_all(0.0f), cos_emitted(0.0f);
+              auto estimate = [&](int first, int count, Part part, bool* saw_hard, float* spread = nullptr) {
+                Rng permutation(PathTracer::path_key(probe_seed, texel_id(p, t), kStrataStream + uint64_t(first)), 0);
+                // The interleaving key is the same for every probe (texel and pass only).
+                interleave.key = PathTracer::path_key(probe_seed, uint64_t(t), kInterleaveStream + uint64_t(first));
+                stratified_square(count, permutation, &strata, interleave);
+                glm::dvec3 sum(0.0), sum_cos(0.0), sum_emitted_cos(0.0);
+                float lo = std::numeric_limits<float>::infinity(), hi = 0.0f;
+                for (int s = 0; s < count; ++s) {
+                  const uint64_t key = PathTracer::path_key(probe_seed, texel_id(p, t), uint64_t(first + s));
+                  const Ray ray{origin, texel.direction(strata[size_t(s)])};
+                  glm::vec3 emitted;
+                  glm::vec3 L = estimator.sample(ray, key, part, foot, saw_hard, &distance, &emitted, &c);
+                  if (!is_finite(L) || !is_finite(emitted)) {
+                    ++c.nonfinite_samples;
+                    L = emitted = glm::vec3(0.0f);
+                  }
+                  sum += glm::dvec3(L);
+                  const double cosine = measured.cosine(ray.direction);
+                  sum_cos += glm::dvec3(L) * cosine;
+                  sum_emitted_cos += glm::dvec3(emitted) * cosine;
+                  lo = std::min(lo, luminance(L));
+                  hi = std::max(hi, luminance(L));
+                }
+                if (spread) *spread = count > 0 ? hi - lo : 0.0f;
+                cos_all = glm::vec3(sum_cos / double(count));
+                cos_emitted = glm::vec3(sum_emitted_cos / double(count));
+                return glm::vec3(sum / double(count));
+              };
+              // Hard texels (the first samples met a light, glass or a glossy surface, or
+              // their values spread over more than spread_threshold x (their mean + a floor):
+              // the texel straddles an edge or a highlight) are estimated again from
+              // hard_spp_factor x spp fresh samples. Texels a light may cover
+              // (EmitterFootprints) are hard from the start, and the emission seen first
+              // there is estimated apart (inside the lights' coverage where it is known):
+              // partial coverage of a light is the largest error otherwise. No decision looks
+              // at the samples it selects, so none biases the value.
+              const int spp = settings.spp, hard_spp = spp * settings.hard_spp_factor;
+              bool hard = lit[size_t(t)] != 0;
+              glm::vec3 value(0.0f), seen_emission(0.0f), seen_emission_cos(0.0f);
+              if (!hard) {
+                float spread = 0.0f;
+                value = estimate(0, spp, Part::kAll, &hard, &spread);
+                if (spp > 1 && spread > settings.spread_threshold * (luminance(value) + dark_floor)) hard = true;
+              }
+              if (hard && adaptive) {
+                bool unused = false;
+                if (lit[size_t(t)]) {
+                  value = estimate(spp, hard_spp, Part::kRest, &unused);
+                  const glm::vec3 rest_cos = cos_all;
+                  const bool edge = lit[size_t(t)] == EmitterFootprints::kEdge;
+                  if (analytic) {
+                    lights.texel_pieces(row, col, layout.res_height, layout.res_width, &pieces);
+                    Rng rng(PathTracer::path_key(probe_seed, texel_id(p, t), kLightPartStream), 0);
+                    seen_emission = visible_emission(lights, pieces, scene.accelerator(), origin,
+                                                     spp * (edge ? kLightPartEdgeSppFactor : kLightPartSppFactor), rng,
+                                                     measured, &seen_emission_cos, &strata, &c.rays);
+                  } else {
+                    seen_emission = estimate(spp + hard_spp, spp * (edge ? kEmissionEdgeSppFactor : kEmissionSppFactor),
+                                             Part::kEmission, &unused);
+                    seen_emission_cos = cos_emitted;
+                  }
+                  // The texel's whole light: its rest (no emission seen first) and its emission.
+                  cos_all = rest_cos + seen_emission_cos;
+                  cos_emitted = seen_emission_cos;
+                  edge_texels += edge;
+                  ++lit_texels;
+                } else {
+                  value = estimate(spp, hard_spp, Part::kAll, &unused);
+                }
+                ++extra;
+              }
+              if (measure)
+                measure->add_texel(cos_all, cos_emitted, equirect_texel_solid_angle(row, layout.res_width, layout.res_height));
+              clamp_at_zero(&value);
+              if (share) {
+                records.distance[size_t(texel_id(p, t))] = distance;
+                records.samples[size_t(texel_id(p, t))] = float(hard && adaptive ? hard_spp : spp);
+                // Emission seen directly is not shared: a light's edge moves across a texel
+                // with the slightest parallax, and its own directions already resolve it.
+                if (lit[size_t(t)]) emission_seen.local().push_back({texel_id(p, t), seen_emission});
+              } else {
+                value += seen_emission;
+              }
+              const glm::ivec2 at = layout.mosaic_pixel(p, t);
+              for (int ch = 0; ch < 3; ++ch) out.mosaic.at(at.x, at.y, ch) = value[ch];
+            };
+            if (pass == 0) {
+              for (int t = 0; t < texels; ++t)
+                if (in_pass(t)) shade_texel(t, FootCorrection(), &measured);
+              if (correct_foot) feet[k] = FootCorrection::measure(*cache, site, measured);
+            } else {
+              const FootCorrection foot = feet[k].less(common_difference);
+              for (int t = 0; t < texels; ++t)
+                if (in_pass(t)) shade_texel(t, foot, nullptr);
+            }
           }
-        }
-        supersampled += extra;
-        light_texels += lit_texels;
-        light_edge_texels += edge_texels;
-        negative_texels += negative;
-        progress.advance(r.size());
-      },
-      tbb::simple_partitioner());
+          supersampled += extra;
+          light_texels += lit_texels;
+          light_edge_texels += edge_texels;
+          negative_texels += negative;
+          progress.advance(r.size());
+        },
+        tbb::simple_partitioner());
   };
   shade_pass(0);
   if (correct_foot) {
     // The common difference is a mean over the probes: with few of them it would take most
     // of each probe's own difference with it, so then none is corrected.
-    const size_t active = size_t(std::count_if(feet.begin(), feet.end(), [](const FootCorrection& f) { return f.active(); }));
+    const size_t active =
+        size_t(std::count_if(feet.begin(), feet.end(), [](const FootCorrection& f) { return f.active(); }));
     if (active < kMinFootCorrections) std::fill(feet.begin(), feet.end(), FootCorrection());
     common_difference = FootCorrection::common_difference(feet);
     stats.foot_corrections = active < kMinFootCorrections ? 0 : active;
