@@ -1,0 +1,120 @@
+#pragma once
+// How the probe renderer estimates one direction of a probe texel (docs/probes.md, "The two
+// modes"): in path mode a camera ray of the path tracer; in cache mode the first hit's
+// emission, its diffuse light from the radiance cache (through the foot correction at a
+// probe ray's own hit), its specular light by next-event estimation and a rouletted GGX ray,
+// direct light sampled per direction near the lights, glass path traced. Internal to
+// probe_renderer.cpp.
+#include <array>
+#include <glm/glm.hpp>
+#include <memory>
+
+#include "phyir/render/brdf.h"
+#include "phyir/render/effects.h"
+#include "phyir/render/foot_correction.h"
+#include "phyir/render/frame.h"
+#include "phyir/render/path_tracer.h"
+#include "phyir/render/probe_renderer.h"
+#include "phyir/render/radiance_cache.h"
+#include "phyir/render/render_scene.h"
+
+namespace phyir::render {
+
+// Everything one thread needs to estimate probe texels.
+class TexelEstimator {
+ public:
+  // Specular bounces followed before a hit is handed to the cache regardless of roughness
+  // (a mirror facing a mirror would otherwise recurse to max_bounces).
+  static constexpr int kMaxSpecularDepth = 3;
+
+  TexelEstimator(const RenderScene& scene, const Effects& effects, const ProbeSettings& settings,
+                 const RadianceCache* cache);
+
+  // What sample() returns: all of the radiance, or the emission seen first (lights, and the
+  // environment where nothing is hit) or everything else, for estimating the two with
+  // different sample counts.
+  enum class Part { kAll, kEmission, kRest };
+
+  // Radiance arriving at ray.origin from -ray.direction (cache mode: `part` of it).
+  // *distance is lowered to the first hit's distance (cache mode; unchanged on a miss).
+  // *emitted receives the part of the result a light seen first emits (cache mode; not the
+  // environment's). Lookups at the first hit go through `foot` (foot_correction.h).
+  glm::vec3 sample(const Ray& ray, uint64_t key, Part part, const FootCorrection& foot, bool* saw_hard, float* distance,
+                   glm::vec3* emitted, PathCounters* c) const;
+
+ private:
+  glm::vec3 miss(const glm::vec3& direction) const;
+
+  // Radiance the (opaque) surface at si reflects towards wo_world; `depth` = its scattering
+  // event's index counted from the probe's first hit (so it is only called for depth <
+  // max_bounces). Direct light is sampled here for every sample: next-event estimation and
+  // one BRDF-sampled ray (the integrator's own sampling), combined by the power heuristic.
+  // Indirect light: diffuse from the cache, f_d E(x); specular through the same BRDF-sampled
+  // ray (f_s cos / pdf of it times the light its hit y reflects, Russian-rouletted by the
+  // specular share of the sample's weight).
+  // `foot` (a probe ray's own hit only) corrects the lookup there.
+  glm::vec3 reflected(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key, PathCounters* c,
+                      const FootCorrection* foot = nullptr) const;
+
+  bool glossy(const BrdfParams& p) const { return p.roughness < settings_.glossy_roughness; }
+
+  // Light that y, the hit of a specular ray from a scattering event at depth - 1, reflects
+  // back along it (its emission excluded): glass is path traced, a glossy y seen from a
+  // glossy surface followed, any other y ends the chain in the cache. A glossy y seen in a
+  // rough surface's broad lobe is not followed (path regularisation): the lights' images
+  // in a small polished object, seen through a wall's lobe, are caustics a few directions
+  // per texel almost never find, and then as fireflies up to 30 times the texel (measured:
+  // one bench texel 0.61 against 0.29, a third of that run's squared error). Its lobe is
+  // taken as lit uniformly by the cached irradiance instead.
+  glm::vec3 reflected_at(const Ray& ray, const SurfaceInteraction& y, int next, int depth, uint64_t key,
+                         PathCounters* c, bool from_glossy) const;
+
+  // reflected() where the cache holds the direct light too: the diffuse part of all the
+  // light is f_d E, with no ray; the specular part is estimated apart: next-event
+  // estimation through f_s in every sample (one shadow ray: it finds the lights'
+  // highlights, the largest specular values, so they must never carry a roulette weight),
+  // and one GGX-sampled ray with its continuation taken with probability `keep`, its
+  // share of the surface's albedo scaled (a wall's ~5% in a fraction of the samples). Both
+  // strategies stay unbiased under the power heuristic with the GGX ray's effective
+  // density keep x pdf.
+  glm::vec3 reflected_split(const SurfaceInteraction& si, const Frame& frame, const glm::vec3& wo, const BrdfParams& p,
+                            const glm::vec3& fd, const CachedIrradiance& E, int depth, uint64_t key,
+                            PathCounters* c) const;
+
+  // Where a specular chain ends in the cache: (f_d + specular albedo / pi) E, i.e. the
+  // specular lobe treated as if the light arriving were uniform: all of E where the cache
+  // holds the direct light, else its indirect part plus next-event estimation (light
+  // sampling alone, full BRDF).
+  glm::vec3 terminal(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key,
+                     PathCounters* c) const;
+
+  // Which part of the BRDF a next-event estimate goes through.
+  enum class Lobes { kAll, kSpecular };
+
+  // A next-event estimate on the emitters of the light reflected towards wo through the
+  // BRDF (or its specular lobe), the mean of `count` light samples; `mis`: weighted by the
+  // power heuristic against the BRDF-sampled (or GGX-sampled) ray of the same event, which
+  // is traced with probability `brdf_strategy_probability` (its effective density is that
+  // times its pdf). Multi-sample MIS: `count` light samples against one ray, so the light
+  // strategy's density counts `count` times in both weights (the caller's ray uses the same).
+  // A sample whose unoccluded contribution is below `weak` (luminance) traces its shadow ray
+  // with probability contribution / weak and is weighted by the inverse (unbiased; 0: never).
+  glm::vec3 direct_light(const SurfaceInteraction& si, const Frame& frame, const glm::vec3& wo, const BrdfParams& p,
+                         Lobes lobes, int depth, uint64_t key, bool mis, PathCounters* c,
+                         float brdf_strategy_probability = 1.0f, int count = 1, float weak = 0.0f) const;
+
+  glm::vec3 light_sample(const SurfaceInteraction& si, const Frame& frame, const glm::vec3& wo, const BrdfParams& p,
+                         Lobes lobes, uint64_t key, int depth, bool mis, PathCounters* c,
+                         float brdf_strategy_probability, int count, float weak) const;
+
+  const RenderScene& scene_;
+  const ProbeSettings& settings_;
+  const RadianceCache* cache_;
+  PathTracer full_;                                                         // kPath, and glass at a first hit
+  std::array<std::unique_ptr<PathTracer>, kMaxSpecularDepth + 1> tracers_;  // max_bounces - d
+};
+
+// The cache's view of a surface point: normals on the side it was seen from.
+CachePoint cache_point(const SurfaceInteraction& si, const glm::vec3& shading_normal);
+
+}  // namespace phyir::render
