@@ -4,7 +4,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <limits>
 #include <memory>
@@ -12,15 +11,12 @@
 #include "phyir/core/error.h"
 #include "phyir/core/progress.h"
 #include "phyir/core/safe_math.h"
-#include "phyir/render/brdf.h"
 #include "phyir/render/emitter_coverage.h"
 #include "phyir/render/emitter_footprints.h"
 #include "phyir/render/equirect.h"
 #include "phyir/render/foot_correction.h"
-#include "phyir/render/frame.h"
 #include "phyir/render/probe_sharing.h"
 #include "phyir/render/radiance_cache.h"
-#include "phyir/render/ray_offset.h"
 #include "phyir/render/rng.h"
 #include "phyir/render/sampling.h"
 #include "probe_texel_estimator.h"
