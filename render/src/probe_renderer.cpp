@@ -33,8 +33,8 @@ double seconds_since(Clock::time_point start) {
 
 // Directions per texel for the emission seen in texels a light may cover, in units of spp.
 // Where the lights' exact coverage is known (EmitterCoverage) they are drawn inside the
-// covered parts and ask only whether an occluder hides the light (visible_emission): 4 x 5
-// = 20 at the default spp, 64 x 5 = 320 where a light's outline crosses the texel
+// covered parts and ask only whether an occluder hides the light (visible_emission): 4 x 4
+// = 16 at the default spp, 64 x 4 = 256 where a light's outline crosses the texel
 // (EmitterFootprints::kEdge), where an occluder's edge may too (a housing's rim in front of
 // a panel). Measured on the bench (docs/probes.md): 2 and 32 x spp raise the error by 3%;
 // 16 and 256 x spp, which session 5 spent over the whole texel, change nothing. Otherwise
