@@ -364,9 +364,9 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
               const int row = t / layout.res_width, col = t % layout.res_width;
               // `count` fresh samples from sample id `first` on, stratified over the texel.
               using Part = TexelEstimator::Part;
-              // `spread` (if given) receives the range of the samples' luminances; *cos_all and
-              // *cos_emitted the sample means of the radiance and its emitted part times the
-              // cosine to the probe's normal (FootIrradiance).
+              // `spread` (if given) receives the range of the samples' luminances; when the texel
+              // is measured, cos_all and cos_emitted the sample means of the radiance and its
+              // emitted part times the cosine to the probe's normal (FootIrradiance).
               float distance = std::numeric_limits<float>::infinity();
               const ProbeTexel texel(row, col, layout.res_height, layout.res_width);
               glm::vec3 cos_all(0.0f), cos_emitted(0.0f);
@@ -387,9 +387,11 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
                     L = emitted = glm::vec3(0.0f);
                   }
                   sum += glm::dvec3(L);
-                  const double cosine = measured.cosine(ray.direction);
-                  sum_cos += glm::dvec3(L) * cosine;
-                  sum_emitted_cos += glm::dvec3(emitted) * cosine;
+                  if (measure) {
+                    const double cosine = measure->cosine(ray.direction);
+                    sum_cos += glm::dvec3(L) * cosine;
+                    sum_emitted_cos += glm::dvec3(emitted) * cosine;
+                  }
                   lo = std::min(lo, luminance(L));
                   hi = std::max(hi, luminance(L));
                 }
@@ -458,7 +460,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
             };
             if (pass == 0) {
               for (int t = 0; t < texels; ++t)
-                if (in_pass(t)) shade_texel(t, FootCorrection(), &measured);
+                if (in_pass(t)) shade_texel(t, FootCorrection(), correct_foot ? &measured : nullptr);
               if (correct_foot) feet[k] = FootCorrection::measure(*cache, site, measured);
             } else {
               const FootCorrection foot = feet[k].less(common_difference);
