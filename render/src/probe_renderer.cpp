@@ -176,7 +176,13 @@ nlohmann::json ProbeStats::to_json() const {
           {"foot_correction",
            {{"probes", foot_corrections},
             {"common_difference", {foot_common_difference.x, foot_common_difference.y, foot_common_difference.z}}}},
-          {"cache", {{"cells", cache_cells}, {"cells_with_direct_light", cache_direct_cells}, {"fill_samples", cache_fill_samples}, {"fallback_lookups", cache_fallbacks}}},
+          {"cache",
+           {{"cells", cache_cells},
+            {"cells_with_direct_light", cache_direct_cells},
+            {"cells_at_concave_edges", cache_edge_cells},
+            {"edge_profiles", cache_edge_profiles},
+            {"fill_samples", cache_fill_samples},
+            {"fallback_lookups", cache_fallbacks}}},
           {"nonfinite_samples_caught", counters.nonfinite_samples}};
 }
 
@@ -285,6 +291,8 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
     stats.counters += fill_counters;
     stats.cache_cells = cache->cell_count();
     stats.cache_direct_cells = cache->direct_cell_count();
+    stats.cache_edge_cells = cache->edge_cell_count();
+    stats.cache_edge_profiles = cache->edge_profile_count();
     stats.cache_fill_samples = cache->fill_samples();
     stats.cache_seconds = seconds_since(cache_start);
   }

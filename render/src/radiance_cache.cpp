@@ -139,22 +139,11 @@ void RadianceCache::build(const std::vector<const Collector*>& collectors, PathC
     table_[slot] = {cells_[i].key, int(i)};
   }
 
-  tbb::enumerable_thread_specific<PathCounters> local;
-  Progress progress("probe cache", cells_.size(), "cells", settings_.progress);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, cells_.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
-    PathCounters& c = local.local();
-    for (size_t i = r.begin(); i < r.end(); ++i) fill(&cells_[i], &c);
-    progress.advance(r.size());
-  });
-  for (const PathCounters& c : local) *counters += c;
-  values_.resize(cells_.size());
   neighbours_.resize(cells_.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, cells_.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i < r.end(); ++i) {
-      const Cell& cell = cells_[i];
-      values_[i] = Value{cell.indirect, cell.direct, cell.has_direct};
-      const int bucket = int(cell.key & 63);
-      const glm::ivec3 at = unpack(cell.key);
+      const int bucket = int(cells_[i].key & 63);
+      const glm::ivec3 at = unpack(cells_[i].key);
       for (int dx = -1; dx <= 1; ++dx)
         for (int dy = -1; dy <= 1; ++dy)
           for (int dz = -1; dz <= 1; ++dz) {
@@ -163,8 +152,30 @@ void RadianceCache::build(const std::vector<const Collector*>& collectors, PathC
           }
     }
   });
+  if (settings_.edge_profiles) find_concave_edges();
+
+  tbb::enumerable_thread_specific<PathCounters> local;
+  Progress progress("probe cache", cells_.size(), "cells", settings_.progress);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, cells_.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
+    PathCounters& c = local.local();
+    for (size_t i = r.begin(); i < r.end(); ++i)
+      fill(&cells_[i], cells_[i].edge >= 0 ? &edges_[size_t(cells_[i].edge)] : nullptr, &c);
+    progress.advance(r.size());
+  });
+  for (const PathCounters& c : local) *counters += c;
+  values_.resize(cells_.size());
+  for (size_t i = 0; i < cells_.size(); ++i) {
+    const Cell& cell = cells_[i];
+    values_[i] = Value{cell.indirect, cell.direct, cell.has_direct, cell.edge};
+  }
   if (settings_.smooth_indirect) smooth_indirect();
   direct_cells_ = size_t(std::count_if(cells_.begin(), cells_.end(), [](const Cell& c) { return c.has_direct; }));
+  edge_cells_ = size_t(std::count_if(cells_.begin(), cells_.end(), [](const Cell& c) { return c.edge_layer != 0; }));
+  fill_samples_ = 0;
+  for (const Cell& c : cells_)
+    fill_samples_ += uint64_t(std::max(settings_.samples_per_cell, 1)) * uint64_t(c.edge_layer != 0 ? std::max(settings_.edge_sample_factor, 1) : 1);
+  for (const EdgeProfile& e : edges_)
+    for (int pairs : e.band_pairs) fill_samples_ += uint64_t(pairs);
 }
 
 void RadianceCache::smooth_indirect() {
@@ -175,6 +186,8 @@ void RadianceCache::smooth_indirect() {
       int count = 0;
       for (int index : neighbours_[i]) {
         if (index < 0) continue;
+        // Next to a concave edge the neighbourhood is one-sided: only along the edge.
+        if (cells_[i].edge_layer != 0 && cells_[size_t(index)].edge_layer != cells_[i].edge_layer) continue;
         sum += glm::dvec3(cells_[size_t(index)].indirect);
         ++count;
       }
@@ -182,6 +195,26 @@ void RadianceCache::smooth_indirect() {
     }
   });
   for (size_t i = 0; i < cells_.size(); ++i) values_[i].indirect = smoothed[i];
+  // The profiles' differences, along the edge likewise (a neighbour's bands lie at the
+  // same distances from the same plane on a straight edge).
+  std::vector<std::array<glm::vec3, kEdgeBands>> deltas(edges_.size());
+  for (size_t i = 0; i < cells_.size(); ++i) {
+    if (cells_[i].edge < 0) continue;
+    EdgeProfile& own = edges_[size_t(cells_[i].edge)];
+    for (int b = 0; b < kEdgeBands; ++b) {
+      glm::dvec3 sum(0.0);
+      int count = 0;
+      for (int index : neighbours_[i]) {
+        if (index < 0 || cells_[size_t(index)].edge < 0) continue;
+        const EdgeProfile& other = edges_[size_t(cells_[size_t(index)].edge)];
+        if (other.band_pairs[size_t(b)] == 0) continue;
+        sum += glm::dvec3(other.band_delta[size_t(b)]);
+        ++count;
+      }
+      deltas[size_t(cells_[i].edge)][size_t(b)] = count > 0 ? glm::vec3(sum / double(count)) : own.band_delta[size_t(b)];
+    }
+  }
+  for (size_t e = 0; e < edges_.size(); ++e) edges_[e].band_delta = deltas[e];
 }
 
 float RadianceCache::mean_irradiance_luminance() const {
@@ -199,7 +232,7 @@ int RadianceCache::find(uint64_t key) const {
   }
 }
 
-void RadianceCache::fill(Cell* cell, PathCounters* counters) const {
+void RadianceCache::fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) const {
   // Direct light only far from every emitter (the header note); with no emitters at all the
   // direct part is exactly 0 and needs no sampling.
   const EmitterSampler& emitters = scene_->emitters();
@@ -211,7 +244,8 @@ void RadianceCache::fill(Cell* cell, PathCounters* counters) const {
 
   // samples_per_cell estimates shared out over the points, each point's own cosine
   // directions and light points stratified over the unit square.
-  const int total = std::max(settings_.samples_per_cell, 1);
+  const int total = std::max(settings_.samples_per_cell, 1) * (cell->edge_layer != 0 ? std::max(settings_.edge_sample_factor, 1) : 1);
+  std::array<glm::dvec3, kEdgeBands> band_sum{};
   glm::dvec3 indirect(0.0), direct(0.0);
   std::vector<glm::vec2> directions, light_points;
   int sample = 0;
@@ -224,6 +258,14 @@ void RadianceCache::fill(Cell* cell, PathCounters* counters) const {
       Rng light_permutation = purpose_rng(point_key, kFillLightPermutation);
       stratified_square(n, light_permutation, &light_points);
     }
+    // The point moved towards the edge, per band (the same directions and random numbers).
+    std::array<CachePoint, kEdgeBands> moved;
+    std::array<bool, kEdgeBands> on_surface{};
+    for (int b = 0; edge && b < kEdgeBands; ++b) {
+      on_surface[size_t(b)] = band_point(*edge, cell->points[k], b, &moved[size_t(b)]);
+      ++counters->rays;
+      if (on_surface[size_t(b)]) edge->band_pairs[size_t(b)] += n;
+    }
     for (int s = 0; s < n; ++s) {
       const uint64_t key = PathTracer::path_key(settings_.seed, cell->key, uint64_t(sample++));
       const float u_select = sample_direct ? purpose_rng(key, kFillLight).next_float() : 0.0f;
@@ -231,11 +273,18 @@ void RadianceCache::fill(Cell* cell, PathCounters* counters) const {
                                           sample_direct ? light_points[size_t(s)] : glm::vec2(0.0f), key, counters);
       indirect += glm::dvec3(e.indirect);
       direct += glm::dvec3(e.direct);
+      for (int b = 0; edge && b < kEdgeBands; ++b) {
+        if (!on_surface[size_t(b)]) continue;
+        const CachedIrradiance m = estimate(moved[size_t(b)], directions[size_t(s)], false, 0.0f, glm::vec2(0.0f), key, counters);
+        band_sum[size_t(b)] += glm::dvec3(m.indirect) - glm::dvec3(e.indirect);
+      }
     }
   }
   const double count = double(std::max(sample, 1));
   cell->indirect = glm::vec3(indirect / count);
   cell->direct = glm::vec3(direct / count);
+  for (int b = 0; edge && b < kEdgeBands; ++b)
+    if (edge->band_pairs[size_t(b)] > 0) edge->band_delta[size_t(b)] = glm::vec3(band_sum[size_t(b)] / double(edge->band_pairs[size_t(b)]));
 }
 
 CachedIrradiance RadianceCache::lookup(const CachePoint& point, uint64_t key, PathCounters* counters) const {
@@ -276,6 +325,7 @@ bool RadianceCache::interpolate(const CachePoint& point, CachedIrradiance* out) 
     }
   }
   out->indirect = w_all > 0.0 ? glm::vec3(indirect / w_all) : self.indirect;
+  if (self.edge >= 0) out->indirect = glm::max(out->indirect + edge_difference(edges_[size_t(self.edge)], point.position), glm::vec3(0.0f));
   out->has_direct = self.has_direct;
   out->direct = w_direct > 0.0 ? glm::vec3(direct / w_direct) : self.direct;
   return true;

@@ -94,7 +94,8 @@ struct ProbeStats {
   uint64_t foot_corrections = 0;  // probes whose own-surface texels took the cache's error out (foot_correction.h)
   glm::vec3 foot_common_difference{0.0f};  // the difference common to all probes (the last bounce), W/m^2
   double share_seconds = 0.0;
-  uint64_t cache_cells = 0, cache_direct_cells = 0, cache_fill_samples = 0, cache_fallbacks = 0;
+  uint64_t cache_cells = 0, cache_direct_cells = 0, cache_edge_cells = 0, cache_edge_profiles = 0, cache_fill_samples = 0,
+           cache_fallbacks = 0;
   nlohmann::json to_json() const;
 };
 
