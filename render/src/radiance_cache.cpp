@@ -173,9 +173,14 @@ void RadianceCache::build(const std::vector<const Collector*>& collectors, PathC
   edge_cells_ = size_t(std::count_if(cells_.begin(), cells_.end(), [](const Cell& c) { return c.edge_layer != 0; }));
   fill_samples_ = 0;
   for (const Cell& c : cells_)
-    fill_samples_ += uint64_t(std::max(settings_.samples_per_cell, 1)) * uint64_t(c.edge_layer != 0 ? std::max(settings_.edge_sample_factor, 1) : 1);
+    fill_samples_ += uint64_t(samples_in(c));
   for (const EdgeProfile& e : edges_)
     for (int pairs : e.band_pairs) fill_samples_ += uint64_t(pairs);
+}
+
+int RadianceCache::samples_in(const Cell& cell) const {
+  const int factor = cell.edge_layer != 0 ? std::max(settings_.edge_sample_factor, 1) : 1;
+  return std::max(settings_.samples_per_cell, 1) * factor;
 }
 
 void RadianceCache::smooth_indirect() {
@@ -184,12 +189,17 @@ void RadianceCache::smooth_indirect() {
     for (size_t i = r.begin(); i < r.end(); ++i) {
       glm::dvec3 sum(0.0);
       int count = 0;
-      for (int index : neighbours_[i]) {
-        if (index < 0) continue;
-        // Next to a concave edge the neighbourhood is one-sided: only along the edge.
-        if (cells_[i].edge_layer != 0 && cells_[size_t(index)].edge_layer != cells_[i].edge_layer) continue;
-        sum += glm::dvec3(cells_[size_t(index)].indirect);
-        ++count;
+      if (cells_[i].edge_layer != 0) {  // next to a concave edge: along it only
+        for (int index : along_edge(i)) {
+          sum += glm::dvec3(cells_[size_t(index)].indirect);
+          ++count;
+        }
+      } else {
+        for (int index : neighbours_[i]) {
+          if (index < 0) continue;
+          sum += glm::dvec3(cells_[size_t(index)].indirect);
+          ++count;
+        }
       }
       smoothed[i] = glm::vec3(sum / double(count));  // count >= 1: the cell is its own neighbour
     }
@@ -204,14 +214,15 @@ void RadianceCache::smooth_indirect() {
     for (int b = 0; b < kEdgeBands; ++b) {
       glm::dvec3 sum(0.0);
       int count = 0;
-      for (int index : neighbours_[i]) {
-        if (index < 0 || cells_[size_t(index)].edge < 0) continue;
+      for (int index : along_edge(i)) {
+        if (cells_[size_t(index)].edge < 0) continue;
         const EdgeProfile& other = edges_[size_t(cells_[size_t(index)].edge)];
         if (other.band_pairs[size_t(b)] == 0) continue;
         sum += glm::dvec3(other.band_delta[size_t(b)]);
         ++count;
       }
-      deltas[size_t(cells_[i].edge)][size_t(b)] = count > 0 ? glm::vec3(sum / double(count)) : own.band_delta[size_t(b)];
+      deltas[size_t(cells_[i].edge)][size_t(b)] =
+          count > 0 ? glm::vec3(sum / double(count)) : own.band_delta[size_t(b)];
     }
   }
   for (size_t e = 0; e < edges_.size(); ++e) edges_[e].band_delta = deltas[e];
@@ -244,7 +255,7 @@ void RadianceCache::fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) 
 
   // samples_per_cell estimates shared out over the points, each point's own cosine
   // directions and light points stratified over the unit square.
-  const int total = std::max(settings_.samples_per_cell, 1) * (cell->edge_layer != 0 ? std::max(settings_.edge_sample_factor, 1) : 1);
+  const int total = samples_in(*cell);
   std::array<glm::dvec3, kEdgeBands> band_sum{};
   glm::dvec3 indirect(0.0), direct(0.0);
   std::vector<glm::vec2> directions, light_points;
@@ -275,7 +286,8 @@ void RadianceCache::fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) 
       direct += glm::dvec3(e.direct);
       for (int b = 0; edge && b < kEdgeBands; ++b) {
         if (!on_surface[size_t(b)]) continue;
-        const CachedIrradiance m = estimate(moved[size_t(b)], directions[size_t(s)], false, 0.0f, glm::vec2(0.0f), key, counters);
+        const CachedIrradiance m =
+            estimate(moved[size_t(b)], directions[size_t(s)], false, 0.0f, glm::vec2(0.0f), key, counters);
         band_sum[size_t(b)] += glm::dvec3(m.indirect) - glm::dvec3(e.indirect);
       }
     }
@@ -284,7 +296,8 @@ void RadianceCache::fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) 
   cell->indirect = glm::vec3(indirect / count);
   cell->direct = glm::vec3(direct / count);
   for (int b = 0; edge && b < kEdgeBands; ++b)
-    if (edge->band_pairs[size_t(b)] > 0) edge->band_delta[size_t(b)] = glm::vec3(band_sum[size_t(b)] / double(edge->band_pairs[size_t(b)]));
+    if (edge->band_pairs[size_t(b)] > 0)
+      edge->band_delta[size_t(b)] = glm::vec3(band_sum[size_t(b)] / double(edge->band_pairs[size_t(b)]));
 }
 
 CachedIrradiance RadianceCache::lookup(const CachePoint& point, uint64_t key, PathCounters* counters) const {
@@ -325,7 +338,9 @@ bool RadianceCache::interpolate(const CachePoint& point, CachedIrradiance* out) 
     }
   }
   out->indirect = w_all > 0.0 ? glm::vec3(indirect / w_all) : self.indirect;
-  if (self.edge >= 0) out->indirect = glm::max(out->indirect + edge_difference(edges_[size_t(self.edge)], point.position), glm::vec3(0.0f));
+  if (self.edge >= 0)
+    out->indirect = glm::max(out->indirect + edge_difference(edges_[size_t(self.edge)], point.position),
+                             glm::vec3(0.0f));
   out->has_direct = self.has_direct;
   out->direct = w_direct > 0.0 ? glm::vec3(direct / w_direct) : self.direct;
   return true;

@@ -196,12 +196,17 @@ class RadianceCache {
   using Neighbours = std::array<int32_t, 27>;
   static int neighbour_slot(const glm::ivec3& offset) { return (offset.x + 1) * 9 + (offset.y + 1) * 3 + (offset.z + 1); }
 
-  void fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) const;  // edge: its profile, if any
+  // Fills a cell; `edge` is its profile, if any (filled too).
+  void fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) const;
+  int samples_in(const Cell& cell) const;  // irradiance estimates a cell's own value takes
   void smooth_indirect();  // values_[i].indirect from the cells' own means
   // Concave edges (radiance_cache_edges.cpp): which cells are next to one, where a point
   // of a cell moved to band b lies (false if off the surface), the profile's difference
   // at a point.
   void find_concave_edges();
+  // The cells of the same layer next to an edge as cell `index`, along the edge (itself
+  // included): what its light is smoothed over.
+  std::vector<int> along_edge(size_t index) const;
   bool band_point(const EdgeProfile& edge, const CachePoint& point, int band, CachePoint* moved) const;
   glm::vec3 edge_difference(const EdgeProfile& edge, const glm::vec3& position) const;
   int find(uint64_t key) const;  // index into cells_, -1 if absent
