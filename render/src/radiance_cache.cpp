@@ -184,13 +184,20 @@ int RadianceCache::samples_in(const Cell& cell) const {
 }
 
 void RadianceCache::smooth_indirect() {
+  // The cells along the edge of each cell next to a concave edge, found once for both its
+  // light and its profile.
+  std::vector<std::vector<int>> along(cells_.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, cells_.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i < r.end(); ++i)
+      if (cells_[i].edge_layer != 0) along[i] = along_edge(i);
+  });
   std::vector<glm::vec3> smoothed(cells_.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, cells_.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i < r.end(); ++i) {
       glm::dvec3 sum(0.0);
       int count = 0;
       if (cells_[i].edge_layer != 0) {  // next to a concave edge: along it only
-        for (int index : along_edge(i)) {
+        for (int index : along[i]) {
           sum += glm::dvec3(cells_[size_t(index)].indirect);
           ++count;
         }
@@ -214,7 +221,7 @@ void RadianceCache::smooth_indirect() {
     for (int b = 0; b < kEdgeBands; ++b) {
       glm::dvec3 sum(0.0);
       int count = 0;
-      for (int index : along_edge(i)) {
+      for (int index : along[i]) {
         if (cells_[size_t(index)].edge < 0) continue;
         const EdgeProfile& other = edges_[size_t(cells_[size_t(index)].edge)];
         if (other.band_pairs[size_t(b)] == 0) continue;
