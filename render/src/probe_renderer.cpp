@@ -59,6 +59,27 @@ constexpr size_t kMinFootCorrections = 64;
 // See dark_floor in render_probes_at.
 constexpr float kDarkFloorFraction = 0.1f;
 
+// Probes are shaded in tiles of kTileRows x kTileCols neighbours on the grid, texel by
+// texel across the tile (see shade_pass).
+constexpr int kTileRows = 8;
+constexpr int kTileCols = 8;
+
+// The indices into `todo` of each tile's probes, tiles in grid order, each tile's probes
+// in todo's order.
+std::vector<std::vector<size_t>> probe_tiles(const std::vector<int>& todo, int grid_width) {
+  const int tiles_across = (grid_width + kTileCols - 1) / kTileCols;
+  auto tile_of = [&](int p) { return (p / grid_width / kTileRows) * tiles_across + (p % grid_width) / kTileCols; };
+  std::vector<size_t> order(todo.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return tile_of(todo[a]) < tile_of(todo[b]); });
+  std::vector<std::vector<size_t>> tiles;
+  for (size_t n = 0; n < order.size(); ++n) {
+    if (n == 0 || tile_of(todo[order[n]]) != tile_of(todo[order[n - 1]])) tiles.emplace_back();
+    tiles.back().push_back(order[n]);
+  }
+  return tiles;
+}
+
 // The emission a light texel sees, sampled only where the lights cover it. Each light
 // triangle's part of the texel is known exactly (EmitterCoverage); `count` directions, split
 // between the parts by their size, are drawn uniformly in solid angle inside them (stratified
@@ -324,14 +345,30 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
   glm::vec3 common_difference(0.0f);
   Progress progress("probes", todo.size() * (correct_foot ? 2 : 1), correct_foot ? "probe halves" : "probes",
                     settings.progress);
+  // A probe of the tile being shaded: what its texels share.
+  struct TileProbe {
+    size_t k = 0;  // index into todo
+    int p = 0;
+    Interleave interleave;  // interleaved strata when texels are shared (probe_sharing.h)
+    std::vector<uint8_t> lit;  // texels a light may cover (EmitterFootprints)
+    EmitterCoverage::View lights;  // the lights' exact coverage, where `analytic`
+    bool analytic = false;
+    FootIrradiance measured{glm::vec3(0.0f, 0.0f, 1.0f)};
+    FootCorrection foot;
+  };
+  // Neighbouring probes see the same scene in the same direction from points a few
+  // centimetres apart: shading a tile texel by texel across its probes finds the cache
+  // cells, BVH nodes and texture texels of one probe's texel still in the processor's
+  // caches for the next (probe by probe, a probe's 512 texels cover the whole room first).
+  const std::vector<std::vector<size_t>> tiles = probe_tiles(todo, layout.grid_width);
   auto shade_pass = [&](int pass) {
     tbb::parallel_for(
-        tbb::blocked_range<size_t>(0, todo.size(), 4),
+        tbb::blocked_range<size_t>(0, tiles.size(), 1),
         [&](const tbb::blocked_range<size_t>& r) {
           PathCounters& c = local.local();
           std::vector<glm::vec2> strata;
           std::vector<EmitterCoverage::View::Piece> pieces;
-          std::vector<uint8_t> lit(static_cast<size_t>(texels));
+          std::vector<TileProbe> tile;
           uint64_t extra = 0, lit_texels = 0, edge_texels = 0, negative = 0;
           // The specular control variate's corrections can be negative on their own; a texel
           // whose mean still is (dark, grazing, few directions) is clamped to 0, and counted.
@@ -340,147 +377,159 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
             *v = glm::max(*v, glm::vec3(0.0f));
             ++negative;
           };
-          for (size_t k = r.begin(); k < r.end(); ++k) {
-            const int p = todo[k];
+          // The texels this pass shades.
+          auto in_pass = [&](const TileProbe& probe, int t) {
+            return !correct_foot || (pass == 1) == cones.faces_away(t, out.sites[size_t(probe.p)].normal);
+          };
+          auto prepare = [&](TileProbe* probe) {
+            const int p = probe->p;
             const int i = p / layout.grid_width, j = p % layout.grid_width;
-            const glm::vec3 origin = out.sites[size_t(p)].origin;
-            // Interleaved strata when texels are shared (probe_sharing.h).
-            Interleave interleave;
-            if (share) {
-              interleave.sub = sub_stratum(i, j, settings.sharing);
-              interleave.count = settings.sharing.window();
-            }
             const ProbeSite& site = out.sites[size_t(p)];
-            // The texels this pass shades.
-            auto in_pass = [&](int t) { return !correct_foot || (pass == 1) == cones.faces_away(t, site.normal); };
-            std::fill(lit.begin(), lit.end(), uint8_t(0));
-            if (adaptive) footprints.mark(origin, layout.res_height, layout.res_width, &lit);
+            probe->interleave = Interleave();
+            if (share) {
+              probe->interleave.sub = sub_stratum(i, j, settings.sharing);
+              probe->interleave.count = settings.sharing.window();
+            }
+            probe->lit.assign(size_t(texels), uint8_t(0));
+            if (adaptive) footprints.mark(site.origin, layout.res_height, layout.res_width, &probe->lit);
             // The lights' exact coverage of each texel, where the emission a texel sees is the
             // lights' alone (no environment).
-            EmitterCoverage::View lights;
-            bool analytic = false;
+            probe->lights = EmitterCoverage::View();
+            probe->analytic = false;
             bool any_lit = false;
-            for (int t = 0; t < texels && !any_lit; ++t) any_lit = lit[size_t(t)] != 0 && in_pass(t);
+            for (int t = 0; t < texels && !any_lit; ++t) any_lit = probe->lit[size_t(t)] != 0 && in_pass(*probe, t);
             if (adaptive && coverage.usable() && !effects.environment && any_lit) {
-              lights = coverage.view(origin);
-              analytic = lights.valid();
+              probe->lights = coverage.view(site.origin);
+              probe->analytic = probe->lights.valid();
             }
-            FootIrradiance measured(site.normal);
-            // Texel t, with lookups at its first hits through `foot`; its cosine-weighted
-            // estimate goes to `measure` if given.
-            auto shade_texel = [&](int t, const FootCorrection& foot, FootIrradiance* measure) {
-              const int row = t / layout.res_width, col = t % layout.res_width;
-              // `count` fresh samples from sample id `first` on, stratified over the texel.
-              using Part = TexelEstimator::Part;
-              // `spread` (if given) receives the range of the samples' luminances; when the texel
-              // is measured, cos_all and cos_emitted the sample means of the radiance and its
-              // emitted part times the cosine to the probe's normal (FootIrradiance).
-              float distance = std::numeric_limits<float>::infinity();
-              const ProbeTexel texel(row, col, layout.res_height, layout.res_width);
-              glm::vec3 cos_all(0.0f), cos_emitted(0.0f);
-              auto estimate = [&](int first, int count, Part part, bool* saw_hard, float* spread = nullptr) {
-                Rng permutation(PathTracer::path_key(probe_seed, texel_id(p, t), kStrataStream + uint64_t(first)), 0);
-                // The interleaving key is the same for every probe (texel and pass only).
-                interleave.key = PathTracer::path_key(probe_seed, uint64_t(t), kInterleaveStream + uint64_t(first));
-                stratified_square(count, permutation, &strata, interleave);
-                glm::dvec3 sum(0.0), sum_cos(0.0), sum_emitted_cos(0.0);
-                float lo = std::numeric_limits<float>::infinity(), hi = 0.0f;
-                for (int s = 0; s < count; ++s) {
-                  const uint64_t key = PathTracer::path_key(probe_seed, texel_id(p, t), uint64_t(first + s));
-                  const Ray ray{origin, texel.direction(strata[size_t(s)])};
-                  glm::vec3 emitted;
-                  glm::vec3 L = estimator.sample(ray, key, part, foot, saw_hard, &distance, &emitted, &c);
-                  if (!is_finite(L) || !is_finite(emitted)) {
-                    ++c.nonfinite_samples;
-                    L = emitted = glm::vec3(0.0f);
-                  }
-                  sum += glm::dvec3(L);
-                  if (measure) {
-                    const double cosine = measure->cosine(ray.direction);
-                    sum_cos += glm::dvec3(L) * cosine;
-                    sum_emitted_cos += glm::dvec3(emitted) * cosine;
-                  }
-                  lo = std::min(lo, luminance(L));
-                  hi = std::max(hi, luminance(L));
+            probe->measured = FootIrradiance(site.normal);
+            probe->foot = pass == 1 ? feet[probe->k].less(common_difference) : FootCorrection();
+          };
+          // Texel t of a probe, with lookups at its first hits through the probe's foot
+          // correction; in pass 0 with the correction on, its cosine-weighted estimate goes to
+          // the probe's `measured`.
+          auto shade_texel = [&](TileProbe& probe, int t) {
+            const int p = probe.p;
+            const glm::vec3 origin = out.sites[size_t(p)].origin;
+            const std::vector<uint8_t>& lit = probe.lit;
+            const FootCorrection& foot = probe.foot;
+            FootIrradiance* measure = pass == 0 && correct_foot ? &probe.measured : nullptr;
+            const int row = t / layout.res_width, col = t % layout.res_width;
+            // `count` fresh samples from sample id `first` on, stratified over the texel.
+            using Part = TexelEstimator::Part;
+            // `spread` (if given) receives the range of the samples' luminances; when the texel
+            // is measured, cos_all and cos_emitted the sample means of the radiance and its
+            // emitted part times the cosine to the probe's normal (FootIrradiance).
+            float distance = std::numeric_limits<float>::infinity();
+            const ProbeTexel texel(row, col, layout.res_height, layout.res_width);
+            glm::vec3 cos_all(0.0f), cos_emitted(0.0f);
+            auto estimate = [&](int first, int count, Part part, bool* saw_hard, float* spread = nullptr) {
+              Rng permutation(PathTracer::path_key(probe_seed, texel_id(p, t), kStrataStream + uint64_t(first)), 0);
+              // The interleaving key is the same for every probe (texel and pass only).
+              probe.interleave.key = PathTracer::path_key(probe_seed, uint64_t(t), kInterleaveStream + uint64_t(first));
+              stratified_square(count, permutation, &strata, probe.interleave);
+              glm::dvec3 sum(0.0), sum_cos(0.0), sum_emitted_cos(0.0);
+              float lo = std::numeric_limits<float>::infinity(), hi = 0.0f;
+              for (int s = 0; s < count; ++s) {
+                const uint64_t key = PathTracer::path_key(probe_seed, texel_id(p, t), uint64_t(first + s));
+                const Ray ray{origin, texel.direction(strata[size_t(s)])};
+                glm::vec3 emitted;
+                glm::vec3 L = estimator.sample(ray, key, part, foot, saw_hard, &distance, &emitted, &c);
+                if (!is_finite(L) || !is_finite(emitted)) {
+                  ++c.nonfinite_samples;
+                  L = emitted = glm::vec3(0.0f);
                 }
-                if (spread) *spread = count > 0 ? hi - lo : 0.0f;
-                cos_all = glm::vec3(sum_cos / double(count));
-                cos_emitted = glm::vec3(sum_emitted_cos / double(count));
-                return glm::vec3(sum / double(count));
-              };
-              // Hard texels (the first samples met a light, glass or a glossy surface, or
-              // their values spread over more than spread_threshold x (their mean + a floor):
-              // the texel straddles an edge or a highlight) are estimated again from
-              // hard_spp_factor x spp fresh samples. Texels a light may cover
-              // (EmitterFootprints) are hard from the start, and the emission seen first
-              // there is estimated apart (inside the lights' coverage where it is known):
-              // partial coverage of a light is the largest error otherwise. No decision looks
-              // at the samples it selects, so none biases the value.
-              const int spp = settings.spp, hard_spp = spp * settings.hard_spp_factor;
-              bool hard = lit[size_t(t)] != 0;
-              glm::vec3 value(0.0f), seen_emission(0.0f), seen_emission_cos(0.0f);
-              if (!hard) {
-                float spread = 0.0f;
-                value = estimate(0, spp, Part::kAll, &hard, &spread);
-                if (spp > 1 && spread > settings.spread_threshold * (luminance(value) + dark_floor)) hard = true;
-              }
-              if (hard && adaptive) {
-                bool unused = false;
-                if (lit[size_t(t)]) {
-                  value = estimate(spp, hard_spp, Part::kRest, &unused);
-                  const glm::vec3 rest_cos = cos_all;
-                  const bool edge = lit[size_t(t)] == EmitterFootprints::kEdge;
-                  if (analytic) {
-                    lights.texel_pieces(row, col, layout.res_height, layout.res_width, &pieces);
-                    Rng rng(PathTracer::path_key(probe_seed, texel_id(p, t), kLightPartStream), 0);
-                    seen_emission = visible_emission(lights, pieces, scene.accelerator(), origin,
-                                                     spp * (edge ? kLightPartEdgeSppFactor : kLightPartSppFactor), rng,
-                                                     measured, &seen_emission_cos, &strata, &c.rays);
-                  } else {
-                    seen_emission = estimate(spp + hard_spp, spp * (edge ? kEmissionEdgeSppFactor : kEmissionSppFactor),
-                                             Part::kEmission, &unused);
-                    seen_emission_cos = cos_emitted;
-                  }
-                  // The texel's whole light: its rest (no emission seen first) and its emission.
-                  cos_all = rest_cos + seen_emission_cos;
-                  cos_emitted = seen_emission_cos;
-                  edge_texels += edge;
-                  ++lit_texels;
-                } else {
-                  value = estimate(spp, hard_spp, Part::kAll, &unused);
+                sum += glm::dvec3(L);
+                if (measure) {
+                  const double cosine = measure->cosine(ray.direction);
+                  sum_cos += glm::dvec3(L) * cosine;
+                  sum_emitted_cos += glm::dvec3(emitted) * cosine;
                 }
-                ++extra;
+                lo = std::min(lo, luminance(L));
+                hi = std::max(hi, luminance(L));
               }
-              if (measure)
-                measure->add_texel(cos_all, cos_emitted, equirect_texel_solid_angle(row, layout.res_width, layout.res_height));
-              clamp_at_zero(&value);
-              if (share) {
-                records.distance[size_t(texel_id(p, t))] = distance;
-                records.samples[size_t(texel_id(p, t))] = float(hard && adaptive ? hard_spp : spp);
-                // Emission seen directly is not shared: a light's edge moves across a texel
-                // with the slightest parallax, and its own directions already resolve it.
-                if (lit[size_t(t)]) emission_seen.local().push_back({texel_id(p, t), seen_emission});
-              } else {
-                value += seen_emission;
-              }
-              const glm::ivec2 at = layout.mosaic_pixel(p, t);
-              for (int ch = 0; ch < 3; ++ch) out.mosaic.at(at.x, at.y, ch) = value[ch];
+              if (spread) *spread = count > 0 ? hi - lo : 0.0f;
+              cos_all = glm::vec3(sum_cos / double(count));
+              cos_emitted = glm::vec3(sum_emitted_cos / double(count));
+              return glm::vec3(sum / double(count));
             };
-            if (pass == 0) {
-              for (int t = 0; t < texels; ++t)
-                if (in_pass(t)) shade_texel(t, FootCorrection(), correct_foot ? &measured : nullptr);
-              if (correct_foot) feet[k] = FootCorrection::measure(*cache, site, measured);
-            } else {
-              const FootCorrection foot = feet[k].less(common_difference);
-              for (int t = 0; t < texels; ++t)
-                if (in_pass(t)) shade_texel(t, foot, nullptr);
+            // Hard texels (the first samples met a light, glass or a glossy surface, or
+            // their values spread over more than spread_threshold x (their mean + a floor):
+            // the texel straddles an edge or a highlight) are estimated again from
+            // hard_spp_factor x spp fresh samples. Texels a light may cover
+            // (EmitterFootprints) are hard from the start, and the emission seen first
+            // there is estimated apart (inside the lights' coverage where it is known):
+            // partial coverage of a light is the largest error otherwise. No decision looks
+            // at the samples it selects, so none biases the value.
+            const int spp = settings.spp, hard_spp = spp * settings.hard_spp_factor;
+            bool hard = lit[size_t(t)] != 0;
+            glm::vec3 value(0.0f), seen_emission(0.0f), seen_emission_cos(0.0f);
+            if (!hard) {
+              float spread = 0.0f;
+              value = estimate(0, spp, Part::kAll, &hard, &spread);
+              if (spp > 1 && spread > settings.spread_threshold * (luminance(value) + dark_floor)) hard = true;
             }
+            if (hard && adaptive) {
+              bool unused = false;
+              if (lit[size_t(t)]) {
+                value = estimate(spp, hard_spp, Part::kRest, &unused);
+                const glm::vec3 rest_cos = cos_all;
+                const bool edge = lit[size_t(t)] == EmitterFootprints::kEdge;
+                if (probe.analytic) {
+                  probe.lights.texel_pieces(row, col, layout.res_height, layout.res_width, &pieces);
+                  Rng rng(PathTracer::path_key(probe_seed, texel_id(p, t), kLightPartStream), 0);
+                  seen_emission = visible_emission(probe.lights, pieces, scene.accelerator(), origin,
+                                                   spp * (edge ? kLightPartEdgeSppFactor : kLightPartSppFactor), rng,
+                                                   probe.measured, &seen_emission_cos, &strata, &c.rays);
+                } else {
+                  seen_emission = estimate(spp + hard_spp, spp * (edge ? kEmissionEdgeSppFactor : kEmissionSppFactor),
+                                           Part::kEmission, &unused);
+                  seen_emission_cos = cos_emitted;
+                }
+                // The texel's whole light: its rest (no emission seen first) and its emission.
+                cos_all = rest_cos + seen_emission_cos;
+                cos_emitted = seen_emission_cos;
+                edge_texels += edge;
+                ++lit_texels;
+              } else {
+                value = estimate(spp, hard_spp, Part::kAll, &unused);
+              }
+              ++extra;
+            }
+            if (measure)
+              measure->add_texel(cos_all, cos_emitted, equirect_texel_solid_angle(row, layout.res_width, layout.res_height));
+            clamp_at_zero(&value);
+            if (share) {
+              records.distance[size_t(texel_id(p, t))] = distance;
+              records.samples[size_t(texel_id(p, t))] = float(hard && adaptive ? hard_spp : spp);
+              // Emission seen directly is not shared: a light's edge moves across a texel
+              // with the slightest parallax, and its own directions already resolve it.
+              if (lit[size_t(t)]) emission_seen.local().push_back({texel_id(p, t), seen_emission});
+            } else {
+              value += seen_emission;
+            }
+            const glm::ivec2 at = layout.mosaic_pixel(p, t);
+            for (int ch = 0; ch < 3; ++ch) out.mosaic.at(at.x, at.y, ch) = value[ch];
+          };
+          for (size_t n = r.begin(); n < r.end(); ++n) {
+            tile.resize(tiles[n].size());
+            for (size_t m = 0; m < tile.size(); ++m) {
+              tile[m].k = tiles[n][m];
+              tile[m].p = todo[tiles[n][m]];
+              prepare(&tile[m]);
+            }
+            for (int t = 0; t < texels; ++t)
+              for (TileProbe& probe : tile)
+                if (in_pass(probe, t)) shade_texel(probe, t);
+            if (pass == 0 && correct_foot)
+              for (const TileProbe& probe : tile)
+                feet[probe.k] = FootCorrection::measure(*cache, out.sites[size_t(probe.p)], probe.measured);
+            progress.advance(tile.size());
           }
           supersampled += extra;
           light_texels += lit_texels;
           light_edge_texels += edge_texels;
           negative_texels += negative;
-          progress.advance(r.size());
         },
         tbb::simple_partitioner());
   };

@@ -25,7 +25,6 @@ namespace {
 constexpr int kCoordBits = 19;
 constexpr int64_t kCoordBias = int64_t(1) << (kCoordBits - 1);
 constexpr uint64_t kCoordMask = (uint64_t(1) << kCoordBits) - 1;
-constexpr uint64_t kEmptySlot = ~uint64_t(0);
 
 // The grid is shifted by these fractions of a cell so that surfaces at round coordinates
 // (a floor at y = 0, walls at x = +-2 m) do not lie on cell boundaries, where rounding
@@ -130,13 +129,12 @@ void RadianceCache::build(const std::vector<const Collector*>& collectors, PathC
     Cell& cell = cells_.back();
     if (cell.count < kPointsPerCell) cell.points[cell.count++] = candidate.point;
   }
-  size_t capacity = 16;
-  while (capacity < 2 * cells_.size()) capacity *= 2;
-  table_.assign(capacity, {kEmptySlot, -1});
-  for (size_t i = 0; i < cells_.size(); ++i) {
-    size_t slot = mix64(cells_[i].key) & (capacity - 1);
-    while (table_[slot].first != kEmptySlot) slot = (slot + 1) & (capacity - 1);
-    table_[slot] = {cells_[i].key, int(i)};
+  {
+    std::vector<SparseCellGrid<int32_t>::Entry> entries;
+    entries.reserve(cells_.size());
+    for (size_t i = 0; i < cells_.size(); ++i)
+      entries.push_back({unpack(cells_[i].key), int(cells_[i].key & 63), int32_t(i)});
+    index_ = SparseCellGrid<int32_t>(std::move(entries));
   }
 
   neighbours_.resize(cells_.size());
@@ -169,6 +167,11 @@ void RadianceCache::build(const std::vector<const Collector*>& collectors, PathC
     values_[i] = Value{cell.indirect, cell.direct, cell.has_direct, cell.edge};
   }
   if (settings_.smooth_indirect) smooth_indirect();
+  std::vector<SparseCellGrid<Value>::Entry> entries;
+  entries.reserve(cells_.size());
+  for (size_t i = 0; i < cells_.size(); ++i)
+    entries.push_back({unpack(cells_[i].key), int(cells_[i].key & 63), values_[i]});
+  lookup_ = SparseCellGrid<Value>(std::move(entries));
   direct_cells_ = size_t(std::count_if(cells_.begin(), cells_.end(), [](const Cell& c) { return c.has_direct; }));
   edge_cells_ = size_t(std::count_if(cells_.begin(), cells_.end(), [](const Cell& c) { return c.edge_layer != 0; }));
   fill_samples_ = 0;
@@ -242,12 +245,8 @@ float RadianceCache::mean_irradiance_luminance() const {
 }
 
 int RadianceCache::find(uint64_t key) const {
-  if (table_.empty()) return -1;
-  const size_t mask = table_.size() - 1;
-  for (size_t slot = mix64(key) & mask;; slot = (slot + 1) & mask) {
-    if (table_[slot].first == key) return table_[slot].second;
-    if (table_[slot].first == kEmptySlot) return -1;
-  }
+  const int32_t* index = index_.find(unpack(key), int(key & 63));
+  return index ? *index : -1;
 }
 
 void RadianceCache::fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) const {
@@ -318,38 +317,42 @@ CachedIrradiance RadianceCache::lookup(const CachePoint& point, uint64_t key, Pa
 bool RadianceCache::interpolate(const CachePoint& point, CachedIrradiance* out) const {
   const int bucket = normal_bucket(point.shading_normal);
   const glm::dvec3 c = lattice(point.position);
-  const glm::ivec3 own = cell_of(c);
-  const int self_index = find(pack(own, bucket));
-  if (self_index < 0) return false;
-  const Value& self = values_[size_t(self_index)];
-  const Neighbours& around = neighbours_[size_t(self_index)];
-  // Linear interpolation between the centres of the 8 cells round the point (own included),
-  // same normal bucket; absent neighbours (off the surface, another bucket) left out.
+  // Linear interpolation between the centres of the 8 cells round the point (its own
+  // included), same normal bucket; absent neighbours (off the surface, another bucket) left
+  // out.
   const glm::dvec3 t = c - 0.5;
   const glm::dvec3 base = glm::floor(t), f = t - base;
-  const glm::ivec3 b = cell_of(base) - own;  // each axis -1 or 0
+  const glm::ivec3 first = cell_of(base);
+  const glm::ivec3 own = cell_of(c) - first;  // each axis 0 or 1
+  std::array<double, 8> weights;
+  std::array<bool, 8> wanted;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::ivec3 d(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+    weights[size_t(corner)] = (d.x ? f.x : 1.0 - f.x) * (d.y ? f.y : 1.0 - f.y) * (d.z ? f.z : 1.0 - f.z);
+    wanted[size_t(corner)] = weights[size_t(corner)] > 0.0;
+  }
+  const std::array<const Value*, 8> corners = lookup_.corners(first, bucket, wanted);
+  const Value* self = corners[size_t(own.x + 2 * own.y + 4 * own.z)];  // its weight is >= 1/8
+  if (!self) return false;
   glm::dvec3 indirect(0.0), direct(0.0);
   double w_all = 0.0, w_direct = 0.0;
   for (int corner = 0; corner < 8; ++corner) {
-    const glm::ivec3 d(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-    const double w = (d.x ? f.x : 1.0 - f.x) * (d.y ? f.y : 1.0 - f.y) * (d.z ? f.z : 1.0 - f.z);
-    if (!(w > 0.0)) continue;
-    const int index = around[size_t(neighbour_slot(b + d))];
-    if (index < 0) continue;
-    const Value& cell = values_[size_t(index)];
-    indirect += w * glm::dvec3(cell.indirect);
+    const Value* cell = corners[size_t(corner)];
+    if (!cell) continue;
+    const double w = weights[size_t(corner)];
+    indirect += w * glm::dvec3(cell->indirect);
     w_all += w;
-    if (self.has_direct && cell.has_direct) {  // direct light is only used where the point's own cell holds it
-      direct += w * glm::dvec3(cell.direct);
+    if (self->has_direct && cell->has_direct) {  // direct light is only used where the point's own cell holds it
+      direct += w * glm::dvec3(cell->direct);
       w_direct += w;
     }
   }
-  out->indirect = w_all > 0.0 ? glm::vec3(indirect / w_all) : self.indirect;
-  if (self.edge >= 0)
-    out->indirect = glm::max(out->indirect + edge_difference(edges_[size_t(self.edge)], point.position),
+  out->indirect = w_all > 0.0 ? glm::vec3(indirect / w_all) : self->indirect;
+  if (self->edge >= 0)
+    out->indirect = glm::max(out->indirect + edge_difference(edges_[size_t(self->edge)], point.position),
                              glm::vec3(0.0f));
-  out->has_direct = self.has_direct;
-  out->direct = w_direct > 0.0 ? glm::vec3(direct / w_direct) : self.direct;
+  out->has_direct = self->has_direct;
+  out->direct = w_direct > 0.0 ? glm::vec3(direct / w_direct) : self->direct;
   return true;
 }
 

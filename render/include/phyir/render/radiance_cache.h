@@ -64,6 +64,7 @@
 #include "phyir/render/effects.h"
 #include "phyir/render/path_tracer.h"
 #include "phyir/render/render_scene.h"
+#include "phyir/render/sparse_cell_grid.h"
 
 namespace phyir::render {
 
@@ -190,9 +191,8 @@ class RadianceCache {
     bool has_direct = false;
     int32_t edge = -1;
   };
-  // A cell's 3 x 3 x 3 neighbourhood in its own normal bucket: indices into values_, -1
-  // where absent (x-major, each offset -1..1). A lookup's 8 corners lie inside it, so it
-  // costs one hash probe instead of eight.
+  // A cell's 3 x 3 x 3 neighbourhood in its own normal bucket: indices into cells_, -1
+  // where absent (x-major, each offset -1..1); the build's smoothing and edge search.
   using Neighbours = std::array<int32_t, 27>;
   static int neighbour_slot(const glm::ivec3& offset) { return (offset.x + 1) * 9 + (offset.y + 1) * 3 + (offset.z + 1); }
 
@@ -220,8 +220,10 @@ class RadianceCache {
   int max_bounces_;
   PathTracer continuation_;  // max_bounces - 1: the paths after a cosine ray's hit
   std::vector<Cell> cells_;  // sorted by key
-  std::vector<std::pair<uint64_t, int>> table_;  // open addressing, power-of-two size
+  SparseCellGrid<int32_t> index_;  // cell -> index into cells_
   std::vector<Value> values_;            // per cell, as cells_
+  // What lookups read, from the build's final values.
+  SparseCellGrid<Value> lookup_;
   std::vector<Neighbours> neighbours_;  // per cell, as cells_
   std::vector<EdgeProfile> edges_;
   size_t direct_cells_ = 0;
