@@ -320,10 +320,13 @@ bool RadianceCache::interpolate(const CachePoint& point, CachedIrradiance* out) 
   // Linear interpolation between the centres of the 8 cells round the point (its own
   // included), same normal bucket; absent neighbours (off the surface, another bucket) left
   // out.
-  const glm::dvec3 t = c - 0.5;
+  // Not finite, or beyond the grid's range: no cell holds the point.
+  if (!glm::all(glm::lessThan(glm::abs(c), glm::dvec3(SparseCellGrid<Value>::kCoordLimit - 2)))) return false;
+  const glm::dvec3 t = c - 0.5;  // exact: |c| < 2^20
   const glm::dvec3 base = glm::floor(t), f = t - base;
-  const glm::ivec3 first = cell_of(base);
-  const glm::ivec3 own = cell_of(c) - first;  // each axis 0 or 1
+  const glm::ivec3 first(base);
+  // The point's own cell floor(c), relative to first: 1 on the axes where f >= 0.5.
+  const glm::ivec3 own(f.x >= 0.5, f.y >= 0.5, f.z >= 0.5);
   std::array<double, 8> weights;
   std::array<bool, 8> wanted;
   for (int corner = 0; corner < 8; ++corner) {
