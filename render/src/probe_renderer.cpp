@@ -275,6 +275,12 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
   auto texel_id = [&](int probe, int texel) { return uint64_t(probe) * uint64_t(texels) + uint64_t(texel); };
   tbb::enumerable_thread_specific<PathCounters> local;
 
+  // Neighbouring probes see the same scene in the same direction from points a few
+  // centimetres apart: working on a tile texel by texel across its probes finds the cache
+  // cells, BVH nodes and texture texels of one probe's texel still in the processor's
+  // caches for the next (probe by probe, a probe's 512 texels cover the whole room first).
+  const std::vector<std::vector<size_t>> tiles = probe_tiles(todo, layout.grid_width);
+
   // The cache: discovery from one direction per texel, then the fill.
   std::unique_ptr<RadianceCache> cache;
   if (settings.mode == ProbeMode::kCache) {
@@ -287,21 +293,25 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
     cs.progress = settings.progress;
     cache = std::make_unique<RadianceCache>(scene, effects, settings.path, cs);
     tbb::enumerable_thread_specific<RadianceCache::Collector> collectors;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, todo.size(), 8), [&](const tbb::blocked_range<size_t>& r) {
+    // Tile by tile, texel by texel across a tile (as the shading below): neighbouring
+    // probes' rays offer points to the same cells one after the other.
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
       RadianceCache::Collector& collector = collectors.local();
       PathCounters& c = local.local();
-      for (size_t k = r.begin(); k < r.end(); ++k) {
-        const int p = todo[k];
-        const glm::vec3 origin = out.sites[size_t(p)].origin;
+      for (size_t n = r.begin(); n < r.end(); ++n) {
         for (int t = 0; t < texels; ++t) {
-          const uint64_t key = PathTracer::path_key(probe_seed, texel_id(p, t), kDiscoverySample);
-          Rng rng(key, 0);
-          const Ray ray{origin, probe_texel_direction(t / layout.res_width, t % layout.res_width, layout.res_height,
-                                                      layout.res_width, rng.next_2d())};
-          SurfaceInteraction si;
-          ++c.rays;
-          if (scene.trace(ray, &si) && !(si.transmission > 0.0f))
-            collector.offer(*cache, cache_point(si, si.shading_normal), mix64(key));
+          for (size_t k : tiles[n]) {
+            const int p = todo[k];
+            const uint64_t key = PathTracer::path_key(probe_seed, texel_id(p, t), kDiscoverySample);
+            Rng rng(key, 0);
+            const Ray ray{out.sites[size_t(p)].origin,
+                          probe_texel_direction(t / layout.res_width, t % layout.res_width, layout.res_height,
+                                                layout.res_width, rng.next_2d())};
+            SurfaceInteraction si;
+            ++c.rays;
+            if (scene.trace(ray, &si) && !(si.transmission > 0.0f))
+              collector.offer(*cache, cache_point(si, si.shading_normal), mix64(key));
+          }
         }
       }
     });
@@ -356,11 +366,6 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
     FootIrradiance measured{glm::vec3(0.0f, 0.0f, 1.0f)};
     FootCorrection foot;
   };
-  // Neighbouring probes see the same scene in the same direction from points a few
-  // centimetres apart: shading a tile texel by texel across its probes finds the cache
-  // cells, BVH nodes and texture texels of one probe's texel still in the processor's
-  // caches for the next (probe by probe, a probe's 512 texels cover the whole room first).
-  const std::vector<std::vector<size_t>> tiles = probe_tiles(todo, layout.grid_width);
   auto shade_pass = [&](int pass) {
     tbb::parallel_for(
         tbb::blocked_range<size_t>(0, tiles.size(), 1),
