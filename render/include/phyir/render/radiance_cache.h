@@ -6,7 +6,9 @@
 // by the direction of their shading normal (a cube face picked by the dominant axis, cut in
 // 3 x 3, so flat walls at any axis-aligned orientation sit in the middle of one bucket):
 // the two sides of a thin board, or a floor and the wall meeting it, never share a cell.
-// Keys are packed exactly (no hash collisions), in a read-only open-addressing table.
+// Keys are packed exactly (no hash collisions). Lookups read the cells' values from a
+// SparseCellGrid (4 x 4 x 4 cells per record): a lookup's 8 cells cost 1-2 table probes and
+// sit close together in memory, where neighbouring probes' lookups find them again.
 //
 // Building. (1) Discovery: the probes' own first hits are offered to per-thread collectors;
 // each cell keeps the kPointsPerCell points nearest its centre (ties broken by a hash of
@@ -221,7 +223,7 @@ class RadianceCache {
   PathTracer continuation_;  // max_bounces - 1: the paths after a cosine ray's hit
   std::vector<Cell> cells_;  // sorted by key
   SparseCellGrid<int32_t> index_;  // cell -> index into cells_
-  std::vector<Value> values_;            // per cell, as cells_
+  std::vector<Value> values_;            // per cell, as cells_ (the build's; lookups read lookup_)
   // What lookups read, from the build's final values.
   SparseCellGrid<Value> lookup_;
   std::vector<Neighbours> neighbours_;  // per cell, as cells_
