@@ -129,13 +129,16 @@ void RadianceCache::build(const std::vector<const Collector*>& collectors, PathC
     Cell& cell = cells_.back();
     if (cell.count < kPointsPerCell) cell.points[cell.count++] = candidate.point;
   }
-  {
-    std::vector<SparseCellGrid<int32_t>::Entry> entries;
+  // A grid over the cells holding value_of(i) for cell i.
+  auto grid_of = [&](auto value_of) {
+    using Grid = SparseCellGrid<decltype(value_of(size_t(0)))>;
+    std::vector<typename Grid::Entry> entries;
     entries.reserve(cells_.size());
     for (size_t i = 0; i < cells_.size(); ++i)
-      entries.push_back({unpack(cells_[i].key), int(cells_[i].key & 63), int32_t(i)});
-    index_ = SparseCellGrid<int32_t>(std::move(entries));
-  }
+      entries.push_back({unpack(cells_[i].key), int(cells_[i].key & 63), value_of(i)});
+    return Grid(std::move(entries));
+  };
+  index_ = grid_of([](size_t i) { return int32_t(i); });
 
   neighbours_.resize(cells_.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, cells_.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
@@ -161,17 +164,11 @@ void RadianceCache::build(const std::vector<const Collector*>& collectors, PathC
     progress.advance(r.size());
   });
   for (const PathCounters& c : local) *counters += c;
-  values_.resize(cells_.size());
-  for (size_t i = 0; i < cells_.size(); ++i) {
+  const std::vector<glm::vec3> smoothed = settings_.smooth_indirect ? smooth_indirect() : std::vector<glm::vec3>();
+  lookup_ = grid_of([&](size_t i) {
     const Cell& cell = cells_[i];
-    values_[i] = Value{cell.indirect, cell.direct, cell.has_direct, cell.edge};
-  }
-  if (settings_.smooth_indirect) smooth_indirect();
-  std::vector<SparseCellGrid<Value>::Entry> entries;
-  entries.reserve(cells_.size());
-  for (size_t i = 0; i < cells_.size(); ++i)
-    entries.push_back({unpack(cells_[i].key), int(cells_[i].key & 63), values_[i]});
-  lookup_ = SparseCellGrid<Value>(std::move(entries));
+    return Value{smoothed.empty() ? cell.indirect : smoothed[i], cell.direct, cell.has_direct, cell.edge};
+  });
   direct_cells_ = size_t(std::count_if(cells_.begin(), cells_.end(), [](const Cell& c) { return c.has_direct; }));
   edge_cells_ = size_t(std::count_if(cells_.begin(), cells_.end(), [](const Cell& c) { return c.edge_layer != 0; }));
   fill_samples_ = 0;
@@ -186,7 +183,7 @@ int RadianceCache::samples_in(const Cell& cell) const {
   return std::max(settings_.samples_per_cell, 1) * factor;
 }
 
-void RadianceCache::smooth_indirect() {
+std::vector<glm::vec3> RadianceCache::smooth_indirect() {
   // The cells along the edge of each cell next to a concave edge, found once for both its
   // light and its profile.
   std::vector<std::vector<int>> along(cells_.size());
@@ -214,7 +211,6 @@ void RadianceCache::smooth_indirect() {
       smoothed[i] = glm::vec3(sum / double(count));  // count >= 1: the cell is its own neighbour
     }
   });
-  for (size_t i = 0; i < cells_.size(); ++i) values_[i].indirect = smoothed[i];
   // The profiles' differences, along the edge likewise (a neighbour's bands lie at the
   // same distances from the same plane on a straight edge).
   std::vector<std::array<glm::vec3, kEdgeBands>> deltas(edges_.size());
@@ -236,6 +232,7 @@ void RadianceCache::smooth_indirect() {
     }
   }
   for (size_t e = 0; e < edges_.size(); ++e) edges_[e].band_delta = deltas[e];
+  return smoothed;
 }
 
 float RadianceCache::mean_irradiance_luminance() const {
@@ -317,11 +314,11 @@ CachedIrradiance RadianceCache::lookup(const CachePoint& point, uint64_t key, Pa
 bool RadianceCache::interpolate(const CachePoint& point, CachedIrradiance* out) const {
   const int bucket = normal_bucket(point.shading_normal);
   const glm::dvec3 c = lattice(point.position);
+  // Not finite, or beyond the grid's range: no cell holds the point.
+  if (!glm::all(glm::lessThan(glm::abs(c), glm::dvec3(SparseCellGrid<Value>::kCoordLimit - 2)))) return false;
   // Linear interpolation between the centres of the 8 cells round the point (its own
   // included), same normal bucket; absent neighbours (off the surface, another bucket) left
   // out.
-  // Not finite, or beyond the grid's range: no cell holds the point.
-  if (!glm::all(glm::lessThan(glm::abs(c), glm::dvec3(SparseCellGrid<Value>::kCoordLimit - 2)))) return false;
   const glm::dvec3 t = c - 0.5;  // exact: |c| < 2^20
   const glm::dvec3 base = glm::floor(t), f = t - base;
   const glm::ivec3 first(base);

@@ -201,7 +201,9 @@ class RadianceCache {
   // Fills a cell; `edge` is its profile, if any (filled too).
   void fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) const;
   int samples_in(const Cell& cell) const;  // irradiance estimates a cell's own value takes
-  void smooth_indirect();  // values_[i].indirect from the cells' own means
+  // Each cell's indirect light smoothed from the cells' own means (and the edge profiles'
+  // differences, in place).
+  std::vector<glm::vec3> smooth_indirect();
   // Concave edges (radiance_cache_edges.cpp): which cells are next to one, where a point
   // of a cell moved to band b lies (false if off the surface), the profile's difference
   // at a point.
@@ -223,9 +225,7 @@ class RadianceCache {
   PathTracer continuation_;  // max_bounces - 1: the paths after a cosine ray's hit
   std::vector<Cell> cells_;  // sorted by key
   SparseCellGrid<int32_t> index_;  // cell -> index into cells_
-  std::vector<Value> values_;            // per cell, as cells_ (the build's; lookups read lookup_)
-  // What lookups read, from the build's final values.
-  SparseCellGrid<Value> lookup_;
+  SparseCellGrid<Value> lookup_;  // what lookups read: the build's final values
   std::vector<Neighbours> neighbours_;  // per cell, as cells_
   std::vector<EdgeProfile> edges_;
   size_t direct_cells_ = 0;
