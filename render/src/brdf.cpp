@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "phyir/core/safe_math.h"
 #include "phyir/render/sampling.h"
@@ -33,16 +34,8 @@ float schlick_k(float roughness) {
 }
 
 // The parameters as the BRDF uses them: clamped to their documented ranges.
-struct Clamped {
-  glm::vec3 base_color;
-  float roughness;
-  float metalness;
-};
-
-Clamped clamp_params(const BrdfParams& p) {
-  return {glm::clamp(p.base_color, glm::vec3(0.0f), glm::vec3(1.0f)), clamp01(p.roughness),
-          clamp01(p.metalness)};
-}
+using Clamped = BrdfParams;
+Clamped clamp_params(const BrdfParams& p) { return clamped(p); }
 
 // Everything eval and pdf need about one (wo, wi) pair, computed once so that
 // sample()'s weight is exactly eval * cos / pdf.
@@ -210,6 +203,97 @@ bool brdf_sample(const BrdfParams& p, const glm::vec3& wo, float u_lobe, const g
   out->weight = f * (q.NoL / pdf);
   out->delta = false;
   return true;
+}
+
+BrdfParams clamped(const BrdfParams& p) {
+  return {glm::clamp(p.base_color, glm::vec3(0.0f), glm::vec3(1.0f)), clamp01(p.roughness),
+          clamp01(p.metalness)};
+}
+
+// --- The specular lobe alone ------------------------------------------------------------
+
+glm::vec3 specular_eval(const BrdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {
+  const Clamped c = clamp_params(p);
+  return glm::max(eval_pair(c, pair_geometry(wo, wi)) - Fd_Lambert(c.base_color, c.metalness), glm::vec3(0.0f));
+}
+
+float specular_pdf(const BrdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {
+  if (!(wo.z >= kMinCosine) || !(wi.z >= kMinCosine)) return 0.0f;
+  const float alpha = clamp01(p.roughness) * clamp01(p.roughness);
+  const glm::vec3 s = wo + wi;
+  const float len = std::sqrt(glm::dot(s, s));
+  if (!(len > 0.0f)) return 0.0f;
+  const float NoH = s.z / len;
+  const float VoH = 0.5f * len;
+  return D_GGX(NoH, alpha) * NoH / (4.0f * VoH);
+}
+
+bool specular_sample(const BrdfParams& p, const glm::vec3& wo, const glm::vec2& u, glm::vec3* wi, float* pdf) {
+  const float R = clamp01(p.roughness);
+  const glm::vec3 h = sample_ggx_half_vector(u, R * R);
+  *wi = safe_normalize(2.0f * glm::dot(wo, h) * h - wo, glm::vec3(0, 0, -1));  // reflect wo about h
+  *pdf = is_mirror(R) ? 0.0f : specular_pdf(p, wo, *wi);
+  return *pdf > 0.0f;
+}
+
+// --- Specular albedo ----------------------------------------------------------------------
+
+namespace {
+
+struct SpecularAlbedoTable {
+  static constexpr int kSize = 32;  // nodes over n.v in [0,1] and R in [0,1]
+  std::vector<glm::vec2> terms;     // (F0 = 1, F0 = 0), n.v-major
+
+  SpecularAlbedoTable() : terms(size_t(kSize) * kSize) {
+    for (int i = 0; i < kSize; ++i) {
+      const float NoV = std::max(float(i) / (kSize - 1), 1e-3f);
+      for (int j = 0; j < kSize; ++j) terms[size_t(i) * kSize + j] = integrate(NoV, float(j) / (kSize - 1));
+    }
+  }
+
+  // The lobe's albedo for F0 = 1 and F0 = 0 at one node.
+  static glm::vec2 integrate(float NoV, float R) {
+    constexpr int kStrata = 32;  // 32 x 32 stratified GGX samples per node
+    if (is_mirror(R)) {
+      const float G1 = G1_SmithSchlick(NoV, schlick_k(R));
+      return glm::vec2(glm::dvec2(F_SchlickSG(glm::vec3(1.0f), NoV).x, F_SchlickSG(glm::vec3(0.0f), NoV).x) *
+                       double(G1 * G1));
+    }
+    const glm::vec3 wo(std::sqrt(1.0f - NoV * NoV), 0.0f, NoV);
+    const BrdfParams white{glm::vec3(1.0f), R, 1.0f}, black{glm::vec3(0.0f), R, 1.0f};
+    glm::dvec2 sum(0.0);
+    for (int s = 0; s < kStrata * kStrata; ++s) {
+      const glm::vec2 u((s % kStrata + 0.5f) / kStrata, (s / kStrata + 0.5f) / kStrata);
+      glm::vec3 wi;
+      float pdf;
+      if (!specular_sample(white, wo, u, &wi, &pdf)) continue;
+      sum += glm::dvec2(brdf_eval(white, wo, wi).x, brdf_eval(black, wo, wi).x) * double(wi.z / pdf);
+    }
+    return glm::vec2(sum / double(kStrata * kStrata));
+  }
+
+  glm::vec2 lookup(float NoV, float R) const {
+    const float x = clamp01(NoV) * (kSize - 1), y = clamp01(R) * (kSize - 1);
+    const int i = std::min(int(x), kSize - 2), j = std::min(int(y), kSize - 2);
+    const float fx = x - i, fy = y - j;
+    auto at = [&](int a, int b) { return terms[size_t(a) * kSize + b]; };
+    return (1 - fx) * ((1 - fy) * at(i, j) + fy * at(i, j + 1)) +
+           fx * ((1 - fy) * at(i + 1, j) + fy * at(i + 1, j + 1));
+  }
+};
+
+}  // namespace
+
+glm::vec2 specular_albedo_terms(float NoV, float roughness) {
+  static const SpecularAlbedoTable table;
+  return table.lookup(NoV, roughness);
+}
+
+glm::vec3 specular_albedo(const BrdfParams& p, float NoV) {
+  const BrdfParams c = clamped(p);
+  const glm::vec2 terms = specular_albedo_terms(NoV, c.roughness);
+  const glm::vec3 F0 = specular_F0(c.base_color, c.metalness);
+  return F0 * terms.x + (glm::vec3(1.0f) - F0) * terms.y;
 }
 
 }  // namespace phyir::render

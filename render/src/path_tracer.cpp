@@ -5,161 +5,161 @@
 #include "phyir/core/safe_math.h"
 #include "phyir/render/brdf.h"
 #include "phyir/render/dielectric.h"
+#include "phyir/render/direct_lighting.h"
 #include "phyir/render/frame.h"
 #include "phyir/render/ray_offset.h"
-#include "phyir/render/rng.h"
+#include "phyir/render/streams.h"
 
 namespace phyir::render {
 
 namespace {
 
-// Purposes of the per-bounce random streams.
-enum Stream : uint64_t { kBrdfStream = 1, kEmitterStream = 2, kEnvironmentStream = 3, kRouletteStream = 4, kGlassStream = 5 };
-
-Rng bounce_rng(uint64_t path_key, int bounce, Stream purpose) {
-  return Rng(mix64(path_key ^ mix64(uint64_t(bounce) * 8 + purpose)), purpose);
-}
-
-// Shading frame at a hit, with wo on the positive side. Falls back to the geometric
-// normal when the shading normal would put the viewer below the surface.
-Frame shading_frame(const SurfaceInteraction& si, const glm::vec3& wo_world) {
-  if (glm::dot(si.shading_normal, wo_world) > 0.0f) return Frame(si.shading_normal);
-  return Frame(si.geometric_normal);
-}
-
+// One path, bounce by bounce. The template flags drop the code of effects the scene lacks.
 template <bool kEmitters, bool kEnvironment, bool kTransmission>
-glm::vec3 trace_path(const RenderScene& scene, const PathSettings& settings, const Ray& camera_ray,
-                     uint64_t path_key, const FirstBounceSamples* first, PathCounters* counters) {
-  glm::vec3 L(0.0f);
-  glm::vec3 beta(1.0f);
-  Ray ray = camera_ray;
-  bool previous_delta = true;  // the camera ray counts as a delta "bounce": no MIS
-  float previous_pdf = 0.0f;
-  glm::vec3 previous_position = ray.origin;
-  const EnvironmentLight* environment = kEnvironment ? scene.environment() : nullptr;
-  ++counters->paths;
+class PathKernel {
+ public:
+  PathKernel(const RenderScene& scene, const PathSettings& settings, uint64_t key, int max_bounces,
+             PathCounters* counters)
+      : scene_(scene), settings_(settings), key_(key), max_bounces_(max_bounces), counters_(counters),
+        environment_(kEnvironment ? scene.environment() : nullptr) {}
 
-  for (int bounce = 0;; ++bounce) {
-    SurfaceInteraction si;
-    ++counters->rays;
-    if (!scene.trace(ray, &si)) {
-      if (environment) {
-        const glm::vec3 Le = environment->radiance(ray.direction);
-        const float w = previous_delta ? 1.0f
-                                       : power_heuristic(previous_pdf, environment->pdf(ray.direction));
-        L += beta * Le * w;
+  glm::vec3 run(const PathStart& start) {
+    ray_ = start.ray;
+    previous_position_ = ray_.origin;
+    ++counters_->paths;
+    for (int bounce = 0;; ++bounce) {
+      SurfaceInteraction si;
+      if (bounce == 0 && start.hit) {
+        si = *start.hit;  // its emission is the caller's
+      } else if (!arrive(&si)) {
+        break;
       }
-      break;
+      if (bounce >= max_bounces_) break;
+      if (!scatter(si, bounce, bounce == 0 ? start.first : nullptr)) break;
     }
-    if (si.emits) {
+    if (!is_finite(L_)) {
+      ++counters_->nonfinite_samples;
+      return glm::vec3(0.0f);
+    }
+    return L_;
+  }
+
+ private:
+  // Traces the current ray: the environment where it leaves (false), else the hit and its
+  // emission, MIS-weighted against the light sample of the previous bounce.
+  bool arrive(SurfaceInteraction* si) {
+    ++counters_->rays;
+    if (!scene_.trace(ray_, si)) {
+      if (environment_) {
+        const float w =
+            previous_delta_ ? 1.0f : environment_hit_weight(scene_, previous_pdf_, ray_.direction);
+        L_ += beta_ * environment_->radiance(ray_.direction) * w;
+      }
+      return false;
+    }
+    if (si->emits) {
       float w = 1.0f;
-      if (kEmitters && !previous_delta) {
-        const float light_pdf = scene.emitters().pdf(previous_position, si.mesh, si.triangle, si.position);
-        w = power_heuristic(previous_pdf, light_pdf);
-      }
-      L += beta * si.emission * w;
+      if (kEmitters && !previous_delta_) w = emitter_hit_weight(scene_, previous_position_, previous_pdf_, *si);
+      L_ += beta_ * si->emission * w;
     }
-    if (bounce >= settings.max_bounces) break;
+    return true;
+  }
 
-    const glm::vec3 wo_world = -ray.direction;
-
-    // Glass: a delta dielectric lobe chosen with probability `transmission`.
+  // Direct light at si and the next ray; false when the path ends.
+  bool scatter(const SurfaceInteraction& si, int bounce, const FirstBounceSamples* first) {
+    const glm::vec3 wo_world = -ray_.direction;
     if constexpr (kTransmission) {
       if (si.transmission > 0.0f) {
-        Rng rng = bounce_rng(path_key, bounce, kGlassStream);
-        if (rng.next_float() < si.transmission) {
-          // Geometric normal faces the ray; `entering` when the ray hit the front face.
-          const Frame frame(si.geometric_normal);
-          // An IOR of 1 (or less) is no interface: keep eta just above 1 so the Fresnel
-          // and refraction formulas stay defined (glTF allows ior = 1 as a special case).
-          const float eta = std::max(si.ior, 1.0f + 1e-4f);
-          const DielectricSample ds =
-              sample_dielectric(frame.to_local(wo_world), eta, si.front_face, si.brdf.base_color, rng.next_float());
-          const glm::vec3 wi = frame.to_world(ds.wi);
-          beta *= ds.weight;
-          previous_delta = true;
-          previous_position = si.position;
-          ray = Ray{spawn_origin(si.position, si.geometric_normal, wi), wi};
-          if (max_component(beta) <= 0.0f) break;
-          continue;
-        }
+        Rng rng = stream(key_, Purpose::kPathGlass, uint64_t(bounce));
+        if (rng.next_float() < si.transmission) return refract(si, wo_world, &rng);
       }
     }
+    const ShadingPoint x = shading_point(si, wo_world);
+    add_direct_light(x, bounce, first);
+    return reflect(si, x, bounce, first) && roulette(bounce);
+  }
 
-    const Frame frame = shading_frame(si, wo_world);
-    const glm::vec3 wo = frame.to_local(wo_world);
+  // Glass: a delta dielectric lobe, chosen with probability `transmission`.
+  bool refract(const SurfaceInteraction& si, const glm::vec3& wo_world, Rng* rng) {
+    const Frame frame(si.geometric_normal);  // faces the ray; `front_face`: entering
+    // An IOR of 1 (or less) is no interface: keep eta just above 1 so the Fresnel and
+    // refraction formulas stay defined (glTF allows ior = 1 as a special case).
+    const float eta = std::max(si.ior, 1.0f + 1e-4f);
+    const DielectricSample ds =
+        sample_dielectric(frame.to_local(wo_world), eta, si.front_face, si.brdf.base_color, rng->next_float());
+    const glm::vec3 wi = frame.to_world(ds.wi);
+    beta_ *= ds.weight;
+    previous_delta_ = true;
+    previous_position_ = si.position;
+    ray_ = Ray{spawn_origin(si.position, si.geometric_normal, wi), wi};
+    return !(max_component(beta_) <= 0.0f);  // a NaN goes on, to be counted at the end
+  }
 
-    // Next-event estimation on emissive triangles (non-delta part of the BRDF only).
+  // Next-event estimation (the non-delta part of the BRDF only).
+  void add_direct_light(const ShadingPoint& x, int bounce, const FirstBounceSamples* first) {
     if constexpr (kEmitters) {
-      Rng rng = bounce_rng(path_key, bounce, kEmitterStream);
-      float u_select = rng.next_float();
-      glm::vec2 u_point = rng.next_2d();
-      if (first && bounce == 0) u_select = first->light_select, u_point = first->light_point;
-      EmitterSample ls;
-      if (scene.emitters().sample(si.position, u_select, u_point, &ls) && ls.pdf > 0.0f &&
-          max_component(ls.radiance) > 0.0f) {
-        const glm::vec3 wi = frame.to_local(ls.wi);
-        const glm::vec3 f = brdf_eval(si.brdf, wo, wi);
-        if (wi.z > 0.0f && glm::dot(ls.wi, si.geometric_normal) > 0.0f && max_component(f) > 0.0f) {
-          const Ray shadow = shadow_ray_to(si.position, si.geometric_normal, ls.position, ls.normal);
-          ++counters->rays;
-          if (!scene.accelerator().occluded(shadow)) {
-            const float w = power_heuristic(ls.pdf, brdf_pdf(si.brdf, wo, wi));
-            L += beta * f * ls.radiance * (wi.z * w / ls.pdf);
-          }
-        }
-      }
+      Rng rng = stream(key_, Purpose::kPathLight, uint64_t(bounce));
+      LightVariates u;
+      u.select = rng.next_float();
+      u.point = rng.next_2d();
+      if (first) u.select = first->light_select, u.point = first->light_point;
+      L_ += sample_emitter_light(scene_, x, u, DirectLightOptions{}, beta_, nullptr, counters_);
     }
     if constexpr (kEnvironment) {
-      if (environment) {
-        Rng rng = bounce_rng(path_key, bounce, kEnvironmentStream);
-        glm::vec3 wi_world, Le;
-        float pdf;
-        if (environment->sample(rng.next_2d(), &wi_world, &Le, &pdf) && pdf > 0.0f) {
-          const glm::vec3 wi = frame.to_local(wi_world);
-          const glm::vec3 f = brdf_eval(si.brdf, wo, wi);
-          if (wi.z > 0.0f && glm::dot(wi_world, si.geometric_normal) > 0.0f && max_component(f) > 0.0f) {
-            const Ray shadow{spawn_origin(si.position, si.geometric_normal, wi_world), wi_world};
-            ++counters->rays;
-            if (!scene.accelerator().occluded(shadow)) {
-              const float w = power_heuristic(pdf, brdf_pdf(si.brdf, wo, wi));
-              L += beta * f * Le * (wi.z * w / pdf);
-            }
-          }
-        }
+      if (environment_) {
+        Rng rng = stream(key_, Purpose::kPathEnvironment, uint64_t(bounce));
+        L_ += sample_environment_light(scene_, x, rng.next_2d(), beta_, counters_);
       }
     }
+  }
 
-    // Continue the path by sampling the BRDF.
-    Rng rng = bounce_rng(path_key, bounce, kBrdfStream);
+  // The next ray, by sampling the BRDF.
+  bool reflect(const SurfaceInteraction& si, const ShadingPoint& x, int bounce, const FirstBounceSamples* first) {
+    Rng rng = stream(key_, Purpose::kPathBrdf, uint64_t(bounce));
     float u_lobe = rng.next_float();
     glm::vec2 u_brdf = rng.next_2d();
-    if (first && bounce == 0) u_lobe = first->lobe, u_brdf = first->brdf;
+    if (first) u_lobe = first->lobe, u_brdf = first->brdf;
     BrdfSample bs;
-    if (!brdf_sample(si.brdf, wo, u_lobe, u_brdf, &bs)) break;
-    const glm::vec3 wi_world = frame.to_world(bs.wi);
+    if (!brdf_sample(si.brdf, x.wo, u_lobe, u_brdf, &bs)) return false;
+    const glm::vec3 wi_world = x.frame.to_world(bs.wi);
     // Light leaking through the geometric surface (shading normals) ends the path.
-    if (glm::dot(wi_world, si.geometric_normal) <= 0.0f) break;
-    beta *= bs.weight;
-    previous_delta = bs.delta;
-    previous_pdf = bs.pdf;
-    previous_position = si.position;
-    ray = Ray{spawn_origin(si.position, si.geometric_normal, wi_world), wi_world};
+    if (glm::dot(wi_world, si.geometric_normal) <= 0.0f) return false;
+    beta_ *= bs.weight;
+    previous_delta_ = bs.delta;
+    previous_pdf_ = bs.pdf;
+    previous_position_ = si.position;
+    ray_ = Ray{spawn_origin(si.position, si.geometric_normal, wi_world), wi_world};
+    return true;
+  }
 
-    if (bounce + 1 >= settings.roulette_start) {
-      const float survive = std::min(0.95f, max_component(beta));
-      Rng rr = bounce_rng(path_key, bounce, kRouletteStream);
-      if (!(rr.next_float() < survive)) break;
-      beta /= survive;
+  bool roulette(int bounce) {
+    if (bounce + 1 >= settings_.roulette_start) {
+      const float survive = std::min(0.95f, max_component(beta_));
+      Rng rng = stream(key_, Purpose::kPathRoulette, uint64_t(bounce));
+      if (!(rng.next_float() < survive)) return false;
+      beta_ /= survive;
     }
-    if (!(max_component(beta) > 0.0f)) break;
+    return max_component(beta_) > 0.0f;
   }
 
-  if (!is_finite(L)) {
-    ++counters->nonfinite_samples;
-    return glm::vec3(0.0f);
-  }
-  return L;
+  const RenderScene& scene_;
+  const PathSettings& settings_;
+  const uint64_t key_;
+  const int max_bounces_;
+  PathCounters* counters_;
+  const EnvironmentLight* environment_;
+  glm::vec3 L_{0.0f};
+  glm::vec3 beta_{1.0f};
+  Ray ray_;
+  bool previous_delta_ = true;  // the first ray counts as a delta "bounce": no MIS
+  float previous_pdf_ = 0.0f;
+  glm::vec3 previous_position_{0.0f};
+};
+
+template <bool kEmitters, bool kEnvironment, bool kTransmission>
+glm::vec3 trace_path(const RenderScene& scene, const PathSettings& settings, const PathStart& start, uint64_t key,
+                     int max_bounces, PathCounters* counters) {
+  return PathKernel<kEmitters, kEnvironment, kTransmission>(scene, settings, key, max_bounces, counters).run(start);
 }
 
 }  // namespace
@@ -177,16 +177,21 @@ PathTracer::PathTracer(const RenderScene& scene, const Effects& effects, const P
 }
 
 glm::vec3 PathTracer::radiance(const Ray& ray, uint64_t path_key, PathCounters* counters) const {
-  return kernel_(*scene_, settings_, ray, path_key, nullptr, counters);
+  return kernel_(*scene_, settings_, PathStart{ray}, path_key, settings_.max_bounces, counters);
 }
 
 glm::vec3 PathTracer::radiance(const Ray& ray, uint64_t path_key, const FirstBounceSamples& first,
                                PathCounters* counters) const {
-  return kernel_(*scene_, settings_, ray, path_key, &first, counters);
+  return kernel_(*scene_, settings_, PathStart{ray, nullptr, &first}, path_key, settings_.max_bounces, counters);
 }
 
-uint64_t PathTracer::path_key(uint64_t seed, uint64_t pixel, uint64_t sample) {
-  return mix64(mix64(seed) ^ mix64(pixel * 0x100000001B3ull + sample));
+glm::vec3 PathTracer::radiance(const Ray& ray, uint64_t path_key, int max_bounces, PathCounters* counters) const {
+  return kernel_(*scene_, settings_, PathStart{ray}, path_key, max_bounces, counters);
+}
+
+glm::vec3 PathTracer::continue_from(const SurfaceInteraction& hit, const Ray& ray, uint64_t path_key,
+                                    int max_bounces, PathCounters* counters) const {
+  return kernel_(*scene_, settings_, PathStart{ray, &hit}, path_key, max_bounces, counters);
 }
 
 }  // namespace phyir::render

@@ -17,7 +17,7 @@
 #include "phyir/render/foot_correction.h"
 #include "phyir/render/probe_sharing.h"
 #include "phyir/render/radiance_cache.h"
-#include "phyir/render/rng.h"
+#include "phyir/render/streams.h"
 #include "phyir/render/sampling.h"
 #include "probe_texel_estimator.h"
 
@@ -44,13 +44,6 @@ constexpr int kLightPartSppFactor = 4;
 constexpr int kLightPartEdgeSppFactor = 64;
 constexpr int kEmissionSppFactor = 16;
 constexpr int kEmissionEdgeSppFactor = 256;
-
-// Sample ids: a texel's samples are 0 .. spp (1 + hard_spp_factor + kEmissionEdgeSppFactor) - 1; these three
-// keep the discovery ray and the strata permutations on streams of their own.
-constexpr uint64_t kDiscoverySample = uint64_t(1) << 40;
-constexpr uint64_t kStrataStream = uint64_t(1) << 41;
-constexpr uint64_t kInterleaveStream = uint64_t(1) << 42;
-constexpr uint64_t kLightPartStream = uint64_t(1) << 43;
 
 // The foot correction needs this many probes to tell the difference common to all of them
 // (the last bounce) from each one's own (foot_correction.h).
@@ -270,7 +263,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
   }
   stats.computed_probes = todo.size();
 
-  const uint64_t probe_seed = mix64(settings.seed ^ 0x70726f6265ull);  // "probe": apart from color.exr's streams
+  const uint64_t probe_seed = stream_key(settings.seed, Purpose::kProbeSeed);  // apart from color.exr's streams
   const int texels = layout.texels_per_probe();
   auto texel_id = [&](int probe, int texel) { return uint64_t(probe) * uint64_t(texels) + uint64_t(texel); };
   tbb::enumerable_thread_specific<PathCounters> local;
@@ -289,7 +282,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
     cs.cell_size = settings.cache_cell;
     cs.samples_per_cell = settings.cache_spp;
     cs.direct_distance_cells = settings.cache_direct_cells;
-    cs.seed = mix64(settings.seed ^ 0x6361636865ull);  // "cache"
+    cs.seed = stream_key(settings.seed, Purpose::kCacheSeed);
     cs.progress = settings.progress;
     cache = std::make_unique<RadianceCache>(scene, effects, settings.path, cs);
     tbb::enumerable_thread_specific<RadianceCache::Collector> collectors;
@@ -302,7 +295,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
         for (int t = 0; t < texels; ++t) {
           for (size_t k : tiles[n]) {
             const int p = todo[k];
-            const uint64_t key = PathTracer::path_key(probe_seed, texel_id(p, t), kDiscoverySample);
+            const uint64_t key = item_stream_key(probe_seed, texel_id(p, t), Purpose::kProbeDiscovery);
             Rng rng(key, 0);
             const Ray ray{out.sites[size_t(p)].origin,
                           probe_texel_direction(t / layout.res_width, t % layout.res_width, layout.res_height,
@@ -310,7 +303,8 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
             SurfaceInteraction si;
             ++c.rays;
             if (scene.trace(ray, &si) && !(si.transmission > 0.0f))
-              collector.offer(*cache, cache_point(si, si.shading_normal), mix64(key));
+              collector.offer(*cache, cache_point(si, si.shading_normal),
+                              stream_key(key, Purpose::kProbeCacheTieBreak));
           }
         }
       }
@@ -429,14 +423,14 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
             const ProbeTexel texel(row, col, layout.res_height, layout.res_width);
             glm::vec3 cos_all(0.0f), cos_emitted(0.0f);
             auto estimate = [&](int first, int count, Part part, bool* saw_hard, float* spread = nullptr) {
-              Rng permutation(PathTracer::path_key(probe_seed, texel_id(p, t), kStrataStream + uint64_t(first)), 0);
+              Rng permutation = item_stream(probe_seed, texel_id(p, t), Purpose::kProbeStrata, uint64_t(first));
               // The interleaving key is the same for every probe (texel and pass only).
-              probe.interleave.key = PathTracer::path_key(probe_seed, uint64_t(t), kInterleaveStream + uint64_t(first));
+              probe.interleave.key = item_stream_key(probe_seed, uint64_t(t), Purpose::kProbeInterleave, uint64_t(first));
               stratified_square(count, permutation, &strata, probe.interleave);
               glm::dvec3 sum(0.0), sum_cos(0.0), sum_emitted_cos(0.0);
               float lo = std::numeric_limits<float>::infinity(), hi = 0.0f;
               for (int s = 0; s < count; ++s) {
-                const uint64_t key = PathTracer::path_key(probe_seed, texel_id(p, t), uint64_t(first + s));
+                const uint64_t key = sample_key(probe_seed, texel_id(p, t), uint64_t(first + s));
                 const Ray ray{origin, texel.direction(strata[size_t(s)])};
                 glm::vec3 emitted;
                 glm::vec3 L = estimator.sample(ray, key, part, foot, saw_hard, &distance, &emitted, &c);
@@ -482,7 +476,7 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
                 const bool edge = lit[size_t(t)] == EmitterFootprints::kEdge;
                 if (probe.analytic) {
                   probe.lights.texel_pieces(row, col, layout.res_height, layout.res_width, &pieces);
-                  Rng rng(PathTracer::path_key(probe_seed, texel_id(p, t), kLightPartStream), 0);
+                  Rng rng = item_stream(probe_seed, texel_id(p, t), Purpose::kProbeLightPart);
                   seen_emission = visible_emission(probe.lights, pieces, scene.accelerator(), origin,
                                                    spp * (edge ? kLightPartEdgeSppFactor : kLightPartSppFactor), rng,
                                                    probe.measured, &seen_emission_cos, &strata, &c.rays);

@@ -5,11 +5,10 @@
 // probe ray's own hit), its specular light by next-event estimation and a rouletted GGX ray,
 // direct light sampled per direction near the lights, glass path traced. Internal to
 // probe_renderer.cpp.
-#include <array>
 #include <glm/glm.hpp>
-#include <memory>
 
 #include "phyir/render/brdf.h"
+#include "phyir/render/direct_lighting.h"
 #include "phyir/render/effects.h"
 #include "phyir/render/foot_correction.h"
 #include "phyir/render/frame.h"
@@ -77,9 +76,8 @@ class TexelEstimator {
   // share of the surface's albedo scaled (a wall's ~5% in a fraction of the samples). Both
   // strategies stay unbiased under the power heuristic with the GGX ray's effective
   // density keep x pdf.
-  glm::vec3 reflected_split(const SurfaceInteraction& si, const Frame& frame, const glm::vec3& wo, const BrdfParams& p,
-                            const glm::vec3& fd, const CachedIrradiance& E, int depth, uint64_t key,
-                            PathCounters* c) const;
+  glm::vec3 reflected_split(const ShadingPoint& x, const glm::vec3& fd, const CachedIrradiance& E, int depth,
+                            uint64_t key, PathCounters* c) const;
 
   // Where a specular chain ends in the cache: (f_d + specular albedo / pi) E, i.e. the
   // specular lobe treated as if the light arriving were uniform: all of E where the cache
@@ -88,30 +86,19 @@ class TexelEstimator {
   glm::vec3 terminal(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key,
                      PathCounters* c) const;
 
-  // Which part of the BRDF a next-event estimate goes through.
-  enum class Lobes { kAll, kSpecular };
+  // The cache's irradiance at the surface of x (si's hit), keyed for its fallback.
+  CachedIrradiance lookup(const SurfaceInteraction& si, const ShadingPoint& x, int depth, uint64_t key,
+                          PathCounters* c) const;
 
-  // A next-event estimate on the emitters of the light reflected towards wo through the
-  // BRDF (or its specular lobe), the mean of `count` light samples; `mis`: weighted by the
-  // power heuristic against the BRDF-sampled (or GGX-sampled) ray of the same event, which
-  // is traced with probability `brdf_strategy_probability` (its effective density is that
-  // times its pdf). Multi-sample MIS: `count` light samples against one ray, so the light
-  // strategy's density counts `count` times in both weights (the caller's ray uses the same).
-  // A sample whose unoccluded contribution is below `weak` (luminance) traces its shadow ray
-  // with probability contribution / weak and is weighted by the inverse (unbiased; 0: never).
-  glm::vec3 direct_light(const SurfaceInteraction& si, const Frame& frame, const glm::vec3& wo, const BrdfParams& p,
-                         Lobes lobes, int depth, uint64_t key, bool mis, PathCounters* c,
-                         float brdf_strategy_probability = 1.0f, int count = 1, float weak = 0.0f) const;
-
-  glm::vec3 light_sample(const SurfaceInteraction& si, const Frame& frame, const glm::vec3& wo, const BrdfParams& p,
-                         Lobes lobes, uint64_t key, int depth, bool mis, PathCounters* c,
-                         float brdf_strategy_probability, int count, float weak) const;
+  // A next-event estimate on the emitters (direct_lighting.h), the mean of
+  // options.light_samples samples, each from its own stream.
+  glm::vec3 direct_light(const ShadingPoint& x, const DirectLightOptions& options, int depth, uint64_t key,
+                         PathCounters* c) const;
 
   const RenderScene& scene_;
   const ProbeSettings& settings_;
   const RadianceCache* cache_;
-  PathTracer full_;                                                         // kPath, and glass at a first hit
-  std::array<std::unique_ptr<PathTracer>, kMaxSpecularDepth + 1> tracers_;  // max_bounces - d
+  PathTracer tracer_;  // kPath, and glass
 };
 
 // The cache's view of a surface point: normals on the side it was seen from.

@@ -9,11 +9,12 @@
 
 #include "phyir/core/progress.h"
 #include "phyir/core/safe_math.h"
+#include "phyir/render/direct_lighting.h"
 #include "phyir/render/emitter_sampler.h"
 #include "phyir/render/frame.h"
 #include "phyir/render/probe_grid.h"
 #include "phyir/render/ray_offset.h"
-#include "phyir/render/rng.h"
+#include "phyir/render/streams.h"
 #include "phyir/render/sampling.h"
 
 namespace phyir::render {
@@ -30,11 +31,6 @@ constexpr uint64_t kCoordMask = (uint64_t(1) << kCoordBits) - 1;
 // (a floor at y = 0, walls at x = +-2 m) do not lie on cell boundaries, where rounding
 // would split them between two layers of cells.
 constexpr float kGridShift[3] = {0.1234567f, 0.3456789f, 0.2345678f};
-
-// Purposes of the estimator's random streams (distinct from the path tracer's 1..5).
-enum Purpose : uint64_t { kFallbackDirection = 102, kFillPermutation = 103, kFillLight = 104, kFillLightPermutation = 105 };
-
-Rng purpose_rng(uint64_t key, Purpose purpose) { return Rng(mix64(key ^ mix64(purpose)), purpose); }
 
 // Dominant axis and sign pick a cube face; the other two components, divided by the
 // dominant one, pick one of 3 x 3 squares on it. 54 buckets of at most ~50 degrees.
@@ -55,7 +51,7 @@ RadianceCache::RadianceCache(const RenderScene& scene, const Effects& effects, c
     : scene_(&scene),
       settings_(settings),
       max_bounces_(path.max_bounces),
-      continuation_(scene, effects, PathSettings{std::max(path.max_bounces - 1, 0), path.roulette_start}) {}
+      tracer_(scene, effects, path) {}
 
 glm::dvec3 RadianceCache::lattice(const glm::vec3& position) const {
   glm::dvec3 c;
@@ -265,11 +261,11 @@ void RadianceCache::fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) 
   int sample = 0;
   for (int k = 0; k < cell->count; ++k) {
     const int n = total / cell->count + (k < total % cell->count ? 1 : 0);
-    const uint64_t point_key = mix64(settings_.seed ^ mix64(cell->key)) + uint64_t(k);
-    Rng permutation = purpose_rng(point_key, kFillPermutation);
+    const uint64_t point_key = item_stream_key(settings_.seed, cell->key, Purpose::kCachePoint, uint64_t(k));
+    Rng permutation = stream(point_key, Purpose::kCacheFillDirections);
     stratified_square(n, permutation, &directions);
     if (sample_direct) {
-      Rng light_permutation = purpose_rng(point_key, kFillLightPermutation);
+      Rng light_permutation = stream(point_key, Purpose::kCacheFillLightPoints);
       stratified_square(n, light_permutation, &light_points);
     }
     // The point moved towards the edge, per band (the same directions and random numbers).
@@ -281,8 +277,8 @@ void RadianceCache::fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) 
       if (on_surface[size_t(b)]) edge->band_pairs[size_t(b)] += n;
     }
     for (int s = 0; s < n; ++s) {
-      const uint64_t key = PathTracer::path_key(settings_.seed, cell->key, uint64_t(sample++));
-      const float u_select = sample_direct ? purpose_rng(key, kFillLight).next_float() : 0.0f;
+      const uint64_t key = sample_key(settings_.seed, cell->key, uint64_t(sample++));
+      const float u_select = sample_direct ? stream(key, Purpose::kCacheFillLight).next_float() : 0.0f;
       const CachedIrradiance e = estimate(cell->points[k], directions[size_t(s)], sample_direct, u_select,
                                           sample_direct ? light_points[size_t(s)] : glm::vec2(0.0f), key, counters);
       indirect += glm::dvec3(e.indirect);
@@ -307,7 +303,7 @@ CachedIrradiance RadianceCache::lookup(const CachePoint& point, uint64_t key, Pa
   CachedIrradiance out;
   if (interpolate(point, &out)) return out;
   fallbacks_.fetch_add(1, std::memory_order_relaxed);
-  Rng rng = purpose_rng(key, kFallbackDirection);
+  Rng rng = stream(key, Purpose::kCacheFallbackDirection);
   return estimate(point, rng.next_2d(), false, 0.0f, glm::vec2(0.0f), key, counters);
 }
 
@@ -366,23 +362,19 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
   out.has_direct = direct;
   if (max_bounces_ < 1) return out;  // nothing is reflected at all
   const RenderScene& scene = *scene_;
-  const EmitterSampler& emitters = scene.emitters();
   const glm::vec3& ns = point.shading_normal;
   const glm::vec3& ng = point.geometric_normal;
-  if (direct && !emitters.empty()) {
-    EmitterSample ls;
-    if (emitters.sample(point.position, u_select, u_light, &ls) && ls.pdf > 0.0f && max_component(ls.radiance) > 0.0f) {
-      const float cos_s = glm::dot(ls.wi, ns);
-      if (cos_s >= kMinCosine && glm::dot(ls.wi, ng) > 0.0f) {
-        const Ray shadow = shadow_ray_to(point.position, ng, ls.position, ls.normal);
-        ++counters->rays;
-        if (!scene.accelerator().occluded(shadow)) {
-          const glm::vec3 E = ls.radiance * (cos_s * power_heuristic(ls.pdf, cos_s * kInvPi) / ls.pdf);
-          if (is_finite(E)) out.direct += E;
-          else ++counters->nonfinite_samples;
-        }
-      }
-    }
+  if (direct && !scene.emitters().empty()) {
+    ShadingPoint x;
+    x.position = point.position;
+    x.geometric_normal = ng;
+    x.frame = Frame(ns);
+    DirectLightOptions irradiance;
+    irradiance.lobes = Lobes::kCosine;
+    const glm::vec3 E = sample_emitter_light(scene, x, LightVariates{u_select, u_light}, irradiance, glm::vec3(1.0f),
+                                             nullptr, counters);
+    if (is_finite(E)) out.direct += E;
+    else ++counters->nonfinite_samples;
   }
   const Frame frame(ns);
   const glm::vec3 local = sample_cosine_hemisphere(u);
@@ -397,13 +389,14 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
   } else {
     const glm::vec3 Le = si.emits ? si.emission : glm::vec3(0.0f);
     if (direct && si.emits) {
-      const float w = power_heuristic(local.z * kInvPi, emitters.pdf(point.position, si.mesh, si.triangle, si.position));
+      const float w = emitter_hit_weight(scene, point.position, local.z * kInvPi, si);
       const glm::vec3 D = kPi * Le * w;
       if (is_finite(D)) out.direct += D;
       else ++counters->nonfinite_samples;
     }
     // The tracer adds its first hit's emission (this same si) at full weight: take it out.
-    if (max_bounces_ >= 2) E = kPi * glm::max(continuation_.radiance(ray, key, counters) - Le, glm::vec3(0.0f));
+    if (max_bounces_ >= 2)
+      E = kPi * glm::max(tracer_.radiance(ray, key, max_bounces_ - 1, counters) - Le, glm::vec3(0.0f));
   }
   if (!is_finite(E)) {
     ++counters->nonfinite_samples;

@@ -9,7 +9,7 @@
 #include "phyir/core/progress.h"
 #include "phyir/render/gbuffer.h"
 #include "phyir/render/pixel_sampler.h"
-#include "phyir/render/rng.h"
+#include "phyir/render/streams.h"
 
 namespace phyir::render {
 
@@ -37,17 +37,17 @@ void render_color(const RenderScene& scene, const CameraModel& camera, const Ren
           for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
             const uint64_t pixel = uint64_t(y) * film->width() + x;
             // The pixel's scrambling key: from the seed and the pixel, apart from the paths' keys.
-            const uint64_t pixel_key = mix64(PathTracer::path_key(settings.seed, pixel, 0) ^ 0x706978656cull);
+            const uint64_t pixel_key = stream_key(sample_key(settings.seed, pixel, 0), Purpose::kPixelScramble);
             glm::dvec3 sum(0.0);
             for (int s = 0; s < settings.spp; ++s) {
-              const uint64_t key = PathTracer::path_key(settings.seed, pixel, s);
+              const uint64_t key = sample_key(settings.seed, pixel, s);
               const uint32_t index = uint32_t(s);
               const glm::vec2 p = glm::vec2(x, y) + pixel_sample(index, pixel_key);
               FirstBounceSamples first;
-              first.light_select = stratified_1d(index, mix64(pixel_key + 1));
-              first.light_point = pixel_sample(index, mix64(pixel_key + 2));
-              first.lobe = stratified_1d(index, mix64(pixel_key + 3));
-              first.brdf = pixel_sample(index, mix64(pixel_key + 4));
+              first.light_select = stratified_1d(index, stream_key(pixel_key, Purpose::kPixelLightSelect));
+              first.light_point = pixel_sample(index, stream_key(pixel_key, Purpose::kPixelLightPoint));
+              first.lobe = stratified_1d(index, stream_key(pixel_key, Purpose::kPixelLobe));
+              first.brdf = pixel_sample(index, stream_key(pixel_key, Purpose::kPixelBrdf));
               sum += glm::dvec3(tracer.radiance(camera.generate_ray(p), key, first, &c));
             }
             film->set_color(x, y, glm::vec3(sum / double(settings.spp)));

@@ -11,6 +11,7 @@
 #include "phyir/render/brdf.h"
 #include "phyir/render/frame.h"
 #include "phyir/render/path_tracer.h"
+#include "phyir/render/streams.h"
 #include "phyir/render/render_scene.h"
 #include "test_scenes.h"
 
@@ -28,7 +29,7 @@ Estimate estimate(const PathTracer& tracer, const Ray& ray, int n, uint64_t seed
   double sum_sq = 0.0, sum_l = 0.0;
   PathCounters counters;
   for (int i = 0; i < n; ++i) {
-    const glm::vec3 L = tracer.radiance(ray, PathTracer::path_key(seed, 0, i), &counters);
+    const glm::vec3 L = tracer.radiance(ray, sample_key(seed, 0, i), &counters);
     sum += glm::dvec3(L);
     const double l = luminance(L);
     sum_l += l;

@@ -22,6 +22,7 @@
 #include "phyir/render/brdf.h"
 #include "phyir/render/effects.h"
 #include "phyir/render/path_tracer.h"
+#include "phyir/render/streams.h"
 #include "phyir/render/probe_renderer.h"
 #include "phyir/render/render_view.h"
 #include "phyir/render/rng.h"
@@ -247,7 +248,7 @@ SampleStats sample_stats(const scenes::Scene& scene, const CameraModel& camera, 
       float largest = 0.0f;
       int nonzero = 0;
       for (int s = 0; s < spp; ++s) {
-        const uint64_t key = PathTracer::path_key(3, pixel, s);
+        const uint64_t key = sample_key(3, pixel, s);
         Rng jitter(key, 0);
         const glm::vec3 L = tracer.radiance(camera.generate_ray(glm::vec2(x, y) + jitter.next_2d()), key, &counters);
         ++st.samples;

@@ -66,4 +66,24 @@ struct BrdfSample {
 bool brdf_sample(const BrdfParams& p, const glm::vec3& wo, float u_lobe, const glm::vec2& u,
                  BrdfSample* out);
 
+// The parameters as every function here uses them: clamped to their documented ranges.
+BrdfParams clamped(const BrdfParams& p);
+
+// --- The specular lobe alone (f_s of eq. 14, no f_d) ------------------------------------
+// For estimators that take the diffuse lobe's light from elsewhere (a radiance cache).
+
+glm::vec3 specular_eval(const BrdfParams& p, const glm::vec3& wo, const glm::vec3& wi);
+// Density of GGX half-vector sampling (eq. 18, specular lobe alone) in wi.
+float specular_pdf(const BrdfParams& p, const glm::vec3& wo, const glm::vec3& wi);
+// Draws wi by GGX half-vector sampling; *pdf = specular_pdf(p, wo, wi). False when wi is
+// below the surface (or p is a mirror, whose lobe is a delta: use brdf_sample).
+bool specular_sample(const BrdfParams& p, const glm::vec3& wo, const glm::vec2& u, glm::vec3* wi, float* pdf);
+
+// Directional albedo of the specular lobe alone for F0 = 0 and F0 = 1:
+// albedo(F0) = F0 a.x + (1 - F0) a.y, the Fresnel term being linear in F0. From a table
+// over (n.v, R) filled once by stratified GGX sampling, bilinear in between.
+glm::vec2 specular_albedo_terms(float NoV, float roughness);
+// The same for the parameters' own F0.
+glm::vec3 specular_albedo(const BrdfParams& p, float NoV);
+
 }  // namespace phyir::render

@@ -8,7 +8,7 @@
 // without glass runs no transmission code and one without emitters no light sampling.
 //
 // Random numbers: every bounce of every path draws from its own streams (keyed by path
-// key, bounce and purpose), so enabling an effect that contributes nothing (e.g. light
+// key, bounce and purpose: streams.h), so enabling an effect that contributes nothing (e.g. light
 // sampling in a scene without lights) never shifts the random numbers of the rest: the
 // output is bit-identical, which the effects benchmark relies on.
 #include <cstdint>
@@ -16,23 +16,12 @@
 #include <glm/glm.hpp>
 
 #include "phyir/render/effects.h"
+#include "phyir/render/interaction.h"
+#include "phyir/render/path_counters.h"
 #include "phyir/render/ray.h"
 #include "phyir/render/render_scene.h"
 
 namespace phyir::render {
-
-struct PathCounters {
-  uint64_t rays = 0;            // closest-hit and shadow rays
-  uint64_t paths = 0;
-  uint64_t nonfinite_samples = 0;  // NaN/Inf path contributions caught and zeroed
-
-  PathCounters& operator+=(const PathCounters& o) {
-    rays += o.rays;
-    paths += o.paths;
-    nonfinite_samples += o.nonfinite_samples;
-    return *this;
-  }
-};
 
 struct PathSettings {
   int max_bounces = 8;          // scattering events after the first hit
@@ -50,6 +39,14 @@ struct FirstBounceSamples {
   glm::vec2 brdf{0.5f};
 };
 
+// Where a path starts (internal to PathTracer): a ray, or a hit already found along it; and
+// its first bounce's random numbers, if given.
+struct PathStart {
+  Ray ray;
+  const SurfaceInteraction* hit = nullptr;
+  const FirstBounceSamples* first = nullptr;
+};
+
 class PathTracer {
  public:
   // `effects` selects the kernel; pass analyse_effects(...) normally, all_effects() to
@@ -57,20 +54,26 @@ class PathTracer {
   PathTracer(const RenderScene& scene, const Effects& effects, const PathSettings& settings);
 
   // Radiance arriving at ray.origin from -ray.direction. `path_key` identifies the
-  // path's random streams (derive it with path_key()). Non-finite results are counted
+  // path's random streams (sample_key() of streams.h). Non-finite results are counted
   // and returned as 0.
   glm::vec3 radiance(const Ray& ray, uint64_t path_key, PathCounters* counters) const;
   // The same, with the first scattering event's random numbers given.
   glm::vec3 radiance(const Ray& ray, uint64_t path_key, const FirstBounceSamples& first, PathCounters* counters) const;
+  // The same with at most `max_bounces` scattering events instead of the settings'.
+  glm::vec3 radiance(const Ray& ray, uint64_t path_key, int max_bounces, PathCounters* counters) const;
+
+  // The light the surface at `hit` (found along `ray`) sends back along the ray, its own
+  // emission excluded: the path continued from a known hit, with at most `max_bounces`
+  // scattering events counting the hit's own, and the random streams radiance() would use
+  // from that hit on. Traces no ray to the hit.
+  glm::vec3 continue_from(const SurfaceInteraction& hit, const Ray& ray, uint64_t path_key, int max_bounces,
+                          PathCounters* counters) const;
 
   const Effects& effects() const { return effects_; }
-
-  // Key of sample `sample` of pixel `pixel` for render seed `seed`.
-  static uint64_t path_key(uint64_t seed, uint64_t pixel, uint64_t sample);
+  const PathSettings& settings() const { return settings_; }
 
  private:
-  using Kernel = glm::vec3 (*)(const RenderScene&, const PathSettings&, const Ray&, uint64_t,
-                               const FirstBounceSamples*, PathCounters*);
+  using Kernel = glm::vec3 (*)(const RenderScene&, const PathSettings&, const PathStart&, uint64_t, int, PathCounters*);
   const RenderScene* scene_;
   Effects effects_;
   PathSettings settings_;

@@ -30,7 +30,7 @@
 //    exact coverage of the texel, EmitterCoverage, that only ask whether an occluder hides
 //    the light) and those whose first spp directions met a light, glass or a glossy surface.
 // Random numbers: sample s of texel t of probe p draws from streams keyed by
-// (seed, p, t, s) (PathTracer::path_key of a probe seed), the cache's from (seed, cell,
+// (seed, p, t, s) (streams.h), the cache's from (seed, cell,
 // sample); so probes.exr is bit-identical for a seed whatever the thread count. Non-finite
 // samples are counted and zeroed.
 #include <cstdint>
@@ -121,10 +121,5 @@ ProbeOutput render_probes_at(const RenderScene& scene, const Effects& effects, s
 
 // The h x w probe (i, j) cut out of a mosaic.
 Image probe_image(const Image& mosaic, const ProbeLayout& layout, int i, int j);
-
-// Directional albedo of the specular lobe alone (f_s of eq. 14, no f_d) for F0 = 0 and
-// F0 = 1: albedo(F0) = F0 a.x + (1 - F0) a.y, the Fresnel term being linear in F0. From a
-// table over (n.v, R) filled once by stratified GGX sampling, bilinear in between.
-glm::vec2 specular_albedo_terms(float NoV, float roughness);
 
 }  // namespace phyir::render

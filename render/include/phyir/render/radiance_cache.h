@@ -222,7 +222,7 @@ class RadianceCache {
   const RenderScene* scene_;
   RadianceCacheSettings settings_;
   int max_bounces_;
-  PathTracer continuation_;  // max_bounces - 1: the paths after a cosine ray's hit
+  PathTracer tracer_;  // the paths after a cosine ray's hit (max_bounces - 1 of them)
   std::vector<Cell> cells_;  // sorted by key
   SparseCellGrid<int32_t> index_;  // cell -> index into cells_
   SparseCellGrid<Value> lookup_;  // what lookups read: the build's final values

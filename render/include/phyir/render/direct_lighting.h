@@ -1,0 +1,82 @@
+#pragma once
+// Direct lighting, written once for every estimator (the path tracer, the radiance cache,
+// the probe texel estimator): next-event estimation towards the scene's lights, and the
+// multiple-importance weight of a BRDF-sampled ray that reaches an emitter, both with the
+// power heuristic (Veach 1997). Which light a sample goes to is the EmitterSampler's choice
+// (emitter_sampler.h); a new kind of light joins there and here, not in the estimators.
+//
+// A next-event sample draws a light point with the given variates, evaluates the asked-for
+// lobes there, and traces one shadow ray. Its value is
+//   throughput f(wo, wi) L_e cos / p_light, times the MIS weight p_light^2 / (p_light^2 + p_brdf^2)
+// where p_light counts `light_samples` times (several light samples against one BRDF ray:
+// the balance of multi-sample MIS) and p_brdf is the competing ray's density times the
+// probability that the caller traces it at all.
+#include <glm/glm.hpp>
+
+#include "phyir/render/brdf.h"
+#include "phyir/render/frame.h"
+#include "phyir/render/interaction.h"
+#include "phyir/render/path_counters.h"
+#include "phyir/render/render_scene.h"
+#include "phyir/render/rng.h"
+
+namespace phyir::render {
+
+// A surface point being shaded: where it is, its frames, the direction it is seen from.
+struct ShadingPoint {
+  glm::vec3 position{0.0f};
+  glm::vec3 geometric_normal{0.0f, 0.0f, 1.0f};  // on the side the light must arrive from
+  Frame frame;                                   // shading frame (n = shading normal)
+  glm::vec3 wo{0.0f, 0.0f, 1.0f};                // towards the viewer, local
+  BrdfParams brdf;
+};
+
+// The shading frame at a hit: the shading normal, unless the viewer is below it (then the
+// geometric normal, which always faces the viewer).
+Frame shading_frame(const SurfaceInteraction& si, const glm::vec3& wo_world);
+
+// The shading point of a hit seen along -wo_world.
+ShadingPoint shading_point(const SurfaceInteraction& si, const glm::vec3& wo_world);
+
+// What a next-event sample is weighted through.
+enum class Lobes {
+  kAll,       // the whole BRDF (brdf_eval, brdf_pdf)
+  kSpecular,  // the specular lobe alone (specular_eval, specular_pdf)
+  kCosine,    // f = 1, p = cos / pi: irradiance (a radiance cache's estimate)
+};
+
+struct LightVariates {
+  float select = 0.5f;       // which light
+  glm::vec2 point{0.5f};     // where on it
+};
+
+struct DirectLightOptions {
+  Lobes lobes = Lobes::kAll;
+  bool mis = true;                          // false: the light sample alone, weight 1
+  float brdf_strategy_probability = 1.0f;   // the competing ray is traced this often
+  int light_samples = 1;                    // light samples per competing ray (see above)
+  // A sample whose unoccluded value (luminance) is below this traces its shadow ray with
+  // probability value / weak, drawn from *roulette, and is divided by it (unbiased; 0: never).
+  float weak = 0.0f;
+};
+
+// One next-event estimate of the light arriving straight from the emitters through the
+// asked-for lobes, times `throughput`. Shadow rays are counted in counters->rays.
+glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, const LightVariates& u,
+                               const DirectLightOptions& options, const glm::vec3& throughput, Rng* roulette,
+                               PathCounters* counters);
+
+// The same towards the environment (kAll only: only the path tracer samples it).
+glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint& x, const glm::vec2& u,
+                                   const glm::vec3& throughput, PathCounters* counters);
+
+// The MIS weight of a BRDF-sampled ray from `from` with density `brdf_pdf` (solid angle,
+// the probability of tracing it included) that hits the emitter at `hit`, against
+// `light_samples` next-event samples of the same scattering event.
+float emitter_hit_weight(const RenderScene& scene, const glm::vec3& from, float brdf_pdf, const SurfaceInteraction& hit,
+                         int light_samples = 1);
+
+// The same for a ray that leaves the scene and sees the environment in `direction`.
+float environment_hit_weight(const RenderScene& scene, float brdf_pdf, const glm::vec3& direction);
+
+}  // namespace phyir::render

@@ -1,0 +1,97 @@
+#include "phyir/render/direct_lighting.h"
+
+#include "phyir/core/safe_math.h"
+#include "phyir/render/ray_offset.h"
+
+namespace phyir::render {
+
+Frame shading_frame(const SurfaceInteraction& si, const glm::vec3& wo_world) {
+  if (glm::dot(si.shading_normal, wo_world) > 0.0f) return Frame(si.shading_normal);
+  return Frame(si.geometric_normal);
+}
+
+ShadingPoint shading_point(const SurfaceInteraction& si, const glm::vec3& wo_world) {
+  ShadingPoint x;
+  x.position = si.position;
+  x.geometric_normal = si.geometric_normal;
+  x.frame = shading_frame(si, wo_world);
+  x.wo = x.frame.to_local(wo_world);
+  x.brdf = si.brdf;
+  return x;
+}
+
+namespace {
+
+// f and the competing ray's density for the asked-for lobes.
+glm::vec3 lobe_eval(const ShadingPoint& x, Lobes lobes, const glm::vec3& wi) {
+  switch (lobes) {
+    case Lobes::kAll: return brdf_eval(x.brdf, x.wo, wi);
+    case Lobes::kSpecular: return specular_eval(x.brdf, x.wo, wi);
+    default: return wi.z >= kMinCosine ? glm::vec3(1.0f) : glm::vec3(0.0f);
+  }
+}
+
+float lobe_pdf(const ShadingPoint& x, Lobes lobes, const glm::vec3& wi) {
+  switch (lobes) {
+    case Lobes::kAll: return brdf_pdf(x.brdf, x.wo, wi);
+    case Lobes::kSpecular: return specular_pdf(x.brdf, x.wo, wi);
+    default: return wi.z * kInvPi;
+  }
+}
+
+}  // namespace
+
+glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, const LightVariates& u,
+                               const DirectLightOptions& options, const glm::vec3& throughput, Rng* roulette,
+                               PathCounters* counters) {
+  EmitterSample ls;
+  if (!scene.emitters().sample(x.position, u.select, u.point, &ls) || !(ls.pdf > 0.0f) ||
+      !(max_component(ls.radiance) > 0.0f))
+    return glm::vec3(0.0f);
+  const glm::vec3 wi = x.frame.to_local(ls.wi);
+  const glm::vec3 f = lobe_eval(x, options.lobes, wi);
+  // f > 0 implies wi.z >= kMinCosine for every lobe.
+  if (!(wi.z > 0.0f) || !(glm::dot(ls.wi, x.geometric_normal) > 0.0f) || !(max_component(f) > 0.0f))
+    return glm::vec3(0.0f);
+  const float w = options.mis ? power_heuristic(float(options.light_samples) * ls.pdf,
+                                                options.brdf_strategy_probability * lobe_pdf(x, options.lobes, wi))
+                              : 1.0f;
+  const glm::vec3 contribution = throughput * f * ls.radiance * (wi.z * w / ls.pdf);
+  float keep = 1.0f;
+  if (const float y = luminance(contribution); y < options.weak) {
+    keep = y / options.weak;
+    if (!(roulette->next_float() < keep)) return glm::vec3(0.0f);
+  }
+  ++counters->rays;
+  if (scene.accelerator().occluded(shadow_ray_to(x.position, x.geometric_normal, ls.position, ls.normal)))
+    return glm::vec3(0.0f);
+  return contribution / keep;
+}
+
+glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint& x, const glm::vec2& u,
+                                   const glm::vec3& throughput, PathCounters* counters) {
+  const EnvironmentLight* environment = scene.environment();
+  glm::vec3 wi_world, Le;
+  float pdf;
+  if (!environment || !environment->sample(u, &wi_world, &Le, &pdf) || !(pdf > 0.0f)) return glm::vec3(0.0f);
+  const glm::vec3 wi = x.frame.to_local(wi_world);
+  const glm::vec3 f = brdf_eval(x.brdf, x.wo, wi);
+  if (!(wi.z > 0.0f) || !(glm::dot(wi_world, x.geometric_normal) > 0.0f) || !(max_component(f) > 0.0f))
+    return glm::vec3(0.0f);
+  ++counters->rays;
+  if (scene.accelerator().occluded(Ray{spawn_origin(x.position, x.geometric_normal, wi_world), wi_world}))
+    return glm::vec3(0.0f);
+  const float w = power_heuristic(pdf, brdf_pdf(x.brdf, x.wo, wi));
+  return throughput * f * Le * (wi.z * w / pdf);
+}
+
+float emitter_hit_weight(const RenderScene& scene, const glm::vec3& from, float brdf_pdf, const SurfaceInteraction& hit,
+                         int light_samples) {
+  return power_heuristic(brdf_pdf, float(light_samples) * scene.emitters().pdf(from, hit.mesh, hit.triangle, hit.position));
+}
+
+float environment_hit_weight(const RenderScene& scene, float brdf_pdf, const glm::vec3& direction) {
+  return power_heuristic(brdf_pdf, scene.environment()->pdf(direction));
+}
+
+}  // namespace phyir::render
