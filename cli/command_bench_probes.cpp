@@ -73,7 +73,7 @@ constexpr const char* kConfigSyntax =
     "MODE:SPP[:CACHE_SPP[:CELL_M[:SEED[:DIRECT_CELLS[:SPREAD[:SHARE_RADIUS[:SHARE_PARALLAX]]]]]]]";
 
 Config parse_config(const std::string& text, const render::ProbeSettings& defaults) {
-  Config c{text, render::ProbeMode::kCache, 0, defaults.cache_spp, defaults.cache_cell, 0, defaults.cache_direct_cells,
+  Config c{text, render::ProbeMode::kCache, 0, defaults.cache.samples_per_cell, defaults.cache.cell_size, 0, defaults.cache.direct_distance_cells,
            defaults.spread_threshold, defaults.sharing.radius, defaults.sharing.parallax_texels};
   std::vector<std::string> parts;
   std::stringstream in(text);
@@ -189,7 +189,7 @@ void run_bench_probes(const BenchProbeFlags& f) {
       r.progress = true;
       spdlog::info("reference half {}: {} probes, {}x{} texels, {} spp, path mode", h, n, s.layout.res_height,
                    s.layout.res_width, r.spp);
-      const render::ProbeOutput out = render::render_probes_at(render_scene, effects, sites, r, subset);
+      const render::ProbeOutput out = render::ProbeRenderer(render_scene, effects, r).render_at(sites, subset);
       halves[h] = strip(out.mosaic, s.layout, subset);
       write_image(path, halves[h]);
     }
@@ -204,18 +204,18 @@ void run_bench_probes(const BenchProbeFlags& f) {
       render::ProbeSettings t = s;
       t.mode = c.mode;
       t.spp = c.spp;
-      t.cache_spp = c.cache_spp;
-      t.cache_direct_cells = c.direct_cells;
+      t.cache.samples_per_cell = c.cache_spp;
+      t.cache.direct_distance_cells = c.direct_cells;
       t.spread_threshold = c.spread;
       t.sharing.radius = c.share_radius;
       t.sharing.parallax_texels = c.share_parallax;
-      t.cache_cell = c.cache_cell;
+      t.cache.cell_size = c.cache_cell;
       t.seed = s.seed + c.seed_offset;
       t.validate();
       const bool extrapolated = c.mode == render::ProbeMode::kPath || f.subset_only;
       const double cpu_start = process_cpu_seconds();
-      const render::ProbeOutput out = extrapolated ? render::render_probes_at(render_scene, effects, sites, t, subset)
-                                                   : render::render_probes_at(render_scene, effects, sites, t);
+      const render::ProbeOutput out = extrapolated ? render::ProbeRenderer(render_scene, effects, t).render_at(sites, subset)
+                                                   : render::ProbeRenderer(render_scene, effects, t).render_at(sites);
       double cpu = process_cpu_seconds() - cpu_start;
       double seconds = out.stats.total_seconds;
       double rays = double(out.stats.counters.rays);

@@ -136,9 +136,9 @@ dataset::DatasetSettings resolve(const SettingsFlags& f) {
   if (f.given("--probe-spp")) s.probe.spp = f.probe_spp;
   if (f.given("--probe-mode")) s.probe.mode = render::parse_probe_mode(f.probe_mode);
   if (f.given("--probe-offset")) s.probe.offset = f.probe_offset;
-  if (f.given("--probe-cache-cell")) s.probe.cache_cell = f.probe_cache_cell;
-  if (f.given("--probe-cache-spp")) s.probe.cache_spp = f.probe_cache_spp;
-  if (f.given("--probe-cache-direct-cells")) s.probe.cache_direct_cells = f.probe_cache_direct_cells;
+  if (f.given("--probe-cache-cell")) s.probe.cache.cell_size = f.probe_cache_cell;
+  if (f.given("--probe-cache-spp")) s.probe.cache.samples_per_cell = f.probe_cache_spp;
+  if (f.given("--probe-cache-direct-cells")) s.probe.cache.direct_distance_cells = f.probe_cache_direct_cells;
   if (f.given("--probe-spread-threshold")) s.probe.spread_threshold = f.probe_spread_threshold;
   if (f.given("--probe-share-radius")) s.probe.sharing.radius = f.probe_share_radius;
   if (f.given("--probe-share-parallax")) s.probe.sharing.parallax_texels = f.probe_share_parallax;

@@ -68,9 +68,9 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--probe-spp", job.probe.spp, "directions per probe texel")->capture_default_str();
   cmd->add_option("--probe-mode", flags->probe_mode, "cache (shared irradiance cache) or path (unbiased reference, slow)")->capture_default_str();
   cmd->add_option("--probe-offset", job.probe.offset, "probe origin's distance off the surface along its normal, metres")->capture_default_str();
-  cmd->add_option("--probe-cache-cell", job.probe.cache_cell, "cache mode: cell size, metres")->capture_default_str();
-  cmd->add_option("--probe-cache-spp", job.probe.cache_spp, "cache mode: irradiance samples per cell")->capture_default_str();
-  cmd->add_option("--probe-cache-direct-cells", job.probe.cache_direct_cells,
+  cmd->add_option("--probe-cache-cell", job.probe.cache.cell_size, "cache mode: cell size, metres")->capture_default_str();
+  cmd->add_option("--probe-cache-spp", job.probe.cache.samples_per_cell, "cache mode: irradiance samples per cell")->capture_default_str();
+  cmd->add_option("--probe-cache-direct-cells", job.probe.cache.direct_distance_cells,
                   "cache mode: cache direct light too in cells at least this many cell sizes from every emitter (0: never)")
       ->capture_default_str();
   cmd->add_option("--probe-spread-threshold", job.probe.spread_threshold,

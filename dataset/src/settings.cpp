@@ -101,7 +101,7 @@ DatasetSettings preset_settings(const std::string& name) {
     s.max_bounces = 4;
     layout = {8, 16, 4, 8};
     s.probe.spp = 2;
-    s.probe.cache_spp = 16;
+    s.probe.cache.samples_per_cell = 16;
   } else if (name == "cpu") {
     // The default: a useful training resolution at a cost a CPU node sustains
     // (docs/dataset.md has the measured views per hour).

@@ -1,5 +1,6 @@
 // The stability matrix (issue 8; docs/robustness.md): every hard parameter combination of
-// the BRDF (eval, pdf, sample), the path tracer and the probes gives finite, non-negative
+// the BRDF (eval, pdf, sample) and the path tracer gives (the probes: tests/probes/
+// probe_stability_test.cpp) finite, non-negative
 // numbers, and no single sample is large because something divided by a near-zero pdf.
 //
 //  material axes: roughness {0, 1e-6, 1e-3, 0.05, 0.5, 1} x metalness {0, 0.5, 1} x base
@@ -23,17 +24,16 @@
 #include "phyir/render/effects.h"
 #include "phyir/render/path_tracer.h"
 #include "phyir/render/streams.h"
-#include "phyir/render/probe_renderer.h"
 #include "phyir/render/render_view.h"
 #include "phyir/render/rng.h"
+#include "stability_helpers.h"
 #include "test_scenes.h"
 
 namespace phyir::render {
 namespace {
 
-constexpr float kRoughness[] = {0.0f, 1e-6f, 1e-3f, 0.05f, 0.5f, 1.0f};
-constexpr float kMetalness[] = {0.0f, 0.5f, 1.0f};
-constexpr float kBaseColor[] = {0.0f, 1.0f};
+using namespace stability;
+
 // n.v and n.l: from head-on to grazing, through kMinCosine (1e-4), to slightly below the
 // surface, as a shading normal tilted away from the geometric one produces.
 constexpr float kCosines[] = {1.0f, 0.7f, 0.3f, 0.1f, 1e-2f, 1e-3f, 2e-4f, 1e-4f, 5e-5f, 0.0f, -1e-4f, -1e-2f};
@@ -41,19 +41,7 @@ constexpr float kCosines[] = {1.0f, 0.7f, 0.3f, 0.1f, 1e-2f, 1e-3f, 2e-4f, 1e-4f
 // opposite (the mirror plane, where the specular peak lies).
 constexpr float kAzimuths[] = {0.0f, 0.5f * kPi, kPi};
 
-std::vector<BrdfParams> material_matrix() {
-  std::vector<BrdfParams> out;
-  for (float r : kRoughness)
-    for (float m : kMetalness)
-      for (float b : kBaseColor) out.push_back({glm::vec3(b), r, m});
-  return out;
-}
 
-std::string describe(const BrdfParams& p) {
-  char text[96];
-  std::snprintf(text, sizeof text, "B=%g R=%g M=%g", p.base_color.x, p.roughness, p.metalness);
-  return text;
-}
 
 // A unit direction with the given cosine to n = +z and azimuth phi (cos may be negative).
 glm::vec3 direction(float cos_theta, float phi) {
@@ -63,10 +51,6 @@ glm::vec3 direction(float cos_theta, float phi) {
 
 bool finite_non_negative(const glm::vec3& v) { return is_finite(v) && v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f; }
 
-void report(const char* what, uint64_t cases) {
-  std::printf("[stability] %s: %llu cases\n", what, static_cast<unsigned long long>(cases));
-  ::testing::Test::RecordProperty(what, std::to_string(cases));
-}
 
 // --- BRDF ------------------------------------------------------------------------------------
 
@@ -201,13 +185,6 @@ TEST(StabilityMatrix, BrdfSampleWeightsAreFiniteAndBounded) {
 
 // --- Path tracer -----------------------------------------------------------------------------
 
-CameraModel panorama(const glm::vec3& position, int width = 16, int height = 8) {
-  CameraModel c;
-  c.position = position;
-  c.width = width;
-  c.height = height;
-  return c;
-}
 
 // Per-sample statistics of a small panorama rendered sample by sample with the path tracer.
 struct SampleStats {
@@ -291,18 +268,6 @@ void expect_stable(const SampleStats& st, const std::string& what) {
   EXPECT_TRUE(std::isfinite(st.image_mean)) << what;
 }
 
-// A 4 x 3 x 4 m room of grey diffuse walls whose whole ceiling emits radiance 1 downwards:
-// a large, uniform light, so every radiance in the room is a smooth function of position and
-// direction (no small bright region that only a lucky sample finds). The test material
-// covers the floor and a sphere.
-scenes::Scene lit_room(const BrdfParams& p, float radiance = 1.0f) {
-  scenes::Scene scene = test::make_box_room(glm::vec3(-2, 0, -2), glm::vec3(2, 3, 2), test::make_material(glm::vec3(0.5f)));
-  const int m = test::add_material(scene, test::make_material(p.base_color, p.roughness, p.metalness, "test"));
-  scene.meshes[2].material = m;  // the floor
-  test::add_uv_sphere(scene, glm::vec3(0.6f, 0.6f, -0.5f), 0.5f, m, 24, 12);
-  scene.meshes[3].material = test::add_material(scene, test::make_emitter(glm::vec3(radiance)));  // the ceiling
-  return scene;
-}
 
 // The reference value of a pixel is max(its mean, the image mean) (see sample_stats).
 // Why a ratio bound: with N samples, largest / mean <= N always (one sample carrying the
@@ -335,15 +300,6 @@ TEST(StabilityMatrix, PathTracerEveryMaterialHasBoundedSamples) {
   report("path tracer material samples", samples);
 }
 
-scenes::Scene scaled(scenes::Scene scene, float s) {
-  scene.bounds = scenes::Bounds{};
-  for (scenes::Mesh& m : scene.meshes)
-    for (glm::vec3& p : m.positions) {
-      p *= s;
-      scene.bounds.extend(p);
-    }
-  return scene;
-}
 
 TEST(StabilityMatrix, PathTracerSceneScales) {
   // The same room at 1 mm and 1 km for a 1 m room: ray offsets scale with the coordinates
@@ -458,85 +414,6 @@ TEST(StabilityMatrix, RenderViewAovsStayFinite) {
     ++cases;
   }
   report("render_view with AOVs (radiance 1e6 at 3 scales)", cases);
-}
-
-// --- Probes ----------------------------------------------------------------------------------
-
-TEST(StabilityMatrix, ProbesEveryMaterialAndMode) {
-  // Probes sit on the test material (the floor and the sphere), so their rays leave from it
-  // and see mirrors and metals of every roughness; 2 x 4 probes of 4 x 8 texels.
-  uint64_t cases = 0;
-  for (const BrdfParams& p : material_matrix()) {
-    scenes::Scene scene = lit_room(p);
-    const int hot = test::add_material(scene, test::make_emitter(glm::vec3(1e6f), true, "hot"));
-    test::add_quad(scene, glm::vec3(0.0f, 2.0f, 0.0f), glm::vec3(0.01f, 0, 0), glm::vec3(0, 0, 0.01f), hot);
-    const RenderScene rs(scene);
-    for (ProbeMode mode : {ProbeMode::kPath, ProbeMode::kCache}) {
-      ProbeSettings s;
-      s.mode = mode;
-      s.spp = 2;
-      s.layout = ProbeLayout{2, 4, 4, 8};
-      s.cache_spp = 16;
-      s.cache_cell = 0.5f;
-      s.hard_spp_factor = 2;
-      s.progress = false;
-      s.seed = 4;
-      const std::vector<ProbeSite> sites = place_probes(rs, panorama(glm::vec3(-0.4f, 1.4f, 0.6f)), s.layout, s.offset);
-      const ProbeOutput out = render_probes_at(rs, analyse_effects(scene, false), sites, s);
-      ++cases;
-      EXPECT_EQ(out.stats.counters.nonfinite_samples, 0u) << describe(p) << " " << probe_mode_name(mode);
-      for (float v : out.mosaic.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f) << describe(p);
-    }
-  }
-  report("probes (36 materials x 2 modes, radiance 1e6 emitter)", cases);
-}
-
-TEST(StabilityMatrix, ProbesAtExtremeScalesAndInsideObjects) {
-  uint64_t cases = 0;
-  const BrdfParams metal{glm::vec3(1.0f), 1e-3f, 1.0f};
-  for (float scale : {1e-3f, 1e3f}) {
-    scenes::Scene scene = scaled(lit_room(metal), scale);
-    const RenderScene rs(scene);
-    for (ProbeMode mode : {ProbeMode::kPath, ProbeMode::kCache}) {
-      ProbeSettings s;
-      s.mode = mode;
-      s.spp = 2;
-      s.layout = ProbeLayout{2, 4, 4, 8};
-      s.cache_spp = 16;
-      s.cache_cell = std::clamp(0.5f * scale, 1e-3f, 10.0f);
-      s.offset = std::clamp(0.01f * scale, 1e-4f, 1.0f);
-      s.progress = false;
-      const std::vector<ProbeSite> sites = place_probes(rs, panorama(scale * glm::vec3(-0.4f, 1.4f, 0.6f)), s.layout, s.offset);
-      const ProbeOutput out = render_probes_at(rs, analyse_effects(scene, false), sites, s);
-      ++cases;
-      EXPECT_EQ(out.stats.counters.nonfinite_samples, 0u) << "scale " << scale;
-      for (float v : out.mosaic.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f) << "scale " << scale;
-    }
-  }
-  {  // A probe site inside a closed box (origin in the dark, all walls seen from behind).
-    scenes::Scene scene = lit_room(metal);
-    test::add_box(scene, glm::vec3(-1.2f, 0.5f, -1.2f), glm::vec3(-0.6f, 1.1f, -0.6f), 0);
-    const RenderScene rs(scene);
-    ProbeSite site;
-    site.surface = glm::vec3(-0.9f, 0.5f, -0.9f);
-    site.normal = glm::vec3(0, 1, 0);
-    site.origin = glm::vec3(-0.9f, 0.8f, -0.9f);
-    site.offset = 0.3f;
-    site.status = ProbeStatus::kValid;
-    for (ProbeMode mode : {ProbeMode::kPath, ProbeMode::kCache}) {
-      ProbeSettings s;
-      s.mode = mode;
-      s.spp = 4;
-      s.layout = ProbeLayout{1, 1, 4, 8};
-      s.cache_spp = 16;
-      s.progress = false;
-      const ProbeOutput out = render_probes_at(rs, analyse_effects(scene, false), {site}, s);
-      ++cases;
-      EXPECT_EQ(out.stats.counters.nonfinite_samples, 0u);
-      for (float v : out.mosaic.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
-    }
-  }
-  report("probes at 1e-3/1e3 m and inside an object", cases);
 }
 
 }  // namespace

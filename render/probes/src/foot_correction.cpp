@@ -1,4 +1,4 @@
-#include "phyir/render/foot_correction.h"
+#include "foot_correction.h"
 
 #include <algorithm>
 #include <cmath>

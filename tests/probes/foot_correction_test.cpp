@@ -12,7 +12,7 @@
 
 #include "phyir/render/effects.h"
 #include "phyir/render/equirect.h"
-#include "phyir/render/foot_correction.h"
+#include "foot_correction.h"
 #include "phyir/render/probe_renderer.h"
 #include "phyir/render/render_scene.h"
 #include "phyir/render/rng.h"
@@ -191,15 +191,15 @@ TEST(ProbeFootCorrection, WithANoisyCacheTheProbesOwnFloorIsFarCloserToAConverge
     s.layout.res_width = 32;
     s.seed = seed;
     s.progress = false;
-    s.cache_spp = cache_spp;
+    s.cache.samples_per_cell = cache_spp;
     s.sharing.radius = 0;
     s.correct_foot = correct;
     return s;
   };
   const Effects effects = analyse_effects(scene, false);
-  const Image reference = render_probes_at(rs, effects, sites, settings(16, 256, 1, false)).mosaic;
-  const ProbeOutput with = render_probes_at(rs, effects, sites, settings(8, 4, 2, true));
-  const ProbeOutput without = render_probes_at(rs, effects, sites, settings(8, 4, 2, false));
+  const Image reference = ProbeRenderer(rs, effects, settings(16, 256, 1, false)).render_at(sites).mosaic;
+  const ProbeOutput with = ProbeRenderer(rs, effects, settings(8, 4, 2, true)).render_at(sites);
+  const ProbeOutput without = ProbeRenderer(rs, effects, settings(8, 4, 2, false)).render_at(sites);
   EXPECT_EQ(with.stats.foot_corrections, uint64_t(kProbes));
   EXPECT_EQ(without.stats.foot_corrections, 0u);
   double square_with = 0.0, square_without = 0.0;
@@ -218,7 +218,7 @@ TEST(ProbeFootCorrection, WithANoisyCacheTheProbesOwnFloorIsFarCloserToAConverge
   sites.resize(9);
   ProbeSettings few = settings(4, 4, 2, true);
   few.layout.grid_width = 9;
-  EXPECT_EQ(render_probes_at(rs, effects, sites, few).stats.foot_corrections, 0u);
+  EXPECT_EQ(ProbeRenderer(rs, effects, few).render_at(sites).stats.foot_corrections, 0u);
 }
 
 }  // namespace

@@ -23,16 +23,10 @@
 
 #include "phyir/core/image.h"
 #include "phyir/render/probe_grid.h"
+#include "phyir/render/probe_settings.h"
 
 namespace phyir::render {
 
-struct ProbeSharing {
-  int radius = 1;                // window (2r+1)^2; 0: no sharing
-  float parallax_texels = 0.5f;  // largest accepted parallax, in texel extents
-  float max_baseline = 0.25f;    // metres
-
-  int window() const { return 2 * radius + 1; }
-};
 
 // Which of the window() x window() sub-cells of its strata probe (i, j) draws from: (j mod
 // n, i mod n), so any full window of the grid holds each sub-cell once.

@@ -1,4 +1,4 @@
-#include "phyir/render/emitter_coverage.h"
+#include "emitter_coverage.h"
 
 #include <algorithm>
 #include <cmath>

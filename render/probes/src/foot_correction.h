@@ -28,7 +28,7 @@
 #include <glm/glm.hpp>
 
 #include "phyir/render/probe_grid.h"
-#include "phyir/render/radiance_cache.h"
+#include "radiance_cache.h"
 
 namespace phyir::render {
 

@@ -106,14 +106,14 @@ TEST(ProbeConsistency, IntegratingAPixelsProbeAgainstItsBrdfGivesItsColour) {
       s.layout = ProbeLayout{3, 3, k.probe_h, k.probe_w};  // grid = image: probe (i, j) at pixel (j, i)'s centre
       s.mode = mode;
       s.spp = mode == ProbeMode::kPath ? (k.probe_h == 16 ? 256 : 16) : 16;
-      s.cache_spp = 256;
+      s.cache.samples_per_cell = 256;
       s.seed = 3;
       s.progress = false;
       const std::vector<ProbeSite> sites = place_probes(rs, camera, s.layout, s.offset);
       const int index = py * 3 + px;
       ASSERT_TRUE(sites[size_t(index)].valid());
       EXPECT_NEAR(glm::length(sites[size_t(index)].normal - normal), 0.0f, 1e-6f);
-      const ProbeOutput out = render_probes_at(rs, effects, sites, s, {index});
+      const ProbeOutput out = ProbeRenderer(rs, effects, s).render_at(sites, {index});
       const Image probe = probe_image(out.mosaic, s.layout, py, px);
       const glm::dvec3 rendered = integrate(probe, normal, wo, p);
       for (int ch = 0; ch < 3; ++ch) {

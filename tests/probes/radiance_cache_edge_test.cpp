@@ -13,7 +13,7 @@
 #include "phyir/core/image.h"
 #include "phyir/render/effects.h"
 #include "phyir/render/environment_light.h"
-#include "phyir/render/radiance_cache.h"
+#include "radiance_cache.h"
 #include "phyir/render/render_scene.h"
 #include "phyir/core/safe_math.h"
 #include "phyir/render/rng.h"

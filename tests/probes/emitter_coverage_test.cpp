@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "phyir/core/safe_math.h"
-#include "phyir/render/emitter_coverage.h"
+#include "emitter_coverage.h"
 #include "phyir/render/equirect.h"
 #include "phyir/render/probe_grid.h"
 #include "test_scenes.h"

@@ -8,7 +8,7 @@
 #include <limits>
 
 #include "phyir/core/safe_math.h"
-#include "phyir/render/radiance_cache.h"
+#include "radiance_cache.h"
 
 namespace phyir::render {
 

@@ -10,11 +10,11 @@
 #include "phyir/render/brdf.h"
 #include "phyir/render/direct_lighting.h"
 #include "phyir/render/effects.h"
-#include "phyir/render/foot_correction.h"
+#include "foot_correction.h"
 #include "phyir/render/frame.h"
 #include "phyir/render/path_tracer.h"
 #include "phyir/render/probe_renderer.h"
-#include "phyir/render/radiance_cache.h"
+#include "radiance_cache.h"
 #include "phyir/render/render_scene.h"
 
 namespace phyir::render {

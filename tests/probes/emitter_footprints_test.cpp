@@ -5,7 +5,7 @@
 #include <iostream>
 #include <vector>
 
-#include "phyir/render/emitter_footprints.h"
+#include "emitter_footprints.h"
 #include "phyir/render/equirect.h"
 #include "phyir/render/probe_grid.h"
 #include "test_scenes.h"

@@ -1,4 +1,4 @@
-#include "phyir/render/emitter_footprints.h"
+#include "emitter_footprints.h"
 
 #include <algorithm>
 #include <cmath>

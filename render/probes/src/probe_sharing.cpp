@@ -1,4 +1,4 @@
-#include "phyir/render/probe_sharing.h"
+#include "probe_sharing.h"
 
 #include <tbb/parallel_for.h>
 

@@ -1,4 +1,4 @@
-#include "phyir/render/radiance_cache.h"
+#include "radiance_cache.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/enumerable_thread_specific.h>

@@ -32,7 +32,7 @@ ProbeSettings settings_for(ProbeMode mode, int spp, int h, int w, int max_bounce
   s.path.max_bounces = max_bounces;
   s.seed = 5;
   s.progress = false;
-  s.cache_spp = 64;
+  s.cache.samples_per_cell = 64;
   return s;
 }
 
@@ -49,7 +49,7 @@ std::vector<ProbeSite> single_site(const glm::vec3& origin) {
 
 Image render_single(const scenes::Scene& scene, const glm::vec3& origin, const ProbeSettings& s) {
   const RenderScene rs(scene);
-  const ProbeOutput out = render_probes_at(rs, analyse_effects(scene, false), single_site(origin), s);
+  const ProbeOutput out = ProbeRenderer(rs, analyse_effects(scene, false), s).render_at(single_site(origin));
   EXPECT_EQ(out.stats.counters.nonfinite_samples, 0u);
   return out.mosaic;
 }
@@ -321,7 +321,7 @@ ProbeSettings grid_settings(ProbeMode mode) {
   ProbeSettings s = settings_for(mode, 4, 8, 16);
   s.layout.grid_height = 4;
   s.layout.grid_width = 8;
-  s.cache_spp = 16;
+  s.cache.samples_per_cell = 16;
   return s;
 }
 
@@ -396,7 +396,7 @@ TEST(ProbeCache, NearAndFarFromALightMatchesThePathMode) {
   for (const auto& probe : probes) {
     ProbeSettings path = settings_for(ProbeMode::kPath, 512, 16, 32, 4);
     ProbeSettings cache = settings_for(ProbeMode::kCache, 64, 16, 32, 4);
-    cache.cache_spp = 1024;
+    cache.cache.samples_per_cell = 1024;
     const Image a = render_single(scene, probe.origin, path), b = render_single(scene, probe.origin, cache);
     double mean_a = 0.0, mean_b = 0.0, up_a = 0.0, up_b = 0.0;
     for (int r = 0; r < 16; ++r)

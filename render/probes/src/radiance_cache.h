@@ -65,28 +65,12 @@
 
 #include "phyir/render/effects.h"
 #include "phyir/render/path_tracer.h"
+#include "phyir/render/probe_settings.h"
 #include "phyir/render/render_scene.h"
-#include "phyir/render/sparse_cell_grid.h"
+#include "sparse_cell_grid.h"
 
 namespace phyir::render {
 
-struct RadianceCacheSettings {
-  float cell_size = 0.05f;    // metres
-  int samples_per_cell = 128;  // irradiance estimates per cell
-  // Direct light is cached in cells at least this many cell sizes from every emitter
-  // (0: never). Linear interpolation's error is about 0.75 (cell / distance)^2 of the
-  // irradiance under a point light: 2% at 6 cells.
-  float direct_distance_cells = 6.0f;
-  // Lookups read each cell's indirect light as the mean over its 3 x 3 x 3 neighbourhood in
-  // its normal bucket (see the header note).
-  bool smooth_indirect = true;
-  // The concave-edge treatment (see the header note), and how many times samples_per_cell
-  // the two layers of cells next to such an edge fill.
-  bool edge_profiles = true;
-  int edge_sample_factor = 2;
-  uint64_t seed = 0;
-  bool progress = false;
-};
 
 // A surface point as the cache sees it: normals on the side it was seen from.
 struct CachePoint {

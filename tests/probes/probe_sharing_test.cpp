@@ -7,7 +7,7 @@
 #include <limits>
 #include <vector>
 
-#include "phyir/render/probe_sharing.h"
+#include "probe_sharing.h"
 #include "phyir/render/rng.h"
 
 namespace phyir::render {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "phyir/render/effects.h"
-#include "phyir/render/radiance_cache.h"
+#include "radiance_cache.h"
 #include "phyir/render/render_scene.h"
 #include "phyir/render/rng.h"
 #include "test_scenes.h"

@@ -7,7 +7,7 @@
 #include <random>
 #include <tuple>
 
-#include "phyir/render/sparse_cell_grid.h"
+#include "sparse_cell_grid.h"
 
 namespace phyir::render {
 namespace {

@@ -1,0 +1,96 @@
+#pragma once
+// Renders the per-pixel light probes of one view (settings: probe_settings.h; layout and
+// placement: probe_grid.h; the design, the modes and their measured cost: docs/probes.md).
+//
+// Each texel is the incident radiance at the probe's origin averaged over the texel's solid
+// angle: `spp` directions per texel, stratified and uniform in solid angle inside it, each
+// one's radiance estimated by
+//  - ProbeMode::kPath: the path tracer, exactly as a camera ray of color.exr (unbiased; the
+//    reference the other mode is measured against);
+//  - ProbeMode::kCache: the direction's first hit is found by one ray and its emission added
+//    exactly; the light it reflects comes from a radiance cache shared by every probe of the
+//    view (diffuse) and from next-event estimation and BRDF-sampled rays (specular, and
+//    direct light near the emitters). Hard texels (lights, glass, glossy surfaces, edges)
+//    get more directions; texels are averaged with neighbouring probes' where parallax is
+//    small.
+// Random numbers: sample s of texel t of probe p draws from streams keyed by (seed, p, t, s)
+// (streams.h), the cache's from (seed, cell, sample); so probes.exr is bit-identical for a
+// seed whatever the thread count. Non-finite samples are counted and zeroed.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "phyir/core/image.h"
+#include "phyir/render/effects.h"
+#include "phyir/render/camera.h"
+#include "phyir/render/path_counters.h"
+#include "phyir/render/probe_grid.h"
+#include "phyir/render/probe_settings.h"
+#include "phyir/render/render_scene.h"
+
+namespace phyir::render {
+
+struct ProbeStats {
+  double place_seconds = 0.0;
+  double cache_seconds = 0.0;  // discovery + fill
+  double shade_seconds = 0.0;
+  double total_seconds = 0.0;
+  PathCounters counters;          // every ray of the probes (placement excluded)
+  uint64_t placement_rays = 0;
+  uint64_t probes = 0, valid = 0, nothing = 0, emitter = 0, transparent = 0;
+  uint64_t computed_probes = 0;   // probes actually rendered (all but kNothing, or a subset)
+  uint64_t supersampled_texels = 0;
+  uint64_t shared_texels = 0;     // texels averaged with at least one neighbour's
+  uint64_t light_texels = 0;      // texels a light may cover (emission estimated apart)
+  uint64_t light_edge_texels = 0; // of those, texels a light's outline crosses (16x the emission directions)
+  uint64_t negative_texels = 0;   // texel estimates below zero (the control variate's), clamped to 0
+  uint64_t foot_corrections = 0;  // probes whose own-surface texels took the cache's error out (foot_correction.h)
+  glm::vec3 foot_common_difference{0.0f};  // the difference common to all probes (the last bounce), W/m^2
+  double share_seconds = 0.0;
+  uint64_t cache_cells = 0, cache_direct_cells = 0, cache_edge_cells = 0, cache_edge_profiles = 0, cache_fill_samples = 0,
+           cache_fallbacks = 0;
+  // Adds the counts of `o` (its seconds and cache figures are left out: they are the view's).
+  ProbeStats& operator+=(const ProbeStats& o);
+  nlohmann::json to_json() const;
+};
+
+struct ProbeOutput {
+  ProbeLayout layout;
+  std::vector<ProbeSite> sites;  // row-major, H x W
+  Image mosaic;                  // (H h) x (W w) RGB radiance
+  Image position;                // H x W, X,Y,Z: probe origins (0 where nothing is seen)
+  Image normal;                  // H x W, X,Y,Z: the normal each origin is offset along
+  Image mask;                    // H x W, Y: 1 for valid probes
+  ProbeStats stats;
+};
+
+class ProbeRenderer {
+ public:
+  // Throws phyir::Error naming the flag for invalid settings. Keeps a reference to the
+  // scene, which must outlive it.
+  ProbeRenderer(const RenderScene& scene, const Effects& effects, const ProbeSettings& settings);
+
+  // Places and renders every probe of the view.
+  ProbeOutput render(const CameraModel& camera) const;
+
+  // Renders probes at given sites (row-major for settings.layout). With `subset` non-empty
+  // only those probe indices are rendered (the others stay 0); their values are the same as
+  // in a full render for kPath (kCache builds its cache from the subset only).
+  ProbeOutput render_at(std::vector<ProbeSite> sites, const std::vector<int>& subset = {}) const;
+
+ private:
+  const RenderScene& scene_;
+  Effects effects_;
+  ProbeSettings settings_;
+};
+
+// ProbeRenderer(scene, effects, settings).render(camera).
+ProbeOutput render_probes(const RenderScene& scene, const CameraModel& camera, const Effects& effects,
+                          const ProbeSettings& settings);
+
+// The h x w probe (i, j) cut out of a mosaic.
+Image probe_image(const Image& mosaic, const ProbeLayout& layout, int i, int j);
+
+}  // namespace phyir::render

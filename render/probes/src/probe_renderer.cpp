@@ -1,0 +1,92 @@
+#include "phyir/render/probe_renderer.h"
+
+#include <chrono>
+
+#include "probe_view.h"
+
+namespace phyir::render {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+}  // namespace
+
+nlohmann::json ProbeStats::to_json() const {
+  return {{"seconds", {{"place", place_seconds}, {"cache", cache_seconds}, {"shade", shade_seconds}, {"share", share_seconds}, {"total", total_seconds}}},
+          {"rays", counters.rays + placement_rays},
+          {"paths", counters.paths},
+          {"rays_per_second", total_seconds > 0 ? double(counters.rays + placement_rays) / total_seconds : 0.0},
+          {"counts", {{"probes", probes}, {"valid", valid}, {"invalid", probes - valid}, {"nothing", nothing},
+                      {"emitter", emitter}, {"transparent", transparent}, {"computed", computed_probes}}},
+          {"supersampled_texels", supersampled_texels},
+          {"shared_texels", shared_texels},
+          {"light_texels", light_texels},
+          {"light_edge_texels", light_edge_texels},
+          {"negative_texels_clamped", negative_texels},
+          {"foot_correction",
+           {{"probes", foot_corrections},
+            {"common_difference", {foot_common_difference.x, foot_common_difference.y, foot_common_difference.z}}}},
+          {"cache",
+           {{"cells", cache_cells},
+            {"cells_with_direct_light", cache_direct_cells},
+            {"cells_at_concave_edges", cache_edge_cells},
+            {"edge_profiles", cache_edge_profiles},
+            {"fill_samples", cache_fill_samples},
+            {"fallback_lookups", cache_fallbacks}}},
+          {"nonfinite_samples_caught", counters.nonfinite_samples}};
+}
+
+Image probe_image(const Image& mosaic, const ProbeLayout& layout, int i, int j) {
+  Image out(layout.res_width, layout.res_height, mosaic.channels);
+  for (int r = 0; r < layout.res_height; ++r)
+    for (int c = 0; c < layout.res_width; ++c)
+      for (int ch = 0; ch < mosaic.channels; ++ch)
+        out.at(c, r, ch) = mosaic.at(j * layout.res_width + c, i * layout.res_height + r, ch);
+  return out;
+}
+
+ProbeRenderer::ProbeRenderer(const RenderScene& scene, const Effects& effects, const ProbeSettings& settings)
+    : scene_(scene), effects_(effects), settings_(settings) {
+  settings.validate();
+}
+
+ProbeOutput ProbeRenderer::render(const CameraModel& camera) const {
+  const auto start = Clock::now();
+  std::vector<ProbeSite> sites = place_probes(scene_, camera, settings_.layout, settings_.offset);
+  const double place_seconds = seconds_since(start);
+  ProbeOutput out = render_at(std::move(sites));
+  out.stats.place_seconds = place_seconds;
+  out.stats.placement_rays = 2 * uint64_t(settings_.layout.probe_count());  // placement + gap check
+  out.stats.total_seconds += place_seconds;
+  return out;
+}
+
+ProbeOutput ProbeRenderer::render_at(std::vector<ProbeSite> sites, const std::vector<int>& subset) const {
+  return ProbeView(scene_, effects_, settings_, std::move(sites), subset).run();
+}
+
+ProbeOutput render_probes(const RenderScene& scene, const CameraModel& camera, const Effects& effects,
+                          const ProbeSettings& settings) {
+  return ProbeRenderer(scene, effects, settings).render(camera);
+}
+
+ProbeStats& ProbeStats::operator+=(const ProbeStats& o) {
+  counters += o.counters;
+  placement_rays += o.placement_rays;
+  probes += o.probes, valid += o.valid, nothing += o.nothing, emitter += o.emitter, transparent += o.transparent;
+  computed_probes += o.computed_probes;
+  supersampled_texels += o.supersampled_texels;
+  shared_texels += o.shared_texels;
+  light_texels += o.light_texels;
+  light_edge_texels += o.light_edge_texels;
+  negative_texels += o.negative_texels;
+  foot_corrections += o.foot_corrections;
+  return *this;
+}
+
+}  // namespace phyir::render
