@@ -156,7 +156,7 @@ json render_view_folder(const Context& ctx, const ViewTask& task, const SceneWor
   job.view = "Standard";
   job.probes = s.probes;
   job.probe = s.probe;
-  json report = render::run_render_job(job);
+  render::RenderReport report = render::run_render_job(job);
 
   // The network's input.
   const Image color = read_image(tmp / "color.exr");
@@ -165,14 +165,14 @@ json render_view_folder(const Context& ctx, const ViewTask& task, const SceneWor
 
   // render.json without wall-clock values (they go to timing.json) and with the scene path
   // relative to the scenes folder, so the folder's bytes depend only on the inputs.
+  report.scene.path = scene.file.file;
+  json render_record = report.to_json();
   json timing = json::object();
-  move_timing(report, timing);
-  if (report.contains("scene")) report["scene"]["path"] = scene.file.file;
-  write_file_atomic(tmp / kRenderRecordFile, report.dump(2) + "\n");
+  move_timing(render_record, timing);
+  write_file_atomic(tmp / kRenderRecordFile, render_record.dump(2) + "\n");
 
   // Every file, re-read: decodable, finite, checksummed.
-  std::vector<std::string> names;
-  for (const json& f : report.value("files", json::array())) names.push_back(f.get<std::string>());
+  std::vector<std::string> names = report.files;
   names.push_back(kInputFile);
   names.push_back(kRenderRecordFile);
   std::sort(names.begin(), names.end());
@@ -189,13 +189,21 @@ json render_view_folder(const Context& ctx, const ViewTask& task, const SceneWor
       fail("{}: unexpected file {} after rendering", tmp.string(), name);
   }
 
-  json render_stats = {{"effects", report.value("effects", json())}, {"counters", report.value("counters", json())}};
-  if (report.contains("scene")) render_stats["scene_triangles"] = report["scene"].value("triangles", json());
-  if (report.contains("probes")) {
-    json probes = json::object();
-    for (const char* key : {"counts", "rays", "paths", "supersampled_texels", "cache", "nonfinite_samples_caught"})
-      if (report["probes"].contains(key)) probes[key] = report["probes"][key];
-    render_stats["probes"] = probes;
+  // The view's record holds no wall-clock values either.
+  json counters = report.stats.to_json();
+  json counter_seconds = json::object();
+  move_timing(counters, counter_seconds);
+  json render_stats = {{"effects", report.effects.to_json()},
+                       {"counters", counters},
+                       {"scene_triangles", report.scene.triangles}};
+  if (report.probes) {
+    const render::ProbeStats& p = report.probes->stats;
+    render_stats["probes"] = {{"counts", p.counts_json()},
+                              {"rays", p.rays()},
+                              {"paths", p.counters.paths},
+                              {"supersampled_texels", p.supersampled_texels},
+                              {"cache", p.cache_json()},
+                              {"nonfinite_samples_caught", p.counters.nonfinite_samples}};
   }
   const json record = tidy_floats({{"id", task.id},
                        {"scene",

@@ -42,29 +42,40 @@ void validate(const RenderJob& job) {
   if (job.probes) job.probe.validate();
 }
 
-// The probes of the view, their four files and their block of render.json.
-nlohmann::json render_and_write_probes(const RenderJob& job, const RenderScene& scene, const CameraModel& camera,
-                                       const Effects& effects, std::vector<std::string>* files) {
-  ProbeSettings settings = job.probe;
+// The probes of the view and their four files.
+RenderReport::Probes render_and_write_probes(const RenderJob& job, const RenderScene& scene, const CameraModel& camera,
+                                             const Effects& effects) {
+  RenderReport::Probes report;
+  ProbeSettings& settings = report.settings;
+  settings = job.probe;
   settings.seed = job.settings.seed;
   settings.path = job.settings.path;
   settings.progress = job.settings.progress;
   spdlog::info("rendering {}x{} probes of {}x{} texels, {} spp, mode {}", settings.layout.grid_height,
                settings.layout.grid_width, settings.layout.res_height, settings.layout.res_width, settings.spp,
                probe_mode_name(settings.mode));
-  const ProbeOutput probes = render_probes(scene, camera, effects, settings);
+  const ProbeOutput probes = ProbeRenderer(scene, effects, settings).render(camera);
   const auto start = Clock::now();
   write_image(job.out_dir / "probes.exr", probes.mosaic);
   write_image(job.out_dir / "probe_position.exr", probes.position, {"X", "Y", "Z"});
   write_image(job.out_dir / "probe_normal.exr", probes.normal, {"X", "Y", "Z"});
   write_image(job.out_dir / "probe_mask.exr", probes.mask);
-  const std::vector<std::string> written = {"probes.exr", "probe_position.exr", "probe_normal.exr", "probe_mask.exr"};
-  files->insert(files->end(), written.begin(), written.end());
-  nlohmann::json block = settings.to_json();
-  const nlohmann::json stats = probes.stats.to_json();
-  block.update(stats);
-  block["write_seconds"] = seconds_since(start);
-  block["files"] = written;
+  report.files = {"probes.exr", "probe_position.exr", "probe_normal.exr", "probe_mask.exr"};
+  report.write_seconds = seconds_since(start);
+  report.stats = probes.stats;
+  if (probes.stats.counters.nonfinite_samples > 0)
+    spdlog::warn("{} non-finite probe samples were caught and zeroed", probes.stats.counters.nonfinite_samples);
+  spdlog::info("probes: {:.2f} s ({} valid of {}, {:.1f} Mrays)", probes.stats.total_seconds, probes.stats.valid,
+               probes.stats.probes, double(probes.stats.counters.rays) / 1e6);
+  return report;
+}
+
+// The probes' block of render.json.
+nlohmann::json probes_json(const RenderReport::Probes& probes) {
+  nlohmann::json block = probes.settings.to_json();
+  block.update(probes.stats.to_json());
+  block["write_seconds"] = probes.write_seconds;
+  block["files"] = probes.files;
   block["conventions"] = {
       {"probes", "mosaic of (H h) x (W w) RGB radiance: probe (i, j) is the h x w block at rows i h.., columns j w.., "
                  "an equirectangular image in the panorama's mapping, world-aligned; texel = incident radiance at the "
@@ -76,10 +87,6 @@ nlohmann::json render_and_write_probes(const RenderJob& job, const RenderScene& 
       {"probe_normal", "H x W, X,Y,Z: the unit shading normal the origin is offset along; 0 where nothing is seen"},
       {"probe_mask", "H x W, Y: 1 for a valid label; 0 where nothing is seen (probe all 0), on emitters and on glass or "
                      "alpha-blended surfaces (probe computed anyway), as the paper's M_mask"}};
-  if (probes.stats.counters.nonfinite_samples > 0)
-    spdlog::warn("{} non-finite probe samples were caught and zeroed", probes.stats.counters.nonfinite_samples);
-  spdlog::info("probes: {:.2f} s ({} valid of {}, {:.1f} Mrays)", probes.stats.total_seconds, probes.stats.valid,
-               probes.stats.probes, double(probes.stats.counters.rays) / 1e6);
   return block;
 }
 
@@ -143,52 +150,73 @@ CameraModel job_camera(const RenderJob& job, const scenes::Scene& scene, std::st
   return camera;
 }
 
-nlohmann::json run_render_job(const RenderJob& job) {
+RenderReport run_render_job(const RenderJob& job) {
   validate(job);
   ensure_writable_directory(job.out_dir);
   const auto total_start = Clock::now();
-  const int threads = job.threads > 0 ? job.threads : tbb::info::default_concurrency();
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+  RenderReport report;
+  report.job = job;
+  report.threads = job.threads > 0 ? job.threads : tbb::info::default_concurrency();
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, report.threads);
 
   auto start = Clock::now();
   const scenes::Scene scene = scenes::load_gltf(job.scene_path);
-  const double load_seconds = seconds_since(start);
+  report.timings.load_seconds = seconds_since(start);
 
   start = Clock::now();
   const RenderScene render_scene(scene, load_environment(job));
-  const double build_seconds = seconds_since(start);
+  report.timings.build_seconds = seconds_since(start);
+  report.scene = {job.scene_path.string(),
+                  scene.meshes.size(),
+                  scene.triangle_count(),
+                  scene.materials.size(),
+                  render_scene.emitters().emissive_triangle_count(),
+                  render_scene.emitters().enclosed_triangle_count(),
+                  scene.warnings};
 
-  std::string camera_description;
-  const CameraModel camera = job_camera(job, scene, &camera_description);
+  report.camera = job_camera(job, scene, &report.camera_source);
+  const CameraModel& camera = report.camera;
   spdlog::info("rendering {} ({} triangles) from {} at ({:.3f}, {:.3f}, {:.3f}), {}x{} {}, {} spp",
-               job.scene_path.string(), scene.triangle_count(), camera_description, camera.position.x,
+               job.scene_path.string(), scene.triangle_count(), report.camera_source, camera.position.x,
                camera.position.y, camera.position.z, camera.width, camera.height,
                projection_name(camera.projection), job.settings.spp);
 
   const RenderOutput out = render_view(render_scene, camera, job.settings);
+  report.effects = out.effects;
+  report.stats = out.stats;
 
   start = Clock::now();
   fs::create_directories(job.out_dir);
-  std::vector<std::string> files = out.film.write_exr(job.out_dir);
+  report.files = out.film.write_exr(job.out_dir);
   const double color_write_seconds = seconds_since(start);
-  nlohmann::json probe_block;
-  if (job.probes) probe_block = render_and_write_probes(job, render_scene, camera, out.effects, &files);
+  if (job.probes) {
+    report.probes = render_and_write_probes(job, render_scene, camera, out.effects);
+    report.files.insert(report.files.end(), report.probes->files.begin(), report.probes->files.end());
+  }
   start = Clock::now();
   write_image(job.out_dir / "color.png", linear_to_display(out.film.color(), job.exposure, job.view));
-  files.push_back("color.png");
-  const double write_seconds = color_write_seconds + seconds_since(start);
+  report.files.push_back("color.png");
+  report.timings.write_seconds = color_write_seconds + seconds_since(start);
+  report.timings.total_seconds = seconds_since(total_start);
+  write_file_atomic(job.out_dir / "render.json", report.to_json().dump(2) + "\n");
+  if (out.stats.counters.nonfinite_samples > 0)
+    spdlog::warn("{} non-finite path samples were caught and zeroed", out.stats.counters.nonfinite_samples);
+  spdlog::info("wrote {} files to {} in {:.2f} s ({:.2f} Mrays/s)", report.files.size() + 1, job.out_dir.string(),
+               seconds_since(total_start), out.stats.color_seconds > 0 ? out.stats.counters.rays / out.stats.color_seconds / 1e6 : 0.0);
+  return report;
+}
 
+nlohmann::json RenderReport::to_json() const {
   nlohmann::json report;
   report["phyir_version"] = PHYIR_VERSION;
-  report["scene"] = {{"path", job.scene_path.string()},
-                     {"meshes", scene.meshes.size()},
-                     {"triangles", scene.triangle_count()},
-                     {"materials", scene.materials.size()},
-                     {"emissive_triangles", render_scene.emitters().emissive_triangle_count()},
-                     // emit only into closed geometry: left out of light sampling
-                     {"enclosed_emissive_triangles", render_scene.emitters().enclosed_triangle_count()},
+  report["scene"] = {{"path", scene.path},
+                     {"meshes", scene.meshes},
+                     {"triangles", scene.triangles},
+                     {"materials", scene.materials},
+                     {"emissive_triangles", scene.emissive_triangles},
+                     {"enclosed_emissive_triangles", scene.enclosed_emissive_triangles},
                      {"warnings", scene.warnings}};
-  report["camera"] = {{"source", camera_description},
+  report["camera"] = {{"source", camera_source},
                       {"projection", projection_name(camera.projection)},
                       {"position", vec_json(camera.position)},
                       {"forward", vec_json(camera.forward)},
@@ -208,24 +236,19 @@ nlohmann::json run_render_job(const RenderJob& job) {
                         {"environment_scale", job.environment_scale},
                         {"exposure", job.exposure},
                         {"view", job.view}};
-  report["effects"] = out.effects.to_json();
-  report["counters"] = out.stats.to_json();
-  report["timings"] = {{"load_seconds", load_seconds},
-                       {"build_seconds", build_seconds},
-                       {"color_seconds", out.stats.color_seconds},
-                       {"aov_seconds", out.stats.aov_seconds},
-                       {"write_seconds", write_seconds},
-                       {"total_seconds", seconds_since(total_start)}};
-  if (job.probes) {
-    report["timings"]["probe_seconds"] = probe_block["seconds"]["total"];
-    report["probes"] = probe_block;
+  report["effects"] = effects.to_json();
+  report["counters"] = stats.to_json();
+  report["timings"] = {{"load_seconds", timings.load_seconds},
+                       {"build_seconds", timings.build_seconds},
+                       {"color_seconds", stats.color_seconds},
+                       {"aov_seconds", stats.aov_seconds},
+                       {"write_seconds", timings.write_seconds},
+                       {"total_seconds", timings.total_seconds}};
+  if (probes) {
+    report["timings"]["probe_seconds"] = probes->stats.total_seconds;
+    report["probes"] = probes_json(*probes);
   }
   report["files"] = files;
-  write_file_atomic(job.out_dir / "render.json", report.dump(2) + "\n");
-  if (out.stats.counters.nonfinite_samples > 0)
-    spdlog::warn("{} non-finite path samples were caught and zeroed", out.stats.counters.nonfinite_samples);
-  spdlog::info("wrote {} files to {} in {:.2f} s ({:.2f} Mrays/s)", files.size() + 1, job.out_dir.string(),
-               seconds_since(total_start), out.stats.color_seconds > 0 ? out.stats.counters.rays / out.stats.color_seconds / 1e6 : 0.0);
   return report;
 }
 

@@ -18,11 +18,10 @@ double seconds_since(Clock::time_point start) {
 
 nlohmann::json ProbeStats::to_json() const {
   return {{"seconds", {{"place", place_seconds}, {"cache", cache_seconds}, {"shade", shade_seconds}, {"share", share_seconds}, {"total", total_seconds}}},
-          {"rays", counters.rays + placement_rays},
+          {"rays", rays()},
           {"paths", counters.paths},
-          {"rays_per_second", total_seconds > 0 ? double(counters.rays + placement_rays) / total_seconds : 0.0},
-          {"counts", {{"probes", probes}, {"valid", valid}, {"invalid", probes - valid}, {"nothing", nothing},
-                      {"emitter", emitter}, {"transparent", transparent}, {"computed", computed_probes}}},
+          {"rays_per_second", total_seconds > 0 ? double(rays()) / total_seconds : 0.0},
+          {"counts", counts_json()},
           {"supersampled_texels", supersampled_texels},
           {"shared_texels", shared_texels},
           {"light_texels", light_texels},
@@ -31,14 +30,22 @@ nlohmann::json ProbeStats::to_json() const {
           {"foot_correction",
            {{"probes", foot_corrections},
             {"common_difference", {foot_common_difference.x, foot_common_difference.y, foot_common_difference.z}}}},
-          {"cache",
-           {{"cells", cache_cells},
-            {"cells_with_direct_light", cache_direct_cells},
-            {"cells_at_concave_edges", cache_edge_cells},
-            {"edge_profiles", cache_edge_profiles},
-            {"fill_samples", cache_fill_samples},
-            {"fallback_lookups", cache_fallbacks}}},
+          {"cache", cache_json()},
           {"nonfinite_samples_caught", counters.nonfinite_samples}};
+}
+
+nlohmann::json ProbeStats::counts_json() const {
+  return {{"probes", probes}, {"valid", valid}, {"invalid", probes - valid}, {"nothing", nothing},
+          {"emitter", emitter}, {"transparent", transparent}, {"computed", computed_probes}};
+}
+
+nlohmann::json ProbeStats::cache_json() const {
+  return {{"cells", cache_cells},
+          {"cells_with_direct_light", cache_direct_cells},
+          {"cells_at_concave_edges", cache_edge_cells},
+          {"edge_profiles", cache_edge_profiles},
+          {"fill_samples", cache_fill_samples},
+          {"fallback_lookups", cache_fallbacks}};
 }
 
 Image probe_image(const Image& mosaic, const ProbeLayout& layout, int i, int j) {

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
@@ -36,8 +37,44 @@ struct RenderJob {
   ProbeSettings probe;
 };
 
-// Throws phyir::Error for bad input (names the file / flag / value). Returns render.json.
-nlohmann::json run_render_job(const RenderJob& job);
+// What a job did: everything render.json holds, typed.
+struct RenderReport {
+  struct SceneSummary {
+    std::string path;
+    size_t meshes = 0, triangles = 0, materials = 0;
+    size_t emissive_triangles = 0;
+    size_t enclosed_emissive_triangles = 0;  // emit only into closed geometry: never sampled
+    std::vector<std::string> warnings;       // what the loader skipped or approximated
+  };
+  struct Timings {
+    double load_seconds = 0.0, build_seconds = 0.0, write_seconds = 0.0, total_seconds = 0.0;
+  };
+  // The probes' part (when the job asked for them).
+  struct Probes {
+    ProbeSettings settings;  // as rendered: the view's seed and path settings
+    ProbeStats stats;
+    double write_seconds = 0.0;
+    std::vector<std::string> files;
+  };
+
+  SceneSummary scene;
+  std::string camera_source;  // "--camera" or the scene camera's index and name
+  CameraModel camera;
+  RenderJob job;              // the settings it ran with
+  int threads = 0;            // as used (0 in the job: all cores)
+  Effects effects;            // what the scene called for, and ran
+  RenderStats stats;          // the colour and AOV passes
+  Timings timings;
+  std::optional<Probes> probes;
+  std::vector<std::string> files;  // written into job.out_dir, render.json excluded
+
+  // render.json (docs/conventions.md).
+  nlohmann::json to_json() const;
+};
+
+// Throws phyir::Error for bad input (names the file / flag / value). Writes every file and
+// render.json (RenderReport::to_json) last.
+RenderReport run_render_job(const RenderJob& job);
 
 // The camera the job will use (exposed for tests and the dataset pipeline).
 CameraModel job_camera(const RenderJob& job, const scenes::Scene& scene, std::string* description);

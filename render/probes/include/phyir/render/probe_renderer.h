@@ -53,7 +53,10 @@ struct ProbeStats {
            cache_fallbacks = 0;
   // Adds the counts of `o` (its seconds and cache figures are left out: they are the view's).
   ProbeStats& operator+=(const ProbeStats& o);
-  nlohmann::json to_json() const;
+  uint64_t rays() const { return counters.rays + placement_rays; }
+  nlohmann::json to_json() const;     // render.json's probe statistics
+  nlohmann::json counts_json() const;  // its "counts": valid and invalid probes by cause
+  nlohmann::json cache_json() const;   // its "cache": cells, fill samples, fallbacks
 };
 
 struct ProbeOutput {
