@@ -68,10 +68,8 @@ glm::vec3 TexelEstimator::sample(const Ray& ray, uint64_t key, Part part, const 
   const glm::vec3 L = part == Part::kAll ? Le : glm::vec3(0.0f);
   *emitted = L;
   if (settings_.path.max_bounces < 1) return L;
-  if (si.transmission > 0.0f) {  // glass: path traced whole (its emission at full weight)
-    const glm::vec3 all = tracer_.radiance(ray, key, c);
-    return part == Part::kAll ? all : glm::max(all - Le, glm::vec3(0.0f));
-  }
+  if (si.transmission > 0.0f)  // glass: path traced from its hit
+    return L + tracer_.continue_from(si, ray, key, settings_.path.max_bounces, c);
   return L + reflected(si, -ray.direction, 0, key, c, &foot);
 }
 
@@ -137,12 +135,10 @@ CachedIrradiance TexelEstimator::lookup(const SurfaceInteraction& si, const Shad
 
 glm::vec3 TexelEstimator::reflected_at(const Ray& ray, const SurfaceInteraction& y, int next, int depth, uint64_t key,
                                        PathCounters* c, bool from_glossy) const {
-  const glm::vec3 Le = y.emits ? y.emission : glm::vec3(0.0f);
   if (y.transmission > 0.0f) {
-    // Glass: the path tracer from here (it re-adds y's emission at full weight: removed).
+    // Glass: the path tracer from here.
     const int budget = std::max(settings_.path.max_bounces - std::min(next, kMaxSpecularDepth), 0);
-    return glm::max(tracer_.radiance(ray, stream_key(key, Purpose::kTexelGlass, uint64_t(depth)), budget, c) - Le,
-                    glm::vec3(0.0f));
+    return tracer_.continue_from(y, ray, stream_key(key, Purpose::kTexelGlass, uint64_t(depth)), budget, c);
   }
   if (from_glossy && y.brdf.roughness < settings_.glossy_roughness && next < kMaxSpecularDepth)
     return reflected(y, -ray.direction, next, key, c);

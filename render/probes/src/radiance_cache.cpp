@@ -394,9 +394,8 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
       if (is_finite(D)) out.direct += D;
       else ++counters->nonfinite_samples;
     }
-    // The tracer adds its first hit's emission (this same si) at full weight: take it out.
-    if (max_bounces_ >= 2)
-      E = kPi * glm::max(tracer_.radiance(ray, key, max_bounces_ - 1, counters) - Le, glm::vec3(0.0f));
+    // The light the hit reflects (its emission is direct light, above).
+    if (max_bounces_ >= 2) E = kPi * tracer_.continue_from(si, ray, key, max_bounces_ - 1, counters);
   }
   if (!is_finite(E)) {
     ++counters->nonfinite_samples;
