@@ -68,27 +68,36 @@ PairGeometry pair_geometry(const glm::vec3& wo, const glm::vec3& wi) {
   return q;
 }
 
-glm::vec3 eval_pair(const Clamped& c, const PairGeometry& q) {
-  if (!q.valid) return glm::vec3(0.0f);
-  glm::vec3 f = Fd_Lambert(c.base_color, c.metalness);
-  if (is_mirror(c.roughness)) return f;  // the delta lobe is reached only via sample()
+// f_s of eq. 14 (0 for the mirror, a delta reached only through sample()).
+glm::vec3 specular_pair(const Clamped& c, const PairGeometry& q) {
+  if (!q.valid || is_mirror(c.roughness)) return glm::vec3(0.0f);
   const float alpha = c.roughness * c.roughness;                          // eq. 15
   const float D = ggx_ndf(q.cos2_h, q.sin2_h, alpha);                     // eq. 15
   const glm::vec3 F = F_SchlickSG(specular_F0(c.base_color, c.metalness), q.VoH);  // eq. 16
   const float G = G_SmithSchlick(q.NoV, q.NoL, c.roughness);              // eq. 17
-  f += D * F * G / (4.0f * (q.NoV * q.NoL));                              // eq. 14
+  return D * F * G / (4.0f * (q.NoV * q.NoL));                            // eq. 14
+}
+
+glm::vec3 eval_pair(const Clamped& c, const PairGeometry& q) {
+  if (!q.valid) return glm::vec3(0.0f);
+  glm::vec3 f = Fd_Lambert(c.base_color, c.metalness);
+  if (is_mirror(c.roughness)) return f;  // the delta lobe is reached only via sample()
+  f += specular_pair(c, q);
   return f;
+}
+
+// Eq. 18's GGX half-vector sampling as a density in wi: D NoH / (4 VoH) (dwh/dwi = 1 / (4
+// VoH) for reflection, Walter et al. 2007, eq. 14), times `scale` (a lobe-choice
+// probability) taken first.
+float ggx_reflection_pdf(const PairGeometry& q, float alpha, float scale = 1.0f) {
+  return scale * ggx_ndf(q.cos2_h, q.sin2_h, alpha) * q.NoH / (4.0f * q.VoH);
 }
 
 float pdf_pair(const Clamped& c, float ps, const PairGeometry& q) {
   if (!q.valid) return 0.0f;
   // Eq. 18, mixed with the lobe-choice probability.
   float pdf = (1.0f - ps) * cosine_hemisphere_pdf(q.NoL);
-  if (!is_mirror(c.roughness)) {
-    const float alpha = c.roughness * c.roughness;
-    // pdf_h = D NoH; dwh/dwi = 1 / (4 VoH) for reflection (Walter et al. 2007, eq. 14).
-    pdf += ps * ggx_ndf(q.cos2_h, q.sin2_h, alpha) * q.NoH / (4.0f * q.VoH);
-  }
+  if (!is_mirror(c.roughness)) pdf += ggx_reflection_pdf(q, c.roughness * c.roughness, ps);
   return pdf;
 }
 
@@ -213,26 +222,21 @@ BrdfParams clamped(const BrdfParams& p) {
 // --- The specular lobe alone ------------------------------------------------------------
 
 glm::vec3 specular_eval(const BrdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {
-  const Clamped c = clamp_params(p);
-  return glm::max(eval_pair(c, pair_geometry(wo, wi)) - Fd_Lambert(c.base_color, c.metalness), glm::vec3(0.0f));
+  return specular_pair(clamp_params(p), pair_geometry(wo, wi));
 }
 
 float specular_pdf(const BrdfParams& p, const glm::vec3& wo, const glm::vec3& wi) {
-  if (!(wo.z >= kMinCosine) || !(wi.z >= kMinCosine)) return 0.0f;
-  const float alpha = clamp01(p.roughness) * clamp01(p.roughness);
-  const glm::vec3 s = wo + wi;
-  const float len = std::sqrt(glm::dot(s, s));
-  if (!(len > 0.0f)) return 0.0f;
-  const float NoH = s.z / len;
-  const float VoH = 0.5f * len;
-  return D_GGX(NoH, alpha) * NoH / (4.0f * VoH);
+  const Clamped c = clamp_params(p);
+  const PairGeometry q = pair_geometry(wo, wi);
+  if (!q.valid || is_mirror(c.roughness)) return 0.0f;
+  return ggx_reflection_pdf(q, c.roughness * c.roughness);
 }
 
 bool specular_sample(const BrdfParams& p, const glm::vec3& wo, const glm::vec2& u, glm::vec3* wi, float* pdf) {
   const float R = clamp01(p.roughness);
   const glm::vec3 h = sample_ggx_half_vector(u, R * R);
   *wi = safe_normalize(2.0f * glm::dot(wo, h) * h - wo, glm::vec3(0, 0, -1));  // reflect wo about h
-  *pdf = is_mirror(R) ? 0.0f : specular_pdf(p, wo, *wi);
+  *pdf = specular_pdf(p, wo, *wi);
   return *pdf > 0.0f;
 }
 
