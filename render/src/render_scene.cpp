@@ -44,6 +44,68 @@ RenderScene::RenderScene(const scenes::Scene& scene, std::unique_ptr<Environment
   warn_about_missing_tangents(scene);
 }
 
+namespace {
+
+glm::vec3 orthogonal_tangent(const glm::vec3& t, const glm::vec3& n) {
+  return safe_normalize(t - n * glm::dot(n, t), Frame(n).t);
+}
+
+// The frame of a hit from its triangle's vertices, on the wound side (flipped to the ray's
+// side by the caller).
+struct HitFrame {
+  glm::vec3 ng{0.0f}, ns{0.0f}, tangent{0.0f};
+  float handedness = 1.0f;
+  bool has_tangents = false;
+  bool front_face = true;
+};
+
+HitFrame hit_frame(const scenes::Mesh& mesh, const glm::uvec3& tri, const glm::vec3& bary, const Ray& ray,
+                   const glm::vec3& facing_ray) {
+  const glm::vec3& p0 = mesh.positions[tri.x];
+  const glm::vec3& p1 = mesh.positions[tri.y];
+  const glm::vec3& p2 = mesh.positions[tri.z];
+  HitFrame f;
+  // Geometric normal as wound; degenerate triangles fall back to the interpolated
+  // normal, then to facing the ray.
+  glm::vec3 interpolated(0.0f);
+  if (has_attribute(mesh.normals, mesh))
+    interpolated = safe_normalize(mesh.normals[tri.x] * bary.x + mesh.normals[tri.y] * bary.y +
+                                      mesh.normals[tri.z] * bary.z,
+                                  glm::vec3(0.0f));
+  const bool has_interpolated = interpolated != glm::vec3(0.0f);
+  f.ng = safe_normalize(glm::cross(p1 - p0, p2 - p0), glm::vec3(0.0f));
+  if (f.ng == glm::vec3(0.0f)) f.ng = has_interpolated ? interpolated : facing_ray;
+  f.front_face = glm::dot(ray.direction, f.ng) < 0.0f;
+  // Shading normal: interpolated, on the wound side (authored normals that disagree with
+  // the winding are flipped rather than trusted).
+  f.ns = has_interpolated ? interpolated : f.ng;
+  if (glm::dot(f.ns, f.ng) < 0.0f) f.ns = -f.ns;
+  // Tangent: the mesh's (glTF TANGENT, w = handedness) or any, orthogonal to ns.
+  f.has_tangents = has_attribute(mesh.tangents, mesh);
+  if (f.has_tangents) {
+    const glm::vec4 t = mesh.tangents[tri.x] * bary.x + mesh.tangents[tri.y] * bary.y + mesh.tangents[tri.z] * bary.z;
+    f.tangent = glm::vec3(t);
+    f.handedness = t.w < 0.0f ? -1.0f : 1.0f;
+  }
+  f.tangent = orthogonal_tangent(f.tangent, f.ns);
+  return f;
+}
+
+// Normal map (glTF: n = T x + B y + N z, B = cross(N, T) * w). A perturbed normal that would
+// dip below the geometric surface is discarded, not bent.
+void apply_normal_map(const MaterialPoint& mp, HitFrame* f) {
+  if (!mp.has_normal_map || !f->has_tangents) return;
+  const glm::vec3 bitangent = glm::cross(f->ns, f->tangent) * f->handedness;
+  const glm::vec3 mapped =
+      safe_normalize(f->tangent * mp.normal_ts.x + bitangent * mp.normal_ts.y + f->ns * mp.normal_ts.z, f->ns);
+  if (glm::dot(mapped, f->ng) > 0.0f) {
+    f->ns = mapped;
+    f->tangent = orthogonal_tangent(f->tangent, f->ns);
+  }
+}
+
+}  // namespace
+
 SurfaceInteraction RenderScene::interact(const Ray& ray, const Hit& hit) const {
   SurfaceInteraction si;
   si.distance = hit.t;
@@ -65,71 +127,23 @@ SurfaceInteraction RenderScene::interact(const Ray& ray, const Hit& hit) const {
   const glm::uvec3 tri = mesh.triangles[hit.triangle];
   const glm::vec3 bary = barycentrics(hit.barycentric);
   const glm::vec3& p0 = mesh.positions[tri.x];
-  const glm::vec3& p1 = mesh.positions[tri.y];
-  const glm::vec3& p2 = mesh.positions[tri.z];
-
   // Position from the vertices, not origin + t * dir (whose error grows with the distance
   // travelled). Written as p0 + b1 e1 + b2 e2 so a coordinate shared by all three vertices
   // (axis-aligned walls) is reproduced exactly.
-  si.position = p0 + (p1 - p0) * bary.y + (p2 - p0) * bary.z;
+  si.position = p0 + (mesh.positions[tri.y] - p0) * bary.y + (mesh.positions[tri.z] - p0) * bary.z;
   if (!is_finite(si.position)) si.position = is_finite(along_ray) ? along_ray : ray.origin;
 
-  // Geometric normal as wound; degenerate triangles fall back to the interpolated
-  // normal, then to facing the ray.
-  glm::vec3 interpolated(0.0f);
-  if (has_attribute(mesh.normals, mesh))
-    interpolated = safe_normalize(mesh.normals[tri.x] * bary.x + mesh.normals[tri.y] * bary.y +
-                                      mesh.normals[tri.z] * bary.z,
-                                  glm::vec3(0.0f));
-  const bool has_interpolated = interpolated != glm::vec3(0.0f);
-  glm::vec3 ng = safe_normalize(glm::cross(p1 - p0, p2 - p0), glm::vec3(0.0f));
-  if (ng == glm::vec3(0.0f)) ng = has_interpolated ? interpolated : facing_ray;
-  si.front_face = glm::dot(ray.direction, ng) < 0.0f;
-
-  // Shading normal: interpolated, on the wound side (authored normals that disagree with
-  // the winding are flipped rather than trusted).
-  glm::vec3 ns = has_interpolated ? interpolated : ng;
-  if (glm::dot(ns, ng) < 0.0f) ns = -ns;
-
-  // Tangent: the mesh's (glTF TANGENT, w = handedness) or any, orthogonal to ns.
-  const bool has_tangents = has_attribute(mesh.tangents, mesh);
-  glm::vec3 tangent(0.0f);
-  float handedness = 1.0f;
-  if (has_tangents) {
-    const glm::vec4 t = mesh.tangents[tri.x] * bary.x + mesh.tangents[tri.y] * bary.y + mesh.tangents[tri.z] * bary.z;
-    tangent = glm::vec3(t);
-    handedness = t.w < 0.0f ? -1.0f : 1.0f;
-  }
-  auto orthogonal_tangent = [](const glm::vec3& t, const glm::vec3& n) {
-    return safe_normalize(t - n * glm::dot(n, t), Frame(n).t);
-  };
-  tangent = orthogonal_tangent(tangent, ns);
-
+  HitFrame f = hit_frame(mesh, tri, bary, ray, facing_ray);
+  si.front_face = f.front_face;
   si.material = mesh.material;
   const bool material_valid = mesh.material >= 0 && static_cast<size_t>(mesh.material) < scene_->materials.size();
   const scenes::Material& material = material_valid ? scene_->materials[mesh.material] : default_material();
   const MaterialPoint mp = evaluate_material(*scene_, mesh, material, tri, bary);
-
-  // Normal map (glTF: n = T x + B y + N z, B = cross(N, T) * w). A perturbed normal that
-  // would dip below the geometric surface is discarded, not bent.
-  if (mp.has_normal_map && has_tangents) {
-    const glm::vec3 bitangent = glm::cross(ns, tangent) * handedness;
-    const glm::vec3 mapped =
-        safe_normalize(tangent * mp.normal_ts.x + bitangent * mp.normal_ts.y + ns * mp.normal_ts.z, ns);
-    if (glm::dot(mapped, ng) > 0.0f) {
-      ns = mapped;
-      tangent = orthogonal_tangent(tangent, ns);
-    }
-  }
-
+  apply_normal_map(mp, &f);
   // Both normals point to the side the ray arrived from.
-  if (!si.front_face) {
-    ng = -ng;
-    ns = -ns;
-  }
-  si.geometric_normal = ng;
-  si.shading_normal = ns;
-  si.tangent = tangent;
+  si.geometric_normal = si.front_face ? f.ng : -f.ng;
+  si.shading_normal = si.front_face ? f.ns : -f.ns;
+  si.tangent = f.tangent;
 
   if (has_attribute(mesh.texcoords0, mesh)) {
     const glm::vec2 uv = mesh.texcoords0[tri.x] * bary.x + mesh.texcoords0[tri.y] * bary.y +

@@ -192,6 +192,10 @@ class RadianceCache {
   // of a cell moved to band b lies (false if off the surface), the profile's difference
   // at a point.
   void find_concave_edges();
+  // The cell of another surface in the 3 x 3 x 3 block round cell i whose plane is nearest
+  // in front of it and faces it (-1 if none), given every cell's point centre and normal.
+  int facing_cell(size_t i, const std::vector<glm::vec3>& centre, const std::vector<glm::vec3>& normal,
+                  float* distance_to_it) const;
   // The cells of the same layer next to an edge as cell `index`, along the edge (itself
   // included): what its light is smoothed over.
   std::vector<int> along_edge(size_t index) const;

@@ -1,5 +1,5 @@
-// The radiance cache at concave edges (the header note of radiance_cache.h, docs/probes.md
-// item 9): which cells lie next to one, where their points move to for the profile's
+// The radiance cache at concave edges (the header note of radiance_cache.h; docs/probes.md,
+// "The radiance cache"): which cells lie next to one, where their points move to for the profile's
 // bands, and the profile's difference at a lookup.
 #include <tbb/parallel_for.h>
 
@@ -40,6 +40,38 @@ constexpr int kAlongEdgeCells = 2;
 
 }  // namespace
 
+int RadianceCache::facing_cell(size_t i, const std::vector<glm::vec3>& centre, const std::vector<glm::vec3>& normal,
+                               float* distance_to_it) const {
+  const Cell& cell = cells_[i];
+  const glm::ivec3 at = unpack(cell.key);
+  const glm::vec3& q = centre[i];
+  const glm::vec3& nc = normal[i];
+  const float in_front = kInFrontCells * settings_.cell_size;
+  float nearest = std::numeric_limits<float>::infinity();
+  int other = -1;
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dz = -1; dz <= 1; ++dz) {
+        // Every bucket of a position is one run of keys (the bucket is the low bits).
+        const uint64_t first = pack(at + glm::ivec3(dx, dy, dz), 0);
+        auto it = std::lower_bound(cells_.begin(), cells_.end(), first,
+                                   [](const Cell& c, uint64_t key) { return c.key < key; });
+        for (; it != cells_.end() && (it->key >> 6) == (first >> 6); ++it) {
+          const size_t j = size_t(it - cells_.begin());
+          if ((it->key & 63) == (cell.key & 63)) continue;
+          const glm::vec3& no = normal[j];
+          if (glm::dot(nc, no) > kMaxEdgeCosine) continue;
+          if (glm::dot(centre[j] - q, nc) <= in_front) continue;  // convex, or behind
+          const float distance = glm::dot(q - centre[j], no);
+          if (distance <= in_front || distance >= nearest) continue;
+          nearest = distance;
+          other = int(j);
+        }
+      }
+  *distance_to_it = nearest;
+  return other;
+}
+
 void RadianceCache::find_concave_edges() {
   static_assert(sizeof(kBandFractions) / sizeof(kBandFractions[0]) == kEdgeBands, "one fraction per band");
   const size_t n = cells_.size();
@@ -62,32 +94,9 @@ void RadianceCache::find_concave_edges() {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i < r.end(); ++i) {
       Cell& cell = cells_[i];
-      const glm::ivec3 at = unpack(cell.key);
-      const glm::vec3& q = centre[i];
       const glm::vec3& nc = normal[i];
-      const float in_front = kInFrontCells * cell_size;
-      // The nearest plane of another surface that faces this cell and that it faces.
-      float nearest = std::numeric_limits<float>::infinity();
-      int other = -1;
-      for (int dx = -1; dx <= 1; ++dx)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dz = -1; dz <= 1; ++dz) {
-            // Every bucket of a position is one run of keys (the bucket is the low bits).
-            const uint64_t first = pack(at + glm::ivec3(dx, dy, dz), 0);
-            auto it = std::lower_bound(cells_.begin(), cells_.end(), first,
-                                       [](const Cell& c, uint64_t key) { return c.key < key; });
-            for (; it != cells_.end() && (it->key >> 6) == (first >> 6); ++it) {
-              const size_t j = size_t(it - cells_.begin());
-              if ((it->key & 63) == (cell.key & 63)) continue;
-              const glm::vec3& no = normal[j];
-              if (glm::dot(nc, no) > kMaxEdgeCosine) continue;
-              if (glm::dot(centre[j] - q, nc) <= in_front) continue;  // convex, or behind
-              const float distance = glm::dot(q - centre[j], no);
-              if (distance <= in_front || distance >= nearest) continue;
-              nearest = distance;
-              other = int(j);
-            }
-          }
+      float nearest = 0.0f;
+      const int other = facing_cell(i, centre, normal, &nearest);
       if (other < 0) continue;
       const glm::vec3& no = normal[size_t(other)];
       const glm::vec3 along = -(no - glm::dot(no, nc) * nc);
