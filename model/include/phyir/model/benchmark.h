@@ -1,5 +1,5 @@
 #pragma once
-// Cost of each module of the network (issue 6, item 8): forward and forward+backward wall time
+// Cost of each module of the network: forward and forward+backward wall time
 // and peak resident memory, at the default and the paper's resolution. Torch-free, for the CLI
 // (`phyir bench model`, cli/command_bench_model.cpp). Docs: docs/model.md, "Cost".
 #include <functional>
