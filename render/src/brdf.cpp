@@ -300,4 +300,9 @@ glm::vec3 specular_albedo(const BrdfParams& p, float NoV) {
   return F0 * terms.x + (glm::vec3(1.0f) - F0) * terms.y;
 }
 
+glm::vec3 mean_brdf(const BrdfParams& p, float NoV) {
+  const BrdfParams c = clamped(p);
+  return Fd_Lambert(c.base_color, c.metalness) + specular_albedo(c, NoV) * kInvPi;
+}
+
 }  // namespace phyir::render

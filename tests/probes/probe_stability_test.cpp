@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "phyir/core/safe_math.h"
@@ -18,6 +19,23 @@ namespace {
 
 using namespace stability;
 
+// Small, fast probes: 2 x 4 probes of 4 x 8 texels (or `layout`), a 16-estimate cache.
+ProbeSettings small_probes(ProbeMode mode, int spp, const ProbeLayout& layout = ProbeLayout{2, 4, 4, 8}) {
+  ProbeSettings s;
+  s.mode = mode;
+  s.spp = spp;
+  s.layout = layout;
+  s.cache.samples_per_cell = 16;
+  s.progress = false;
+  return s;
+}
+
+// Every texel finite and non-negative, no non-finite sample caught.
+void expect_finite(const ProbeOutput& out, const std::string& what) {
+  EXPECT_EQ(out.stats.counters.nonfinite_samples, 0u) << what;
+  for (float v : out.mosaic.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f) << what;
+}
+
 // --- Probes ----------------------------------------------------------------------------------
 
 TEST(StabilityMatrix, ProbesEveryMaterialAndMode) {
@@ -30,20 +48,14 @@ TEST(StabilityMatrix, ProbesEveryMaterialAndMode) {
     test::add_quad(scene, glm::vec3(0.0f, 2.0f, 0.0f), glm::vec3(0.01f, 0, 0), glm::vec3(0, 0, 0.01f), hot);
     const RenderScene rs(scene);
     for (ProbeMode mode : {ProbeMode::kPath, ProbeMode::kCache}) {
-      ProbeSettings s;
-      s.mode = mode;
-      s.spp = 2;
-      s.layout = ProbeLayout{2, 4, 4, 8};
-      s.cache.samples_per_cell = 16;
+      ProbeSettings s = small_probes(mode, 2);
       s.cache.cell_size = 0.5f;
       s.hard_spp_factor = 2;
-      s.progress = false;
       s.seed = 4;
       const std::vector<ProbeSite> sites = place_probes(rs, panorama(glm::vec3(-0.4f, 1.4f, 0.6f)), s.layout, s.offset);
       const ProbeOutput out = ProbeRenderer(rs, analyse_effects(scene, false), s).render_at(sites);
       ++cases;
-      EXPECT_EQ(out.stats.counters.nonfinite_samples, 0u) << describe(p) << " " << probe_mode_name(mode);
-      for (float v : out.mosaic.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f) << describe(p);
+      expect_finite(out, describe(p) + " " + probe_mode_name(mode));
     }
   }
   report("probes (36 materials x 2 modes, radiance 1e6 emitter)", cases);
@@ -56,19 +68,13 @@ TEST(StabilityMatrix, ProbesAtExtremeScalesAndInsideObjects) {
     scenes::Scene scene = scaled(lit_room(metal), scale);
     const RenderScene rs(scene);
     for (ProbeMode mode : {ProbeMode::kPath, ProbeMode::kCache}) {
-      ProbeSettings s;
-      s.mode = mode;
-      s.spp = 2;
-      s.layout = ProbeLayout{2, 4, 4, 8};
-      s.cache.samples_per_cell = 16;
+      ProbeSettings s = small_probes(mode, 2);
       s.cache.cell_size = std::clamp(0.5f * scale, 1e-3f, 10.0f);
       s.offset = std::clamp(0.01f * scale, 1e-4f, 1.0f);
-      s.progress = false;
       const std::vector<ProbeSite> sites = place_probes(rs, panorama(scale * glm::vec3(-0.4f, 1.4f, 0.6f)), s.layout, s.offset);
       const ProbeOutput out = ProbeRenderer(rs, analyse_effects(scene, false), s).render_at(sites);
       ++cases;
-      EXPECT_EQ(out.stats.counters.nonfinite_samples, 0u) << "scale " << scale;
-      for (float v : out.mosaic.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f) << "scale " << scale;
+      expect_finite(out, "scale " + std::to_string(scale));
     }
   }
   {  // A probe site inside a closed box (origin in the dark, all walls seen from behind).
@@ -82,16 +88,10 @@ TEST(StabilityMatrix, ProbesAtExtremeScalesAndInsideObjects) {
     site.offset = 0.3f;
     site.status = ProbeStatus::kValid;
     for (ProbeMode mode : {ProbeMode::kPath, ProbeMode::kCache}) {
-      ProbeSettings s;
-      s.mode = mode;
-      s.spp = 4;
-      s.layout = ProbeLayout{1, 1, 4, 8};
-      s.cache.samples_per_cell = 16;
-      s.progress = false;
+      const ProbeSettings s = small_probes(mode, 4, ProbeLayout{1, 1, 4, 8});
       const ProbeOutput out = ProbeRenderer(rs, analyse_effects(scene, false), s).render_at({site});
       ++cases;
-      EXPECT_EQ(out.stats.counters.nonfinite_samples, 0u);
-      for (float v : out.mosaic.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+      expect_finite(out, "inside a box");
     }
   }
   report("probes at 1e-3/1e3 m and inside an object", cases);

@@ -13,6 +13,8 @@
 #include "phyir/render/path_tracer.h"
 #include "phyir/render/streams.h"
 #include "phyir/render/render_scene.h"
+#include "phyir/render/rng.h"
+#include "phyir/render/sampling.h"
 #include "test_scenes.h"
 
 namespace phyir::render {
@@ -205,6 +207,40 @@ TEST(DirectLighting, DiffusePlaneCloseUnderAreaLightMatchesQuadrature) { check_p
 // all ended on the light itself there, and the estimate lost its next-event part.
 TEST(DirectLighting, PlaneCloseUnderAreaLightAwayFromTheOriginMatchesQuadrature) {
   check_plane_under_area_light(0.2f, 2.4f);
+}
+
+// continue_from(hit) is radiance(ray) without the hit's emission and without tracing the
+// ray again: the same streams from the hit on, so the same path, one ray fewer. In a room
+// with glass, a mirror and an emitting ceiling (hits on the light itself included).
+TEST(PathTracer, ContinuingFromAHitIsTheSamePathWithoutItsFirstRay) {
+  scenes::Scene scene = test::make_box_room(glm::vec3(-2, 0, -2), glm::vec3(2, 3, 2), test::make_material(glm::vec3(0.6f), 0.5f));
+  scene.meshes[3].material = test::add_material(scene, test::make_emitter(glm::vec3(2.0f)));  // the ceiling
+  scenes::Material glass = test::make_material(glm::vec3(1.0f), 0.0f);
+  glass.transmission_factor = 1.0f;
+  test::add_uv_sphere(scene, glm::vec3(0.5f, 1.0f, 0.0f), 0.4f, test::add_material(scene, glass), 24, 12);
+  test::add_uv_sphere(scene, glm::vec3(-0.8f, 0.6f, 0.5f), 0.4f,
+                      test::add_material(scene, test::make_material(glm::vec3(0.9f), 0.0f, 1.0f)), 24, 12);
+  const RenderScene rs(scene);
+  const PathTracer tracer(rs, analyse_effects(scene, false), PathSettings{});
+  Rng rng(5, 1);
+  int emitting = 0, transmitting = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const Ray ray{glm::vec3(0.0f, 1.5f, 1.5f), sample_uniform_sphere(rng.next_2d())};
+    SurfaceInteraction si;
+    ASSERT_TRUE(rs.trace(ray, &si));
+    emitting += si.emits;
+    transmitting += si.transmission > 0.0f;
+    const uint64_t key = sample_key(9, uint64_t(i), 0);
+    for (int bounces : {0, 1, 8}) {
+      PathCounters whole, continued;
+      const glm::vec3 a = tracer.radiance(ray, key, bounces, &whole);
+      const glm::vec3 b = tracer.continue_from(si, ray, key, bounces, &continued) + (si.emits ? si.emission : glm::vec3(0.0f));
+      for (int c = 0; c < 3; ++c) ASSERT_NEAR(a[c], b[c], 1e-5f * std::max(a[c], 1.0f)) << i << " " << bounces;
+      ASSERT_EQ(whole.rays, continued.rays + 1);
+    }
+  }
+  EXPECT_GT(emitting, 100);
+  EXPECT_GT(transmitting, 40);
 }
 
 TEST(Effects, SceneAnalysisFindsOnlyWhatIsThere) {

@@ -195,7 +195,7 @@ glm::vec3 TexelEstimator::terminal(const SurfaceInteraction& si, const glm::vec3
   x.brdf = clamped(si.brdf);
   const BrdfParams& p = x.brdf;
   glm::vec3 L(0.0f);
-  const glm::vec3 lobe = Fd_Lambert(p.base_color, p.metalness) + specular_albedo(p, x.wo.z) * kInvPi;
+  const glm::vec3 lobe = mean_brdf(p, x.wo.z);
   const CachedIrradiance E = lookup(si, x, depth, key, c);
   if (E.has_direct) return lobe * (E.indirect + E.direct);  // the whole lobe as if lit uniformly
   // Light sampling alone: no BRDF-sampled ray at a chain's end competes for the emitters.

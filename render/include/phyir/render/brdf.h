@@ -86,4 +86,8 @@ glm::vec2 specular_albedo_terms(float NoV, float roughness);
 // The same for the parameters' own F0.
 glm::vec3 specular_albedo(const BrdfParams& p, float NoV);
 
+// f_r averaged over cosine-weighted incident directions: (diffuse + specular albedo) / pi.
+// Times an irradiance E it is the radiance reflected towards wo if E arrived uniformly.
+glm::vec3 mean_brdf(const BrdfParams& p, float NoV);
+
 }  // namespace phyir::render
