@@ -8,7 +8,7 @@
 // probe texel, a cache cell). stream_key(key, purpose, index) derives from it the key of
 // one purpose's stream, `index` numbering repeats of that purpose within the sample (the
 // bounce of a path, the specular depth of a probe texel, the first sample id of a batch);
-// stream(key, purpose, index) is the generator seeded with it.
+// stream(key, purpose, index) is the generator seeded with it and numbered by the purpose.
 #include <cstdint>
 
 #include "phyir/render/rng.h"
@@ -16,7 +16,7 @@
 namespace phyir::render {
 
 // The values are part of the output: renumbering a purpose changes every image rendered
-// with it, so they stay fixed once released.
+// with it.
 enum class Purpose : uint64_t {
   // The path tracer, per bounce.
   kPathBrdf = 1,         // BRDF sample continuing the path
@@ -36,7 +36,7 @@ enum class Purpose : uint64_t {
   kTexelLookup = 203,             // key of a cache lookup (its fallback's stream)
   kTexelGlass = 204,              // key of the path traced through glass
   kTexelSpecularRoulette = 205,   // whether the specular ray is followed
-  kTexelLightRepeat = 206,        // the k-th light sample of a multi-sample estimate (key)
+  kTexelLightRepeat = 206,        // key of the k-th light sample of a multi-sample estimate
   // The probe renderer, per texel; `index` is the first sample id of a batch.
   kProbeDiscovery = 301,    // the ray that offers the texel's first hit to the cache
   kProbeStrata = 302,       // permutation of a batch's strata
@@ -59,46 +59,10 @@ inline uint64_t sample_key(uint64_t seed, uint64_t item, uint64_t sample) {
   return mix64(mix64(seed) ^ mix64(item * 0x100000001B3ull + sample));
 }
 
-namespace detail {
-// The derivations below reproduce the numbering the renderer had before its purposes were
-// gathered here, so that images stayed bit-identical.
-inline uint64_t legacy_stream_key(uint64_t key, Purpose purpose, uint64_t index) {
-  const uint64_t p = uint64_t(purpose);
-  switch (purpose) {
-    case Purpose::kTexelLight:
-    case Purpose::kTexelBrdf:
-    case Purpose::kTexelSpecularRoulette: return mix64(key ^ mix64(p * 64 + index));
-    case Purpose::kTexelLookup:
-    case Purpose::kTexelGlass: return mix64(key ^ mix64(p * 64 + index + 7));
-    case Purpose::kTexelLightRepeat: return index == 0 ? key : mix64(key ^ index);
-    case Purpose::kProbeCacheTieBreak: return mix64(key);
-    case Purpose::kPixelScramble: return mix64(key ^ 0x706978656cull);  // "pixel"
-    case Purpose::kPixelLightSelect:
-    case Purpose::kPixelLightPoint:
-    case Purpose::kPixelLobe:
-    case Purpose::kPixelBrdf: return mix64(key + (p - uint64_t(Purpose::kPixelScramble)));
-    case Purpose::kProbeSeed: return mix64(key ^ 0x70726f6265ull);  // "probe"
-    case Purpose::kCacheSeed: return mix64(key ^ 0x6361636865ull);  // "cache"
-    default: return mix64(key ^ mix64(index * 8 + p));  // the path tracer's and the cache's
-  }
-}
-// Per-item purposes were sample ids far above any texel's sample count.
-inline uint64_t legacy_item_sample(Purpose purpose, uint64_t index) {
-  switch (purpose) {
-    case Purpose::kProbeDiscovery: return (uint64_t(1) << 40) + index;
-    case Purpose::kProbeStrata: return (uint64_t(1) << 41) + index;
-    case Purpose::kProbeInterleave: return (uint64_t(1) << 42) + index;
-    default: return (uint64_t(1) << 43) + index;  // kProbeLightPart
-  }
-}
-inline bool is_item_purpose(Purpose purpose) {
-  return purpose >= Purpose::kProbeDiscovery && purpose <= Purpose::kProbeLightPart;
-}
-}  // namespace detail
-
-// The key of `purpose`'s stream number `index` within the sample keyed by `key`.
+// Every derivation is this one: a purpose's streams never meet another's (purposes sit in
+// the top 24 bits, indices below 2^40) and mix64 decorrelates neighbouring keys.
 inline uint64_t stream_key(uint64_t key, Purpose purpose, uint64_t index = 0) {
-  return detail::legacy_stream_key(key, purpose, index);
+  return mix64(key ^ mix64((uint64_t(purpose) << 40) + index));
 }
 
 // The generator of that stream.
@@ -107,15 +71,16 @@ inline Rng stream(uint64_t key, Purpose purpose, uint64_t index = 0) {
 }
 
 // The key of `purpose`'s stream number `index` of a whole item (not of one of its samples):
-// a probe texel's discovery ray, its strata permutations, its lights' coverage directions.
+// a probe texel's discovery ray, its strata permutations, its lights' coverage directions,
+// a cache cell's points. Derived from the item's first sample key, with purposes no sample
+// uses.
 inline uint64_t item_stream_key(uint64_t seed, uint64_t item, Purpose purpose, uint64_t index = 0) {
-  if (purpose == Purpose::kCachePoint) return mix64(seed ^ mix64(item)) + index;
-  return sample_key(seed, item, detail::legacy_item_sample(purpose, index));
+  return stream_key(sample_key(seed, item, 0), purpose, index);
 }
 
 // The generator of that stream.
 inline Rng item_stream(uint64_t seed, uint64_t item, Purpose purpose, uint64_t index = 0) {
-  return Rng(item_stream_key(seed, item, purpose, index), 0);
+  return Rng(item_stream_key(seed, item, purpose, index), uint64_t(purpose));
 }
 
 }  // namespace phyir::render
