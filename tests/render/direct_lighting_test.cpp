@@ -16,6 +16,7 @@
 #include "phyir/render/render_scene.h"
 #include "phyir/render/rng.h"
 #include "phyir/render/sampling.h"
+#include "monte_carlo.h"
 #include "test_scenes.h"
 
 namespace phyir::render {
@@ -50,24 +51,11 @@ ShadingPoint floor_point() {
   return x;
 }
 
-struct Mean {
-  double mean = 0.0, std_error = 0.0;
-};
-
 // The mean of `n` values of `sample(rng)`, with its standard error.
 template <typename Sample>
-Mean mean_of(int n, uint64_t seed, Sample sample) {
+test::MeanAndError mean_of(int n, uint64_t seed, Sample sample) {
   Rng rng(seed, 3);
-  double sum = 0.0, sum2 = 0.0;
-  for (int i = 0; i < n; ++i) {
-    const double v = sample(rng);
-    sum += v;
-    sum2 += v * v;
-  }
-  Mean m;
-  m.mean = sum / n;
-  m.std_error = std::sqrt(std::max(sum2 / n - m.mean * m.mean, 0.0) / n);
-  return m;
+  return test::monte_carlo(n, [&](int) { return sample(rng); });
 }
 
 // One light sample through the cosine lobe (irradiance), with the given options.
@@ -102,9 +90,9 @@ TEST(DirectLighting, LightSamplesAloneGiveLambertsIrradiance) {
   const scenes::Scene scene = lit_floor(false);
   const RenderScene rs(scene);
   PathCounters c;
-  const Mean m = mean_of(40000, 1, [&](Rng& rng) { return light_sample(rs, irradiance_options(false), rng, &c); });
+  const test::MeanAndError m = mean_of(40000, 1, [&](Rng& rng) { return light_sample(rs, irradiance_options(false), rng, &c); });
   const double expected = lambert_irradiance();
-  EXPECT_NEAR(m.mean, expected, 4.0 * m.std_error + 1e-3 * expected);
+  EXPECT_NEAR(m.mean, expected, 4.0 * m.standard_error + 1e-3 * expected);
   EXPECT_EQ(c.rays, 40000u);  // one shadow ray per sample: the point sees the whole light
 }
 
@@ -115,15 +103,15 @@ TEST(DirectLighting, MisWeightsOfLightSamplesAndCosineRaysSumToOne) {
   for (int light_samples : {1, 4}) {
     PathCounters c;
     // `light_samples` light samples and one cosine ray per estimate.
-    const Mean m = mean_of(40000, 2 + uint64_t(light_samples), [&](Rng& rng) {
+    const test::MeanAndError m = mean_of(40000, 2 + uint64_t(light_samples), [&](Rng& rng) {
       double sum = 0.0;
       for (int k = 0; k < light_samples; ++k) sum += light_sample(rs, irradiance_options(true, light_samples), rng, &c);
       return sum / light_samples + cosine_ray(rs, light_samples, rng);
     });
-    EXPECT_NEAR(m.mean, expected, 4.0 * m.std_error + 1e-3 * expected) << light_samples << " light samples";
+    EXPECT_NEAR(m.mean, expected, 4.0 * m.standard_error + 1e-3 * expected) << light_samples << " light samples";
   }
   // Unweighted, both strategies count the light: the test tells the weights from none.
-  const Mean both = mean_of(20000, 9, [&](Rng& rng) {
+  const test::MeanAndError both = mean_of(20000, 9, [&](Rng& rng) {
     PathCounters c;
     return light_sample(rs, irradiance_options(false), rng, &c) + cosine_ray(rs, 1, rng, false);
   });
@@ -136,9 +124,9 @@ TEST(DirectLighting, WeakShadowRayRouletteKeepsTheMean) {
   DirectLightOptions rouletted = irradiance_options(false);
   rouletted.weak = float(4.0 * lambert_irradiance());  // every sample is "weak": most skip their ray
   PathCounters c;
-  const Mean m = mean_of(40000, 5, [&](Rng& rng) { return light_sample(rs, rouletted, rng, &c); });
+  const test::MeanAndError m = mean_of(40000, 5, [&](Rng& rng) { return light_sample(rs, rouletted, rng, &c); });
   const double expected = lambert_irradiance();
-  EXPECT_NEAR(m.mean, expected, 4.0 * m.std_error + 1e-3 * expected);
+  EXPECT_NEAR(m.mean, expected, 4.0 * m.standard_error + 1e-3 * expected);
   EXPECT_LT(c.rays, 40000u / 2);
 }
 
@@ -146,7 +134,7 @@ TEST(DirectLighting, AnOccluderTakesTheLightAway) {
   const scenes::Scene scene = lit_floor(true);
   const RenderScene rs(scene);
   PathCounters c;
-  const Mean m = mean_of(1000, 6, [&](Rng& rng) { return light_sample(rs, irradiance_options(false), rng, &c); });
+  const test::MeanAndError m = mean_of(1000, 6, [&](Rng& rng) { return light_sample(rs, irradiance_options(false), rng, &c); });
   EXPECT_EQ(m.mean, 0.0);
   EXPECT_EQ(c.rays, 1000u);
 }

@@ -15,6 +15,7 @@
 #include "phyir/render/ray_offset.h"
 #include "phyir/render/render_scene.h"
 #include "phyir/render/rng.h"
+#include "monte_carlo.h"
 #include "test_scenes.h"
 
 namespace phyir::render {
@@ -35,23 +36,8 @@ double mesh_solid_angle(const scenes::Mesh& mesh, const glm::vec3& r) {
   return sum;
 }
 
-struct MeanAndError {
-  double mean = 0.0, standard_error = 0.0;
-};
-
-template <typename F>
-MeanAndError monte_carlo(int n, F&& f) {
-  double sum = 0.0, sum2 = 0.0;
-  for (int i = 0; i < n; ++i) {
-    const double x = f(i);
-    sum += x;
-    sum2 += x * x;
-  }
-  MeanAndError r;
-  r.mean = sum / n;
-  r.standard_error = std::sqrt(std::max(0.0, sum2 / n - r.mean * r.mean) / n);
-  return r;
-}
+using test::MeanAndError;
+using test::monte_carlo;
 
 // A 1 m x 0.5 m ceiling light at y = 2 facing down (-Y).
 int add_ceiling_light(scenes::Scene& scene, int material) {
