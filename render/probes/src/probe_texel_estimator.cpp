@@ -94,7 +94,7 @@ glm::vec3 TexelEstimator::reflected(const SurfaceInteraction& si, const glm::vec
   // hit (near a light the texel's noise is mostly this estimate's), one deeper.
   DirectLightOptions nee;
   nee.light_samples = depth == 0 ? kNearLightSamples : 1;
-  if (!scene_.emitters().empty()) L += direct_light(x, nee, depth, key, c);
+  if (has_lights(scene_)) L += direct_light(x, nee, depth, key, c);
 
   // The control variate of reflected_split(), for every sample of a rough surface (the
   // roulette below depends on the sample, so it cannot be the condition).
@@ -118,7 +118,7 @@ glm::vec3 TexelEstimator::reflected(const SurfaceInteraction& si, const glm::vec
   ++c->rays;
   if (!scene_.trace(ray, &y)) return L + weight_specular * (miss(wi_world) - uniform);  // the diffuse share is in E
   if (y.emits) {
-    const bool weighted = !scene_.emitters().empty() && !bs.delta;
+    const bool weighted = has_lights(scene_) && !bs.delta;
     L += bs.weight * y.emission * (weighted ? emitter_hit_weight(scene_, si.position, bs.pdf, y, nee.light_samples) : 1.0f);
   }
   if (next >= settings_.path.max_bounces || !(max_component(weight_specular) > 0.0f)) return L;
@@ -154,7 +154,7 @@ glm::vec3 TexelEstimator::reflected_split(const ShadingPoint& x, const glm::vec3
   const float share = safe_div(albedo_s, albedo_s + kPi * luminance(fd));
   if (!(share > 0.0f)) return L;
   const float keep = std::clamp(kSpecularKeepScale * share, kMinSpecularKeep, 1.0f);
-  const bool emitters = !scene_.emitters().empty();
+  const bool emitters = has_lights(scene_);
   // Its shadow ray is rouletted where the sample adds less than a small fraction of the
   // diffuse light (a rough wall away from the lights' highlights).
   DirectLightOptions nee;
@@ -201,7 +201,7 @@ glm::vec3 TexelEstimator::terminal(const SurfaceInteraction& si, const glm::vec3
   // Light sampling alone: no BRDF-sampled ray at a chain's end competes for the emitters.
   DirectLightOptions nee;
   nee.mis = false;
-  if (!scene_.emitters().empty()) L += direct_light(x, nee, depth, key, c);
+  if (has_lights(scene_)) L += direct_light(x, nee, depth, key, c);
   return L + lobe * E.indirect;
 }
 

@@ -250,7 +250,7 @@ void RadianceCache::fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) 
   for (int k = 0; k < cell->count; ++k) nearest = std::min(nearest, emitters.distance_bound(cell->points[k].position));
   cell->has_direct = settings_.direct_distance_cells > 0.0f &&
                      nearest >= settings_.direct_distance_cells * settings_.cell_size;
-  const bool sample_direct = cell->has_direct && !emitters.empty() && max_bounces_ >= 1;
+  const bool sample_direct = cell->has_direct && has_lights(*scene_) && max_bounces_ >= 1;
 
   // samples_per_cell estimates shared out over the points, each point's own cosine
   // directions and light points stratified over the unit square.
@@ -364,7 +364,7 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
   const RenderScene& scene = *scene_;
   const glm::vec3& ns = point.shading_normal;
   const glm::vec3& ng = point.geometric_normal;
-  if (direct && !scene.emitters().empty()) {
+  if (direct && has_lights(scene)) {
     ShadingPoint x;
     x.position = point.position;
     x.geometric_normal = ng;

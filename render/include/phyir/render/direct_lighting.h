@@ -31,6 +31,10 @@ struct ShadingPoint {
   BrdfParams brdf;
 };
 
+// Whether the scene has lights to sample at all (without, estimators skip next-event
+// estimation and weight every emitter hit by 1).
+inline bool has_lights(const RenderScene& scene) { return !scene.emitters().empty(); }
+
 // The shading frame at a hit: the shading normal, unless the viewer is below it (then the
 // geometric normal, which always faces the viewer).
 Frame shading_frame(const SurfaceInteraction& si, const glm::vec3& wo_world);
