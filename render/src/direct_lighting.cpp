@@ -53,19 +53,25 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
   // f > 0 implies wi.z >= kMinCosine for every lobe.
   if (!(wi.z > 0.0f) || !(glm::dot(ls.wi, x.geometric_normal) > 0.0f) || !(max_component(f) > 0.0f))
     return glm::vec3(0.0f);
-  const float w = options.mis ? power_heuristic(float(options.light_samples) * ls.pdf,
-                                                options.brdf_strategy_probability * lobe_pdf(x, options.lobes, wi))
-                              : 1.0f;
-  const glm::vec3 contribution = throughput * f * ls.radiance * (wi.z * w / ls.pdf);
+  auto value = [&] {
+    const float w = options.mis ? power_heuristic(float(options.light_samples) * ls.pdf,
+                                                  options.brdf_strategy_probability * lobe_pdf(x, options.lobes, wi))
+                                : 1.0f;
+    return throughput * f * ls.radiance * (wi.z * w / ls.pdf);
+  };
+  auto visible = [&] {
+    ++counters->rays;
+    return !scene.accelerator().occluded(shadow_ray_to(x.position, x.geometric_normal, ls.position, ls.normal));
+  };
+  // Without the roulette the value is only needed where the light is in view.
+  if (!(options.weak > 0.0f)) return visible() ? value() : glm::vec3(0.0f);
+  const glm::vec3 contribution = value();
   float keep = 1.0f;
   if (const float y = luminance(contribution); y < options.weak) {
     keep = y / options.weak;
     if (!(roulette->next_float() < keep)) return glm::vec3(0.0f);
   }
-  ++counters->rays;
-  if (scene.accelerator().occluded(shadow_ray_to(x.position, x.geometric_normal, ls.position, ls.normal)))
-    return glm::vec3(0.0f);
-  return contribution / keep;
+  return visible() ? contribution / keep : glm::vec3(0.0f);
 }
 
 glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint& x, const glm::vec2& u,

@@ -185,10 +185,6 @@ glm::vec3 PathTracer::radiance(const Ray& ray, uint64_t path_key, const FirstBou
   return kernel_(*scene_, settings_, PathStart{ray, nullptr, &first}, path_key, settings_.max_bounces, counters);
 }
 
-glm::vec3 PathTracer::radiance(const Ray& ray, uint64_t path_key, int max_bounces, PathCounters* counters) const {
-  return kernel_(*scene_, settings_, PathStart{ray}, path_key, max_bounces, counters);
-}
-
 glm::vec3 PathTracer::continue_from(const SurfaceInteraction& hit, const Ray& ray, uint64_t path_key,
                                     int max_bounces, PathCounters* counters) const {
   return kernel_(*scene_, settings_, PathStart{ray, &hit}, path_key, max_bounces, counters);

@@ -224,6 +224,13 @@ TEST(PathTracer, ContinuingFromAHitIsTheSamePathWithoutItsFirstRay) {
   const PathTracer tracer(rs, analyse_effects(scene, false), PathSettings{});
   Rng rng(5, 1);
   int emitting = 0, transmitting = 0;
+  constexpr int kBudgets[3] = {0, 1, 8};
+  auto tracer_of = [&](int bounces) {  // radiance() with the same budget
+    PathSettings settings;
+    settings.max_bounces = bounces;
+    return PathTracer(rs, analyse_effects(scene, false), settings);
+  };
+  const PathTracer whole_paths[3] = {tracer_of(kBudgets[0]), tracer_of(kBudgets[1]), tracer_of(kBudgets[2])};
   for (int i = 0; i < 4000; ++i) {
     const Ray ray{glm::vec3(0.0f, 1.5f, 1.5f), sample_uniform_sphere(rng.next_2d())};
     SurfaceInteraction si;
@@ -231,9 +238,10 @@ TEST(PathTracer, ContinuingFromAHitIsTheSamePathWithoutItsFirstRay) {
     emitting += si.emits;
     transmitting += si.transmission > 0.0f;
     const uint64_t key = sample_key(9, uint64_t(i), 0);
-    for (int bounces : {0, 1, 8}) {
+    for (int n = 0; n < 3; ++n) {
+      const int bounces = kBudgets[n];
       PathCounters whole, continued;
-      const glm::vec3 a = tracer.radiance(ray, key, bounces, &whole);
+      const glm::vec3 a = whole_paths[n].radiance(ray, key, &whole);
       const glm::vec3 b = tracer.continue_from(si, ray, key, bounces, &continued) + (si.emits ? si.emission : glm::vec3(0.0f));
       for (int c = 0; c < 3; ++c) ASSERT_NEAR(a[c], b[c], 1e-5f * std::max(a[c], 1.0f)) << i << " " << bounces;
       ASSERT_EQ(whole.rays, continued.rays + 1);

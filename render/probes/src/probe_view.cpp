@@ -174,7 +174,7 @@ void ProbeView::build_cache() {
         for (size_t k : tiles_[n]) {
           const int p = todo_[k];
           const uint64_t key = item_stream_key(probe_seed_, texel_id(p, t), Purpose::kProbeDiscovery);
-          Rng rng = item_stream(probe_seed_, texel_id(p, t), Purpose::kProbeDiscovery);
+          Rng rng = generator(key, Purpose::kProbeDiscovery);
           const Ray ray{out_.sites[size_t(p)].origin,
                         probe_texel_direction(t / layout_.res_width, t % layout_.res_width, layout_.res_height,
                                               layout_.res_width, rng.next_2d())};

@@ -59,8 +59,6 @@ class PathTracer {
   glm::vec3 radiance(const Ray& ray, uint64_t path_key, PathCounters* counters) const;
   // The same, with the first scattering event's random numbers given.
   glm::vec3 radiance(const Ray& ray, uint64_t path_key, const FirstBounceSamples& first, PathCounters* counters) const;
-  // The same with at most `max_bounces` scattering events instead of the settings'.
-  glm::vec3 radiance(const Ray& ray, uint64_t path_key, int max_bounces, PathCounters* counters) const;
 
   // The light the surface at `hit` (found along `ray`) sends back along the ray, its own
   // emission excluded: the path continued from a known hit, with at most `max_bounces`
@@ -70,7 +68,6 @@ class PathTracer {
                           PathCounters* counters) const;
 
   const Effects& effects() const { return effects_; }
-  const PathSettings& settings() const { return settings_; }
 
  private:
   using Kernel = glm::vec3 (*)(const RenderScene&, const PathSettings&, const PathStart&, uint64_t, int, PathCounters*);

@@ -65,9 +65,12 @@ inline uint64_t stream_key(uint64_t key, Purpose purpose, uint64_t index = 0) {
   return mix64(key ^ mix64((uint64_t(purpose) << 40) + index));
 }
 
+// The generator of a stream whose key is already derived (stream_key, item_stream_key).
+inline Rng generator(uint64_t stream_key, Purpose purpose) { return Rng(stream_key, uint64_t(purpose)); }
+
 // The generator of that stream.
 inline Rng stream(uint64_t key, Purpose purpose, uint64_t index = 0) {
-  return Rng(stream_key(key, purpose, index), uint64_t(purpose));
+  return generator(stream_key(key, purpose, index), purpose);
 }
 
 // The key of `purpose`'s stream number `index` of a whole item (not of one of its samples):
@@ -80,7 +83,7 @@ inline uint64_t item_stream_key(uint64_t seed, uint64_t item, Purpose purpose, u
 
 // The generator of that stream.
 inline Rng item_stream(uint64_t seed, uint64_t item, Purpose purpose, uint64_t index = 0) {
-  return Rng(item_stream_key(seed, item, purpose, index), uint64_t(purpose));
+  return generator(item_stream_key(seed, item, purpose, index), purpose);
 }
 
 }  // namespace phyir::render
