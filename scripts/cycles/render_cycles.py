@@ -13,7 +13,9 @@ The output matches `phyir render` as closely as Cycles allows (see docs/cycles-c
   adaptive sampling, view transform Standard with exposure 0 and no look;
 - unbiased light transport: no clamping, no glossy blur, caustics on, no light threshold,
   no path guiding, MIS between light sampling and BSDF sampling (ours);
-- black world (our renders have no environment unless asked).
+- black world (our renders have no environment unless asked);
+- punctual lights (KHR_lights_punctual) as delta lights: the importer's 0.25 m lamp radius
+  and the sun's 0.526 degree angle are set to 0; the lights are listed in the JSON.
 
 `--bounces` is Cycles' count, which counts the bounces after the first hit: Cycles'
 `max_bounces = B` renders the paths of `phyir render --max-bounces B+1`
@@ -35,6 +37,7 @@ import tempfile
 import time
 
 import bpy
+import mathutils
 import numpy
 
 # Blender 3.4's glTF importer uses np.bool, which numpy 1.24 removed.
@@ -75,6 +78,40 @@ def import_scene(path):
     start = time.perf_counter()
     bpy.ops.import_scene.gltf(filepath=path)
     return time.perf_counter() - start
+
+
+def make_lights_delta():
+    """Turns every imported lamp into a delta light, as glTF's KHR_lights_punctual defines them.
+
+    Blender's glTF importer gives each lamp Blender's default radius (shadow_soft_size 0.25 m)
+    and each sun its default angle (0.526 degrees): set to 0, so that Cycles renders a point,
+    a spot and a directional light. Returns what was found, for the report: Blender's units
+    (point and spot: W, sun: W/m^2) and, per the importer (convert_lighting_mode SPEC),
+    point/spot W = cd * 4 pi / 683, sun W/m^2 = lx / 683.
+    """
+    lights = []
+    for obj in bpy.data.objects:
+        if obj.type != "LIGHT":
+            continue
+        light = obj.data
+        entry = {"object": obj.name, "type": light.type, "energy": light.energy,
+                 "color": list(light.color)}
+        if light.type == "SUN":
+            entry["angle_imported"] = light.angle
+            light.angle = 0.0
+        else:
+            entry["radius_imported"] = light.shadow_soft_size
+            light.shadow_soft_size = 0.0
+        if light.type == "SPOT":
+            entry["spot_size"] = light.spot_size
+            entry["spot_blend"] = light.spot_blend
+        world = obj.matrix_world
+        position = world.translation
+        direction = (world.to_3x3() @ mathutils.Vector((0.0, 0.0, -1.0))).normalized()
+        entry["position_gltf"] = [position.x, position.z, -position.y]
+        entry["direction_gltf"] = [direction.x, direction.z, -direction.y]
+        lights.append(entry)
+    return lights
 
 
 def input_source(socket):
@@ -299,6 +336,12 @@ def main():
 
     import_seconds = import_scene(args.gltf)
     scene = bpy.context.scene
+    lights = make_lights_delta()
+    for light in lights:
+        extra = "".join(f" {k} {light[k]:.4f}" for k in ("spot_size", "spot_blend") if k in light)
+        unit = "W/m^2" if light["type"] == "SUN" else "W"
+        print(f"render_cycles.py: light '{light['object']}' {light['type']} {light['energy']:.4f} {unit}{extra}"
+              f" at {[round(v, 4) for v in light['position_gltf']]} (glTF) made delta")
     setup_world(scene)
     setup_camera(scene, position, rotation)
     setup_cycles(scene, args)
@@ -342,6 +385,7 @@ def main():
             "pixel_filter_type", "filter_width"]},
         "view_transform": scene.view_settings.view_transform,
         "emissive_materials": emissive,
+        "lights": lights,
         "timings": {"import_seconds": import_seconds, "render_call_seconds": render_call_seconds,
                     "render_seconds": render_seconds, "render_call_cpu_seconds": cpu_seconds},
     }
