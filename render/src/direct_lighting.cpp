@@ -1,5 +1,7 @@
 #include "phyir/render/direct_lighting.h"
 
+#include <cmath>
+
 #include "phyir/core/safe_math.h"
 #include "phyir/render/ray_offset.h"
 
@@ -39,6 +41,13 @@ float lobe_pdf(const ShadingPoint& x, Lobes lobes, const glm::vec3& wi) {
   }
 }
 
+// The shadow ray of a light sample: to a point on an emitter, to a point light, or out of
+// the scene towards a directional light.
+Ray shadow_ray(const ShadingPoint& x, const EmitterSample& ls) {
+  if (std::isinf(ls.distance)) return Ray{spawn_origin(x.position, x.geometric_normal, ls.wi), ls.wi};
+  return shadow_ray_to(x.position, x.geometric_normal, ls.position, ls.normal);
+}
+
 }  // namespace
 
 glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, const LightVariates& u,
@@ -54,14 +63,15 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
   if (!(wi.z > 0.0f) || !(glm::dot(ls.wi, x.geometric_normal) > 0.0f) || !(max_component(f) > 0.0f))
     return glm::vec3(0.0f);
   auto value = [&] {
-    const float w = options.mis ? power_heuristic(float(options.light_samples) * ls.pdf,
+    // A punctual light cannot be hit by the competing ray: no MIS.
+    const float w = options.mis && !ls.delta ? power_heuristic(float(options.light_samples) * ls.pdf,
                                                   options.brdf_strategy_probability * lobe_pdf(x, options.lobes, wi))
                                 : 1.0f;
     return throughput * f * ls.radiance * (wi.z * w / ls.pdf);
   };
   auto visible = [&] {
     ++counters->rays;
-    return !scene.accelerator().occluded(shadow_ray_to(x.position, x.geometric_normal, ls.position, ls.normal));
+    return !scene.accelerator().occluded(shadow_ray(x, ls));
   };
   // Without the roulette the value is only needed where the light is in view.
   if (!(options.weak > 0.0f)) return visible() ? value() : glm::vec3(0.0f);

@@ -5,7 +5,7 @@
 namespace phyir::render {
 
 nlohmann::json Effects::to_json() const {
-  return {{"emitter_sampling", emitters}, {"environment", environment},
+  return {{"emitter_sampling", emitters}, {"punctual_lights", punctual_lights}, {"environment", environment},
           {"transmission", transmission}, {"textures", textures},
           {"mirrors", mirrors},           {"alpha", alpha}};
 }
@@ -17,6 +17,7 @@ Effects analyse_effects(const scenes::Scene& scene, bool has_environment) {
       used[mesh.material] = true;
   Effects e;
   e.environment = has_environment;
+  e.punctual_lights = !scene.lights.empty();
   for (size_t i = 0; i < scene.materials.size(); ++i) {
     if (!used[i]) continue;
     const scenes::Material& m = scene.materials[i];
@@ -33,7 +34,7 @@ Effects analyse_effects(const scenes::Scene& scene, bool has_environment) {
 
 Effects all_effects() {
   Effects e;
-  e.emitters = e.environment = e.transmission = e.textures = e.mirrors = e.alpha = true;
+  e.emitters = e.punctual_lights = e.environment = e.transmission = e.textures = e.mirrors = e.alpha = true;
   return e;
 }
 

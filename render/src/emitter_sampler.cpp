@@ -69,7 +69,18 @@ glm::vec2 EmitterSampler::barycentrics_of(const EmissiveTriangle& e, const glm::
   return sum > 1.0f ? b / sum : b;
 }
 
-EmitterSampler::EmitterSampler(const scenes::Scene& scene, const Accelerator* occluders) : scene_(&scene) {
+namespace {
+
+// Half the diagonal of the scene's bounds: the radius of the disc a directional light can light.
+float bounding_radius(const scenes::Scene& scene) {
+  const scenes::Bounds bounds = scene.compute_bounds();
+  return bounds.empty() ? 1.0f : 0.5f * glm::length(bounds.max - bounds.min);
+}
+
+}  // namespace
+
+EmitterSampler::EmitterSampler(const scenes::Scene& scene, const Accelerator* occluders)
+    : scene_(&scene), delta_(scene.lights, scene.lights.empty() ? 1.0f : bounding_radius(scene)) {
   first_of_mesh_.assign(scene.meshes.size(), -1);
   std::vector<float> weights;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -117,6 +128,14 @@ EmitterSampler::EmitterSampler(const scenes::Scene& scene, const Accelerator* oc
   }
   build_clusters(weights);
   distribution_ = Distribution1D(std::move(weights));
+  if (!delta_.empty()) {
+    std::vector<float> powers;
+    for (int i = 0; i < delta_.size(); ++i) powers.push_back(delta_.power(i));
+    delta_distribution_ = Distribution1D(std::move(powers));
+    // Power of the emissive triangles: a Lambertian face of radiance L and area A sends pi L A.
+    const float triangle_power = kPi * distribution_.total();
+    triangle_share_ = safe_div(triangle_power, triangle_power + delta_.total_power());
+  }
   if (!triangles_.empty())
     spdlog::debug("emitter sampler: {} emissive triangles in {} clusters ({}), total power {}; {} enclosed left out",
                   triangles_.size(), clusters_.size(), spatial_ ? "spatial selection" : "power selection",
@@ -185,10 +204,11 @@ void EmitterSampler::build_clusters(const std::vector<float>& weights) {
     }
     begin = end;
   }
-  spatial_ = clusters_.size() > 1 && clusters_.size() <= size_t(kMaxSpatialClusters);
+  const size_t entries = clusters_.size() + size_t(delta_.size());
+  spatial_ = entries > 1 && entries <= size_t(kMaxSpatialClusters);
 }
 
-float EmitterSampler::cluster_weights(const glm::vec3& reference, float* weights) const {
+float EmitterSampler::selection_weights(const glm::vec3& reference, float* weights) const {
   float total = 0.0f;
   for (size_t i = 0; i < clusters_.size(); ++i) {
     const Cluster& c = clusters_[i];
@@ -212,6 +232,11 @@ float EmitterSampler::cluster_weights(const glm::vec3& reference, float* weights
     weights[i] = std::isfinite(w) ? w : 0.0f;
     total += weights[i];
   }
+  for (int j = 0; j < delta_.size(); ++j) {
+    float& w = weights[clusters_.size() + size_t(j)];
+    w = delta_.weight(j, reference);
+    total += w;
+  }
   return total;
 }
 
@@ -221,15 +246,62 @@ float EmitterSampler::distance_bound(const glm::vec3& point) const {
     const glm::vec3 d = point - glm::clamp(point, c.bounds_min, c.bounds_max);
     nearest2 = std::min(nearest2, glm::dot(d, d));
   }
-  return std::sqrt(nearest2);
+  return std::min(std::sqrt(nearest2), delta_.distance_bound(point));
 }
 
 float EmitterSampler::selection_pmf(const glm::vec3& reference, int index) const {
-  if (!spatial_) return distribution_.pmf(index);
+  if (!spatial_) return distribution_.pmf(index) * triangle_share_;
   float weights[kMaxSpatialClusters];
-  const float total = cluster_weights(reference, weights);
+  const float total = selection_weights(reference, weights);
   const EmissiveTriangle& e = triangles_[index];
   return total > 0.0f ? weights[e.cluster] / total * e.pmf_in_cluster : 0.0f;
+}
+
+bool EmitterSampler::choose_spatially(const glm::vec3& reference, float u_select, int* entry, float* entry_pmf,
+                                      float* remapped) const {
+  float weights[kMaxSpatialClusters];
+  const float total = selection_weights(reference, weights);
+  if (!(total > 0.0f)) return false;
+  // Invert the cumulative weights; u_select is reused inside the chosen cluster.
+  const size_t entries = clusters_.size() + size_t(delta_.size());
+  float target = u_select * total, acc = 0.0f;
+  int chosen = -1;
+  for (size_t i = 0; i < entries; ++i) {
+    if (weights[i] <= 0.0f) continue;
+    chosen = static_cast<int>(i);
+    if (target < acc + weights[i]) break;
+    acc += weights[i];
+  }
+  *entry = chosen;
+  *entry_pmf = weights[chosen] / total;
+  *remapped = std::clamp((target - acc) / weights[chosen], 0.0f, kOneMinusEpsilon);
+  return true;
+}
+
+bool EmitterSampler::chooses_triangles(float* u_select, int* light, float* pmf) const {
+  if (delta_.empty() || triangle_share_ >= 1.0f) return true;
+  if (*u_select < triangle_share_) {
+    *u_select = std::min(*u_select / triangle_share_, kOneMinusEpsilon);
+    return true;
+  }
+  const float u = std::min((*u_select - triangle_share_) / (1.0f - triangle_share_), kOneMinusEpsilon);
+  *light = delta_distribution_.sample(u, pmf);
+  *pmf *= 1.0f - triangle_share_;
+  return false;
+}
+
+bool EmitterSampler::sample_delta(int light, float pmf, const glm::vec3& reference, EmitterSample* out) const {
+  DeltaIllumination seen;
+  if (light < 0 || !(pmf > 0.0f) || !delta_.illuminate(light, reference, &seen)) return false;
+  out->position = seen.position;
+  out->normal = -seen.wi;
+  out->wi = seen.wi;
+  out->distance = seen.distance;
+  out->radiance = seen.irradiance;
+  out->pdf = pmf;
+  out->mesh = out->triangle = -1;
+  out->delta = true;
+  return true;
 }
 
 bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const glm::vec2& u_point,
@@ -237,26 +309,21 @@ bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const gl
   float pmf = 0.0f;
   int index = -1;
   if (spatial_) {
-    float weights[kMaxSpatialClusters];
-    const float total = cluster_weights(reference, weights);
-    if (!(total > 0.0f)) return false;
-    // Pick a cluster by inverting the cumulative weights, reusing u_select inside it.
-    float target = u_select * total, acc = 0.0f;
-    int chosen = -1;
-    for (size_t i = 0; i < clusters_.size(); ++i) {
-      if (weights[i] <= 0.0f) continue;
-      chosen = static_cast<int>(i);
-      if (target < acc + weights[i]) break;
-      acc += weights[i];
-    }
-    const float remapped = std::clamp((target - acc) / weights[chosen], 0.0f, kOneMinusEpsilon);
-    const Cluster& c = clusters_[chosen];
+    int entry;
+    float entry_pmf, remapped;
+    if (!choose_spatially(reference, u_select, &entry, &entry_pmf, &remapped)) return false;
+    if (size_t(entry) >= clusters_.size()) return sample_delta(entry - int(clusters_.size()), entry_pmf, reference, out);
+    const Cluster& c = clusters_[size_t(entry)];
     const int k = c.distribution.sample(remapped);
     if (k < 0) return false;
     index = c.triangles[k];
-    pmf = weights[chosen] / total * triangles_[index].pmf_in_cluster;
+    pmf = entry_pmf * triangles_[index].pmf_in_cluster;
   } else {
+    int light = -1;
+    float light_pmf = 0.0f;
+    if (!chooses_triangles(&u_select, &light, &light_pmf)) return sample_delta(light, light_pmf, reference, out);
     index = distribution_.sample(u_select, &pmf);
+    pmf *= triangle_share_;
   }
   if (index < 0) return false;
   const EmissiveTriangle& e = triangles_[index];
@@ -291,6 +358,7 @@ bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const gl
   out->pdf = g.pdf;
   out->mesh = e.mesh;
   out->triangle = e.triangle;
+  out->delta = false;
   // A one-sided emitter seen from behind sends nothing toward the reference, nor does a
   // cut-out (alpha MASK) part, which the accelerator treats as empty space.
   const glm::uvec3 tri = mesh.triangles[e.triangle];

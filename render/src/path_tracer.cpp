@@ -15,6 +15,7 @@ namespace phyir::render {
 namespace {
 
 // One path, bounce by bounce. The template flags drop the code of effects the scene lacks.
+// kEmitters: next-event estimation (emissive triangles or punctual lights).
 template <bool kEmitters, bool kEnvironment, bool kTransmission>
 class PathKernel {
  public:
@@ -166,7 +167,7 @@ glm::vec3 trace_path(const RenderScene& scene, const PathSettings& settings, con
 
 PathTracer::PathTracer(const RenderScene& scene, const Effects& effects, const PathSettings& settings)
     : scene_(&scene), effects_(effects), settings_(settings) {
-  const int key = (effects.emitters ? 4 : 0) | (effects.environment ? 2 : 0) | (effects.transmission ? 1 : 0);
+  const int key = (effects.light_sampling() ? 4 : 0) | (effects.environment ? 2 : 0) | (effects.transmission ? 1 : 0);
   static constexpr Kernel kKernels[8] = {
       &trace_path<false, false, false>, &trace_path<false, false, true>,
       &trace_path<false, true, false>,  &trace_path<false, true, true>,

@@ -6,8 +6,9 @@
 namespace phyir::scenes::gltf {
 
 const std::vector<std::string>& supported_extensions() {
-  static const std::vector<std::string> names = {"KHR_materials_emissive_strength", "KHR_materials_ior",
-                                                 "KHR_materials_transmission", "KHR_texture_transform"};
+  static const std::vector<std::string> names = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
+                                                 "KHR_materials_ior", "KHR_materials_transmission",
+                                                 "KHR_texture_transform"};
   return names;
 }
 
@@ -30,7 +31,6 @@ std::string unsupported_extension_warning(const std::string& name) {
       {"KHR_materials_unlit", "shaded as a regular PBR material"},
       {"KHR_materials_variants", "the default material mapping"},
       {"KHR_materials_pbrSpecularGlossiness", "the pbrMetallicRoughness fallback values"},
-      {"KHR_lights_punctual", "punctual lights dropped; only emissive meshes emit"},
       {"KHR_texture_basisu", "the texture's core image source, if any"},
       {"EXT_texture_webp", "the texture's core image source, if any"},
       {"KHR_mesh_quantization", "none: quantized attributes are rejected"},

@@ -8,6 +8,7 @@
 #include "gltf_cameras.h"
 #include "gltf_extensions.h"
 #include "gltf_file.h"
+#include "gltf_lights.h"
 #include "gltf_geometry.h"
 #include "gltf_materials.h"
 #include "gltf_nodes.h"
@@ -66,6 +67,7 @@ SourceInfo source_info(const tinygltf::Model& model, int default_scene, int mesh
   info.images = static_cast<int>(model.images.size());
   info.samplers = static_cast<int>(model.samplers.size());
   info.cameras = static_cast<int>(model.cameras.size());
+  info.lights = static_cast<int>(model.lights.size());
   info.default_scene = default_scene;
   info.extensions_used = model.extensionsUsed;
   info.extensions_required = model.extensionsRequired;
@@ -176,6 +178,7 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
   TextureTable textures(ctx, scene.textures, options.load_textures);
   scene.materials = convert_materials(ctx, textures);
   const int mesh_instances = InstanceBaker(ctx, scene).add(instances);
+  scene.lights = read_lights(ctx, instances);
   scene.candidate_viewpoints = read_candidate_viewpoints(ctx, default_scene);
   scene.info = source_info(model, default_scene, mesh_instances);
   scene.bounds = scene.compute_bounds();

@@ -94,6 +94,7 @@ json source_json(const SourceInfo& info) {
           {"images", info.images},
           {"samplers", info.samplers},
           {"cameras", info.cameras},
+          {"lights", info.lights},
           {"default_scene", info.default_scene},
           {"extensions_used", info.extensions_used},
           {"extensions_required", info.extensions_required},
@@ -133,6 +134,44 @@ json cameras_json(const Scene& scene) {
 
 std::string format_vec3(const glm::vec3& v) { return fmt::format("({:.3g}, {:.3g}, {:.3g})", v.x, v.y, v.z); }
 
+bool is_directional(const PunctualLight& light) { return light.type == PunctualLight::Type::Directional; }
+const char* photometric_unit(const PunctualLight& light) { return is_directional(light) ? "lx" : "cd"; }
+const char* radiometric_unit(const PunctualLight& light) { return is_directional(light) ? "W/m^2" : "W/sr"; }
+
+json lights_json(const Scene& scene) {
+  json lights = json::array();
+  for (const PunctualLight& l : scene.lights) {
+    json light = {{"name", l.name},
+                  {"type", to_string(l.type)},
+                  {"color", to_json(l.color)},
+                  {"intensity", l.intensity},
+                  {"intensity_unit", photometric_unit(l)},
+                  {"radiometric", to_json(l.radiometric())},
+                  {"radiometric_unit", radiometric_unit(l)},
+                  {"range", l.range}};
+    if (!is_directional(l)) light["position"] = to_json(l.position);
+    if (l.type != PunctualLight::Type::Point) light["direction"] = to_json(l.direction);
+    if (l.type == PunctualLight::Type::Spot) {
+      light["inner_cone_degrees"] = l.inner_cone_angle * 180.0f / kPi;
+      light["outer_cone_degrees"] = l.outer_cone_angle * 180.0f / kPi;
+    }
+    lights.push_back(light);
+  }
+  return lights;
+}
+
+std::string light_text(const PunctualLight& l) {
+  std::string where = is_directional(l) ? fmt::format("towards {}", format_vec3(l.direction))
+                                        : fmt::format("at {}", format_vec3(l.position));
+  if (l.type == PunctualLight::Type::Spot)
+    where += fmt::format(" towards {}, cone {:.1f} to {:.1f} deg", format_vec3(l.direction),
+                         l.inner_cone_angle * 180.0f / kPi, l.outer_cone_angle * 180.0f / kPi);
+  return fmt::format("  {}: {} {}, {:.4g} {} = {:.4g} {} (colour {})\n", l.name, to_string(l.type), where,
+                     l.intensity, photometric_unit(l), luminance(l.radiometric()), radiometric_unit(l),
+                     format_vec3(l.color));
+}
+
+
 }  // namespace
 
 json scene_info_json(const Scene& scene) {
@@ -160,6 +199,7 @@ json scene_info_json(const Scene& scene) {
             {"area_m2", emitters.area},
             {"power_w", to_json(emitters.power)},
             {"power_luminance_w", luminance(glm::vec3(emitters.power))}}},
+          {"lights", lights_json(scene)},
           {"cameras", cameras_json(scene)},
           {"candidate_viewpoints", viewpoints},
           {"bounds",
@@ -206,6 +246,8 @@ std::string scene_info_text(const Scene& scene) {
   out +=
       fmt::format("emitters: {} meshes, {} triangles, {:.4g} m^2, power about {:.4g} W (RGB {})\n", e.meshes,
                   e.triangles, e.area, luminance(glm::vec3(e.power)), format_vec3(glm::vec3(e.power)));
+  out += fmt::format("punctual lights ({}; radiometric = photometric / 683 lm/W):\n", scene.lights.size());
+  for (const PunctualLight& l : scene.lights) out += light_text(l);
   out += fmt::format("cameras ({}):\n", scene.cameras.size());
   for (const Camera& c : scene.cameras) {
     out += fmt::format(

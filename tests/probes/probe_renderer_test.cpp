@@ -416,5 +416,50 @@ TEST(ProbeCache, NearAndFarFromALightMatchesThePathMode) {
   }
 }
 
+// A room lit only by punctual lights (a point light and a spot): the cache mode's texels match the path mode's near the point light and far
+// from it, and no texel sees a light itself (no ray can hit one: the texel looking at the
+// lamp shows the wall behind it, not a spike).
+TEST(ProbeLights, PunctualLightsLightTheTexelsAsInThePathMode) {
+  const glm::vec3 lo(-2.0f, 0.0f, -1.5f), hi(2.0f, 3.0f, 1.5f);
+  scenes::Scene scene = test::make_box_room(lo, hi, test::make_material(glm::vec3(0.7f), 0.5f, 0.0f));
+  auto light = [](scenes::PunctualLight::Type type, float watts, const glm::vec3& position, const glm::vec3& direction) {
+    scenes::PunctualLight l;
+    l.type = type;
+    l.intensity = watts * scenes::PunctualLight::kLumensPerWatt;
+    l.position = position;
+    l.direction = glm::normalize(direction);
+    l.inner_cone_angle = 0.3f;
+    l.outer_cone_angle = 0.5f;
+    return l;
+  };
+  scene.lights = {light(scenes::PunctualLight::Type::Point, 3.0f, glm::vec3(0.5f, 2.2f, 0.0f), glm::vec3(0, -1, 0)),
+                  light(scenes::PunctualLight::Type::Spot, 8.0f, glm::vec3(-1.5f, 2.8f, 1.0f), glm::vec3(0.3f, -1, -0.3f))};
+  const Effects effects = analyse_effects(scene, false);
+  ASSERT_TRUE(effects.punctual_lights && !effects.emitters);
+  const struct {
+    const char* name;
+    glm::vec3 origin;
+  } probes[] = {{"30 cm under the point light", glm::vec3(0.5f, 1.9f, 0.0f)}, {"far from both", glm::vec3(1.6f, 0.3f, -1.2f)}};
+  for (const auto& probe : probes) {
+    ProbeSettings path = settings_for(ProbeMode::kPath, 512, 16, 32, 4);
+    ProbeSettings cache = settings_for(ProbeMode::kCache, 64, 16, 32, 4);
+    cache.cache.samples_per_cell = 1024;
+    const Image a = render_single(scene, probe.origin, path), b = render_single(scene, probe.origin, cache);
+    double mean_a = 0.0, mean_b = 0.0, max_a = 0.0;
+    for (int r = 0; r < 16; ++r)
+      for (int c = 0; c < 32; ++c)
+        for (int ch = 0; ch < 3; ++ch) {
+          mean_a += a.at(c, r, ch), mean_b += b.at(c, r, ch);
+          max_a = std::max(max_a, double(a.at(c, r, ch)));
+        }
+    mean_a /= 1536, mean_b /= 1536;
+    std::printf("[ %s ] mean path %.4f cache %.4f (%+.2f%%), brightest path texel %.2f x the mean\n", probe.name,
+                mean_a, mean_b, 100 * (mean_b / mean_a - 1), max_a / mean_a);
+    EXPECT_GT(mean_a, 0.0) << probe.name;
+    EXPECT_NEAR(mean_b / mean_a, 1.0, 0.03) << probe.name;
+    EXPECT_LT(max_a, 10.0 * mean_a) << probe.name;  // the lit ceiling above the lamp, not the lamp
+  }
+}
+
 }  // namespace
 }  // namespace phyir::render

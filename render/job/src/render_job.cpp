@@ -173,6 +173,10 @@ RenderReport run_render_job(const RenderJob& job) {
                   render_scene.emitters().emissive_triangle_count(),
                   render_scene.emitters().enclosed_triangle_count(),
                   scene.warnings};
+  const DeltaLights& lights = render_scene.emitters().delta_lights();
+  report.scene.point_lights = lights.count(scenes::PunctualLight::Type::Point);
+  report.scene.spot_lights = lights.count(scenes::PunctualLight::Type::Spot);
+  report.scene.directional_lights = lights.count(scenes::PunctualLight::Type::Directional);
 
   report.camera = job_camera(job, scene, &report.camera_source);
   const CameraModel& camera = report.camera;
@@ -215,6 +219,10 @@ nlohmann::json RenderReport::to_json() const {
                      {"materials", scene.materials},
                      {"emissive_triangles", scene.emissive_triangles},
                      {"enclosed_emissive_triangles", scene.enclosed_emissive_triangles},
+                     {"punctual_lights",
+                      {{"point", scene.point_lights},
+                       {"spot", scene.spot_lights},
+                       {"directional", scene.directional_lights}}},
                      {"warnings", scene.warnings}};
   report["camera"] = {{"source", camera_source},
                       {"projection", projection_name(camera.projection)},

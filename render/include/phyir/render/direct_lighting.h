@@ -6,7 +6,8 @@
 // (emitter_sampler.h); a new kind of light joins there and here, not in the estimators.
 //
 // A next-event sample draws a light point with the given variates, evaluates the asked-for
-// lobes there, and traces one shadow ray. Its value is
+// lobes there, and traces one shadow ray. A punctual light (delta_lights.h) is weighted by
+// 1: no ray can hit it. Otherwise the value is
 //   throughput f(wo, wi) L_e cos / p_light, times the MIS weight p_light^2 / (p_light^2 + p_brdf^2)
 // where p_light counts `light_samples` times (several light samples against one BRDF ray:
 // the balance of multi-sample MIS) and p_brdf is the competing ray's density times the
@@ -31,8 +32,8 @@ struct ShadingPoint {
   BrdfParams brdf;
 };
 
-// Whether the scene has lights to sample at all (without, estimators skip next-event
-// estimation and weight every emitter hit by 1).
+// Whether the scene has lights to sample at all: emissive triangles or punctual lights
+// (without, estimators skip next-event estimation and weight every emitter hit by 1).
 inline bool has_lights(const RenderScene& scene) { return !scene.emitters().empty(); }
 
 // The shading frame at a hit: the shading normal, unless the viewer is below it (then the

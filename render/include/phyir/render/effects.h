@@ -9,12 +9,16 @@
 namespace phyir::render {
 
 struct Effects {
-  bool emitters = false;      // next-event estimation on emissive triangles
+  bool emitters = false;         // next-event estimation on emissive triangles
+  bool punctual_lights = false;  // next-event estimation on KHR_lights_punctual lights
   bool environment = false;   // environment lookups and sampling
   bool transmission = false;  // the dielectric (glass) lobe
   bool textures = false;      // any texture fetch
   bool mirrors = false;       // delta specular lobes (roughness below kMirrorRoughness)
   bool alpha = false;         // alpha masking / blending
+
+  // Whether next-event estimation runs at all.
+  bool light_sampling() const { return emitters || punctual_lights; }
 
   nlohmann::json to_json() const;
 };

@@ -13,10 +13,15 @@
 //     estimate dominated by the rare samples on its nearest part; uniform on its area
 //     elsewhere (cheaper, and there 1 / distance^2 hardly varies over it).
 // Step 1 is what keeps a ceiling lit by a lamp from wasting its samples on down-facing
-// panels. Scenes with more than kMaxSpatialClusters clusters fall back to pure power
-// selection, which keeps the per-sample cost bounded.
+// panels. The scene's punctual lights (delta_lights.h) take part in step 1 as clusters of
+// their own, weighted by the irradiance they give the reference point (I x falloff / d^2,
+// or E for a directional light): the same unit as the clusters' weights. Scenes with more
+// than kMaxSpatialClusters clusters and punctual lights fall back to pure power selection
+// (emissive triangles by pi x area x radiance, punctual lights by DeltaLights::power), which
+// keeps the per-sample cost bounded.
 // pdf() returns the solid-angle density of the same strategy for multiple importance
-// sampling. Empty when the scene has no emitters (the integrator then does no light
+// sampling (of emissive triangles: a punctual light cannot be hit). Empty when the scene has
+// no emitters and no punctual lights (the integrator then does no light
 // sampling at all). Given the scene's accelerator, triangles that emit only into closed
 // geometry (emitter_visibility.h) are left out: never sampled, pdf 0.
 #include <glm/glm.hpp>
@@ -24,6 +29,7 @@
 #include <vector>
 
 #include "phyir/render/accelerator.h"
+#include "phyir/render/delta_lights.h"
 #include "phyir/render/sampling.h"
 #include "phyir/scenes/scene.h"
 
@@ -33,13 +39,16 @@ struct EmitterSample {
   glm::vec3 position{0.0f};
   glm::vec3 normal{0.0f};      // unit geometric normal of the emitter, as wound
   glm::vec3 wi{0.0f};          // unit direction from the reference point to the sample
-  float distance = 0.0f;
+  float distance = 0.0f;       // +infinity for a directional light
   // Emitted toward the reference point: 0 if it sees the back of a one-sided emitter or
   // the point is cut out by alpha MASK (the accelerator lets rays through there).
+  // For a punctual light: the irradiance it gives a surface facing it.
   glm::vec3 radiance{0.0f};
-  float pdf = 0.0f;            // solid angle, at the reference point
-  int mesh = -1;
+  float pdf = 0.0f;            // solid angle, at the reference point; for a punctual light
+                               // the probability of having chosen it
+  int mesh = -1;               // -1 for a punctual light
   int triangle = -1;
+  bool delta = false;          // a punctual light: no MIS, no surface at `position`
 };
 
 class EmitterSampler {
@@ -49,7 +58,9 @@ class EmitterSampler {
 
   explicit EmitterSampler(const scenes::Scene& scene, const Accelerator* occluders = nullptr);
 
-  bool empty() const { return triangles_.empty(); }
+  // No lights at all: neither emissive triangles nor punctual lights.
+  bool empty() const { return triangles_.empty() && delta_.empty(); }
+  const DeltaLights& delta_lights() const { return delta_; }
   size_t emissive_triangle_count() const { return triangles_.size(); }
   // Emissive triangles left out because they light only the inside of closed geometry.
   size_t enclosed_triangle_count() const { return enclosed_; }
@@ -57,8 +68,8 @@ class EmitterSampler {
   float total_power() const { return distribution_.total(); }
 
   // A lower bound of the distance from `point` to every emitter that is ever sampled (the
-  // nearest cluster's bounding box); +infinity when there are none. Cost: one box test per
-  // cluster.
+  // nearest cluster's bounding box, or point or spot light); +infinity when there are none
+  // (directional lights are infinitely far). Cost: one box test per cluster and light.
   float distance_bound(const glm::vec3& point) const;
 
   bool sample(const glm::vec3& reference, float u_select, const glm::vec2& u_point,
@@ -94,8 +105,17 @@ class EmitterSampler {
     float plane_offset = 0.0f;     // dot(normal, point on the plane)
   };
   void build_clusters(const std::vector<float>& weights);
-  // Selection weights of every cluster seen from `reference`; returns their sum.
-  float cluster_weights(const glm::vec3& reference, float* weights) const;
+  // Selection weights seen from `reference` of every cluster, then of every punctual light;
+  // returns their sum.
+  float selection_weights(const glm::vec3& reference, float* weights) const;
+  // The spatial choice of a cluster or punctual light: its index in selection_weights' order.
+  bool choose_spatially(const glm::vec3& reference, float u_select, int* entry, float* entry_pmf,
+                        float* remapped) const;
+  // The power-only choice between the triangles (as a whole) and each punctual light: false
+  // when a punctual light was chosen (*light, *pmf); true for the triangles, with u_select
+  // remapped to choose among them.
+  bool chooses_triangles(float* u_select, int* light, float* pmf) const;
+  bool sample_delta(int light, float pmf, const glm::vec3& reference, EmitterSample* out) const;
   float selection_pmf(const glm::vec3& reference, int index) const;
   // Whether points on `e` are sampled uniformly in solid angle from `reference` (step 2).
   static bool by_solid_angle(const EmissiveTriangle& e, const glm::vec3& reference);
@@ -109,7 +129,10 @@ class EmitterSampler {
   std::vector<int> lookup_;
   Distribution1D distribution_;  // by power over all triangles (fallback selection)
   std::vector<Cluster> clusters_;
-  bool spatial_ = false;          // clusters used for selection
+  DeltaLights delta_;
+  Distribution1D delta_distribution_;  // by power over the punctual lights (fallback selection)
+  float triangle_share_ = 1.0f;        // fallback selection: probability of the triangles
+  bool spatial_ = false;               // clusters and punctual lights chosen by selection_weights
   size_t enclosed_ = 0;
 };
 

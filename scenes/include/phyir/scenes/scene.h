@@ -95,6 +95,33 @@ struct Camera {
   float zfar = 0.0f;           // 0 = infinite
 };
 
+// A KHR_lights_punctual light, placed in world space. glTF gives photometric units; the
+// toolkit renders radiometric ones, converted with 683 lm/W as Blender's glTF importer and
+// exporter do (docs/conventions.md#lights), so a scene keeps its brightness through Blender.
+struct PunctualLight {
+  enum class Type { Point, Spot, Directional };
+  static constexpr float kLumensPerWatt = 683.0f;
+
+  std::string name;
+  Type type = Type::Point;
+  glm::vec3 color{1.0f};     // linear RGB
+  float intensity = 1.0f;    // as in the file: candela (point, spot) or lux (directional)
+  glm::vec3 position{0.0f};  // world space (point, spot)
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // unit, where the light travels: the node's -Z (spot, directional)
+  float inner_cone_angle = 0.0f;           // radians (spot)
+  float outer_cone_angle = 0.7853982f;     // radians (spot)
+  float range = 0.0f;                      // from the file; 0 = unlimited. Not used (docs/gltf-support.md)
+
+  // Point and spot: radiant intensity in W/sr (per colour channel) on the light's axis.
+  // Directional: irradiance in W/m^2 on a surface facing it.
+  glm::vec3 radiometric() const { return color * (intensity / kLumensPerWatt); }
+  // The spot cone's falloff for a direction whose cosine with `direction` is `cos_angle`:
+  // 1 inside the inner cone, 0 outside the outer, the extension's quadratic ramp between.
+  float spot_falloff(float cos_angle) const;
+};
+
+const char* to_string(PunctualLight::Type type);
+
 struct Bounds {
   glm::vec3 min{1e30f};
   glm::vec3 max{-1e30f};
@@ -117,6 +144,7 @@ struct SourceInfo {
   int images = 0;
   int samplers = 0;
   int cameras = 0;
+  int lights = 0;           // KHR_lights_punctual lights declared
   int default_scene = 0;
   std::vector<std::string> extensions_used;
   std::vector<std::string> extensions_required;
@@ -130,6 +158,7 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::vector<Camera> cameras;
+  std::vector<PunctualLight> lights;  // one per light-carrying node of the default scene
   // Further valid viewpoints (world space), from the scene's extras.phyir.candidate_viewpoints.
   std::vector<glm::vec3> candidate_viewpoints;
   Bounds bounds;

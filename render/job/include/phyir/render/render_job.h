@@ -45,6 +45,7 @@ struct RenderReport {
     size_t emissive_triangles = 0;
     size_t enclosed_emissive_triangles = 0;  // emit only into closed geometry: never sampled
     std::vector<std::string> warnings;       // what the loader skipped or approximated
+    int point_lights = 0, spot_lights = 0, directional_lights = 0;  // KHR_lights_punctual
   };
   struct Timings {
     double load_seconds = 0.0, build_seconds = 0.0, write_seconds = 0.0, total_seconds = 0.0;
