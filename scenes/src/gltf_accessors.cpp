@@ -14,46 +14,6 @@ namespace {
 
 using ElementVisitor = std::function<void(size_t element, const unsigned char* bytes)>;
 
-struct Bytes {
-  const unsigned char* data = nullptr;
-  size_t size = 0;
-};
-
-size_t component_size(int component_type) {
-  switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-      return 2;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT:
-      return 4;
-    default:
-      return 0;  // INT and DOUBLE are not valid glTF 2.0 accessor types
-  }
-}
-
-const char* component_name(int component_type) {
-  switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-      return "BYTE";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return "UNSIGNED_BYTE";
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-      return "SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-      return "UNSIGNED_SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-      return "UNSIGNED_INT";
-    case TINYGLTF_COMPONENT_TYPE_FLOAT:
-      return "FLOAT";
-    default:
-      return "invalid";
-  }
-}
-
 const char* type_name(int type) {
   switch (type) {
     case TINYGLTF_TYPE_SCALAR:
@@ -86,26 +46,9 @@ size_t bytes_spanned(size_t offset, size_t count, size_t stride, size_t element_
   return span;
 }
 
-// A bufferView's bytes, checked to lie inside its buffer.
-Bytes view_bytes(const GltfContext& ctx, int view_index, const std::string& who) {
-  const auto& model = ctx.model;
-  if (!in_range(view_index, model.bufferViews.size()))
-    ctx.fail("{} refers to bufferView {}, which does not exist ({} bufferViews)", who, view_index,
-             model.bufferViews.size());
-  const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(view_index)];
-  if (!in_range(view.buffer, model.buffers.size()))
-    ctx.fail("bufferView {} refers to buffer {}, which does not exist ({} buffers)", view_index, view.buffer,
-             model.buffers.size());
-  const std::vector<unsigned char>& data = model.buffers[static_cast<size_t>(view.buffer)].data;
-  if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
-    ctx.fail("bufferView {} (byteOffset {}, byteLength {}) reads past the end of buffer {} ({} bytes)",
-             view_index, view.byteOffset, view.byteLength, view.buffer, data.size());
-  return {data.data() + view.byteOffset, view.byteLength};
-}
-
 // Checks that `count` elements of `element_size` bytes, `stride` apart from `offset`,
 // fit in `bytes`.
-void check_fits(const GltfContext& ctx, const std::string& who, int view_index, const Bytes& bytes,
+void check_fits(const GltfContext& ctx, const std::string& who, int view_index, const ByteRange& bytes,
                 size_t offset, size_t count, size_t stride, size_t element_size) {
   const size_t needed = bytes_spanned(offset, count, stride, element_size);
   if (needed > bytes.size)
@@ -132,29 +75,13 @@ uint32_t read_unsigned(const unsigned char* p, int component_type) {
   }
 }
 
-// One component as float: FLOAT as stored, normalized UNSIGNED_BYTE / UNSIGNED_SHORT
-// mapped to [0, 1] (glTF 2.0 section 3.11). read_floats admits no other kind.
-float read_float(const unsigned char* p, int component_type) {
-  switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
-      float v;
-      std::memcpy(&v, p, sizeof v);
-      return v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return *p / 255.0f;
-    default:
-      return read_unsigned(p, component_type) / 65535.0f;
-  }
-}
-
 // An accessor whose dense part has been checked to lie inside its bufferView and buffer.
 struct CheckedAccessor {
   const tinygltf::Accessor& accessor;
   std::string who;  // accessor_label()
   size_t component_size;
   size_t components;
-  Bytes dense;  // data == nullptr when the accessor has no bufferView (all zeros)
+  ByteRange dense;  // data == nullptr when the accessor has no bufferView (all zeros)
   size_t stride = 0;
   size_t element_size() const { return component_size * components; }
 };
@@ -210,8 +137,8 @@ void visit_sparse(const GltfContext& ctx, const tinygltf::Accessor& accessor, co
   const size_t index_size = component_size(index_type);
   const std::string index_who = who + " sparse indices";
   const std::string value_who = who + " sparse values";
-  const Bytes indices = view_bytes(ctx, sparse.indices.bufferView, index_who);
-  const Bytes values = view_bytes(ctx, sparse.values.bufferView, value_who);
+  const ByteRange indices = view_bytes(ctx, sparse.indices.bufferView, index_who);
+  const ByteRange values = view_bytes(ctx, sparse.values.bufferView, value_who);
   const size_t index_offset = static_cast<size_t>(sparse.indices.byteOffset);
   const size_t value_offset = static_cast<size_t>(sparse.values.byteOffset);
   // Sparse indices and values are tightly packed.
@@ -241,40 +168,44 @@ void visit_elements(const GltfContext& ctx, const CheckedAccessor& checked, cons
   if (accessor.sparse.isSparse) visit_sparse(ctx, accessor, checked.who, checked.element_size(), visit);
 }
 
-}  // namespace
-
-std::string accessor_label(int accessor, const std::string& role) {
-  return fmt::format("accessor {} ({})", accessor, role);
-}
-
-FloatElements read_floats(const GltfContext& ctx, int index, const std::string& role,
-                          const FloatFormat& format) {
-  const CheckedAccessor checked = check_accessor(ctx, index, role);
-  const tinygltf::Accessor& accessor = checked.accessor;
-  const std::string& who = checked.who;
+// Fails unless the accessor's type and component kind are ones `format` admits; warns
+// when a quantized kind appears in a file that does not declare KHR_mesh_quantization.
+void check_format(const GltfContext& ctx, const tinygltf::Accessor& accessor, const std::string& who,
+                  const FloatFormat& format) {
   if (std::find(format.types.begin(), format.types.end(), accessor.type) == format.types.end()) {
     std::vector<std::string> expected;
     for (int type : format.types) expected.emplace_back(type_name(type));
     ctx.fail("{} has type {}, expected {}", who, type_name(accessor.type), fmt::join(expected, " or "));
   }
-  const int component_type = accessor.componentType;
-  const bool is_float = component_type == TINYGLTF_COMPONENT_TYPE_FLOAT;
-  const bool is_normalized_unsigned =
-      accessor.normalized && (component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                              component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
-  if (!is_float && !(format.normalized_integers && is_normalized_unsigned))
-    ctx.fail("{} has componentType {}{}, expected FLOAT{} (KHR_mesh_quantization is not supported)", who,
-             component_name(component_type), accessor.normalized ? " (normalized)" : "",
-             format.normalized_integers ? " or normalized UNSIGNED_BYTE/UNSIGNED_SHORT" : "");
+  const ComponentKind kind{accessor.componentType, accessor.normalized};
+  const KindUse use = classify(format, kind);
+  if (use == KindUse::refused) {
+    std::vector<ComponentKind> expected = format.core;
+    expected.insert(expected.end(), format.quantized.begin(), format.quantized.end());
+    ctx.fail("{} has componentType {}{}, expected FLOAT{}{}", who, component_name(kind.component_type),
+             kind.normalized ? " (normalized)" : "", expected.empty() ? "" : ", ", describe_kinds(expected));
+  }
+  const auto& used = ctx.model.extensionsUsed;
+  if (use == KindUse::quantized && std::find(used.begin(), used.end(), "KHR_mesh_quantization") == used.end())
+    ctx.warn(
+        "{} has componentType {}{}, which needs KHR_mesh_quantization, not declared in extensionsUsed: "
+        "read as that extension says",
+        who, component_name(kind.component_type), kind.normalized ? " (normalized)" : "");
+}
 
+// Elements as floats through `visit_all`, which calls its argument for every element.
+template <typename VisitAll>
+FloatElements dequantize_elements(const GltfContext& ctx, const tinygltf::Accessor& accessor,
+                                  const std::string& who, size_t components, VisitAll&& visit_all) {
   FloatElements out;
   out.count = accessor.count;
-  out.components = static_cast<int>(checked.components);
-  const size_t components = checked.components;
+  out.components = static_cast<int>(components);
   out.values.resize(out.count * components);
-  visit_elements(ctx, checked, [&](size_t element, const unsigned char* p) {
+  const size_t size = component_size(accessor.componentType);
+  visit_all([&](size_t element, const unsigned char* p) {
     for (size_t c = 0; c < components; ++c)
-      out.values[element * components + c] = read_float(p + c * checked.component_size, component_type);
+      out.values[element * components + c] =
+          dequantize(p + c * size, accessor.componentType, accessor.normalized);
   });
   for (size_t i = 0; i < out.values.size(); ++i) {
     if (!std::isfinite(out.values[i])) {
@@ -284,6 +215,71 @@ FloatElements read_floats(const GltfContext& ctx, int index, const std::string& 
     }
   }
   return out;
+}
+
+const tinygltf::Accessor& find_accessor(const GltfContext& ctx, int index, const std::string& role) {
+  if (!in_range(index, ctx.model.accessors.size()))
+    ctx.fail("{} refers to accessor {}, which does not exist ({} accessors)", role, index,
+             ctx.model.accessors.size());
+  return ctx.model.accessors[static_cast<size_t>(index)];
+}
+
+}  // namespace
+
+std::string accessor_label(int accessor, const std::string& role) {
+  return fmt::format("accessor {} ({})", accessor, role);
+}
+
+ByteRange view_bytes(const GltfContext& ctx, int view_index, const std::string& who) {
+  const auto& model = ctx.model;
+  if (!in_range(view_index, model.bufferViews.size()))
+    ctx.fail("{} refers to bufferView {}, which does not exist ({} bufferViews)", who, view_index,
+             model.bufferViews.size());
+  const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(view_index)];
+  if (!in_range(view.buffer, model.buffers.size()))
+    ctx.fail("bufferView {} refers to buffer {}, which does not exist ({} buffers)", view_index, view.buffer,
+             model.buffers.size());
+  const std::vector<unsigned char>& data = model.buffers[static_cast<size_t>(view.buffer)].data;
+  if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
+    ctx.fail("bufferView {} (byteOffset {}, byteLength {}) reads past the end of buffer {} ({} bytes)",
+             view_index, view.byteOffset, view.byteLength, view.buffer, data.size());
+  return {data.data() + view.byteOffset, view.byteLength};
+}
+
+FloatElements read_floats(const GltfContext& ctx, int index, const std::string& role,
+                          const FloatFormat& format) {
+  const CheckedAccessor checked = check_accessor(ctx, index, role);
+  check_format(ctx, checked.accessor, checked.who, format);
+  return dequantize_elements(ctx, checked.accessor, checked.who, checked.components,
+                             [&](const ElementVisitor& visit) { visit_elements(ctx, checked, visit); });
+}
+
+const tinygltf::Accessor& check_float_accessor(const GltfContext& ctx, int index, const std::string& role,
+                                               const FloatFormat& format) {
+  const tinygltf::Accessor& accessor = find_accessor(ctx, index, role);
+  const std::string who = accessor_label(index, role);
+  if (component_size(accessor.componentType) == 0)
+    ctx.fail("{} has invalid componentType {}", who, accessor.componentType);
+  check_format(ctx, accessor, who, format);
+  return accessor;
+}
+
+FloatElements floats_from_packed(const GltfContext& ctx, int index, const std::string& role,
+                                 const std::vector<unsigned char>& packed) {
+  const tinygltf::Accessor& accessor = find_accessor(ctx, index, role);
+  const std::string who = accessor_label(index, role);
+  const int components = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(accessor.type));
+  const size_t element_size =
+      component_size(accessor.componentType) * static_cast<size_t>(std::max(components, 0));
+  if (element_size == 0 || packed.size() % element_size != 0 ||
+      packed.size() / element_size != accessor.count)
+    ctx.fail("{}: {} bytes of decoded data do not make {} elements of {} bytes", who, packed.size(),
+             accessor.count, element_size);
+  return dequantize_elements(ctx, accessor, who, static_cast<size_t>(components),
+                             [&](const ElementVisitor& visit) {
+                               for (size_t i = 0; i < accessor.count; ++i)
+                                 visit(i, packed.data() + i * element_size);
+                             });
 }
 
 std::vector<uint32_t> read_indices(const GltfContext& ctx, int index, const std::string& role) {

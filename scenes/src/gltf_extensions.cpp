@@ -8,7 +8,9 @@ namespace phyir::scenes::gltf {
 const std::vector<std::string>& supported_extensions() {
   static const std::vector<std::string> names = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
                                                  "KHR_materials_ior", "KHR_materials_transmission",
-                                                 "KHR_texture_transform"};
+                                                 "KHR_texture_transform",
+                                                 "EXT_meshopt_compression", "KHR_draco_mesh_compression",
+                                                 "KHR_mesh_quantization"};
   return names;
 }
 
@@ -33,9 +35,6 @@ std::string unsupported_extension_warning(const std::string& name) {
       {"KHR_materials_pbrSpecularGlossiness", "the pbrMetallicRoughness fallback values"},
       {"KHR_texture_basisu", "the texture's core image source, if any"},
       {"EXT_texture_webp", "the texture's core image source, if any"},
-      {"KHR_mesh_quantization", "none: quantized attributes are rejected"},
-      {"KHR_draco_mesh_compression", "the uncompressed accessors, if present"},
-      {"EXT_meshopt_compression", "the uncompressed fallback buffers, if present"},
       {"EXT_mesh_gpu_instancing", "one instance per node"},
   };
   const auto it = fallbacks.find(name);

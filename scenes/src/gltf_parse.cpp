@@ -3,6 +3,10 @@
 #include <fmt/ranges.h>
 
 #include <sstream>
+#include <string_view>
+
+#include "gltf_meshopt.h"
+#include "gltf_tinygltf_input.h"
 
 namespace phyir::scenes::gltf {
 
@@ -40,15 +44,19 @@ tinygltf::Model parse_gltf(const GltfFile& file, const Diagnostics& diagnostics)
   tinygltf::Model model;
   std::string error, warning;
   const std::string base_dir = file.path.parent_path().string();
+  const TinygltfInput prepared = prepare_tinygltf_input(file, diagnostics);
+  const std::string_view input = prepared.bytes ? std::string_view(*prepared.bytes)
+                                 : file.binary  ? std::string_view(file.bytes)
+                                                : file.json;
   bool ok = false;
   try {
     if (file.binary) {
       ok = parser.LoadBinaryFromMemory(&model, &error, &warning,
-                                       reinterpret_cast<const unsigned char*>(file.bytes.data()),
-                                       static_cast<unsigned int>(file.bytes.size()), base_dir);
+                                       reinterpret_cast<const unsigned char*>(input.data()),
+                                       static_cast<unsigned int>(input.size()), base_dir);
     } else {
-      ok = parser.LoadASCIIFromString(&model, &error, &warning, file.json.data(),
-                                      static_cast<unsigned int>(file.json.size()), base_dir);
+      ok = parser.LoadASCIIFromString(&model, &error, &warning, input.data(),
+                                      static_cast<unsigned int>(input.size()), base_dir);
     }
   } catch (const std::exception& e) {
     error = e.what();
@@ -58,6 +66,8 @@ tinygltf::Model parse_gltf(const GltfFile& file, const Diagnostics& diagnostics)
   // tinygltf also reports problems it recovered from in `error`: keep them as warnings.
   for (const std::string& line : lines_of(error)) diagnostics.warn("tinygltf: {}", line);
   for (const std::string& line : lines_of(warning)) diagnostics.warn("tinygltf: {}", line);
+  restore_hidden_indices(prepared, model);
+  decode_meshopt_views(model, diagnostics);
   return model;
 }
 

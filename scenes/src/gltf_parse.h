@@ -1,6 +1,8 @@
 #pragma once
 // tinygltf's parse of a file that passed preflight_check. Images are not decoded here:
-// their encoded bytes are kept in tinygltf::Image::image (as_is = true).
+// their encoded bytes are kept in tinygltf::Image::image (as_is = true). Bufferviews
+// compressed with EXT_meshopt_compression are decoded here (gltf_meshopt.h), so later
+// stages read them like any other.
 #include "gltf_context.h"
 #include "gltf_file.h"
 

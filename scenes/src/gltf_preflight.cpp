@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "gltf_extensions.h"
+#include "gltf_tinygltf_input.h"
 
 namespace phyir::scenes::gltf {
 
@@ -93,6 +94,10 @@ std::vector<uint64_t> check_buffers(const json& doc, const GltfFile& file, const
     const auto byte_length = unsigned_member(buffer, "byteLength");
     if (!byte_length) diagnostics.fail("buffer {} has no valid byteLength", i);
     const std::string uri = string_member(buffer, "uri");
+    if (uri.empty() && is_meshopt_fallback(buffer)) {  // holds no data and is never read
+      sizes.push_back(0);
+      continue;
+    }
     if (uri.empty()) {
       if (!file.binary || i != 0) diagnostics.fail("buffer {} has no uri", i);
       if (*byte_length > file.bin_chunk_size)

@@ -1,8 +1,10 @@
 #include "gltf_primitives.h"
 
+#include <algorithm>
 #include <numeric>
 
 #include "gltf_accessors.h"
+#include "gltf_draco.h"
 
 namespace phyir::scenes::gltf {
 
@@ -45,32 +47,83 @@ std::vector<Vec> to_vectors(const FloatElements& elements, const Vec& fill = Vec
   return out;
 }
 
-// Reads an optional attribute, checking that it has one element per position.
-template <typename Vec>
-std::vector<Vec> read_attribute(const GltfContext& ctx, const tinygltf::Primitive& primitive,
-                                const char* name, const std::string& where, size_t vertex_count,
-                                const FloatFormat& format, const Vec& fill = Vec(0.0f)) {
-  const auto it = primitive.attributes.find(name);
-  if (it == primitive.attributes.end()) return {};
-  const FloatElements elements = read_floats(ctx, it->second, std::string(name) + " of " + where, format);
-  if (elements.count != vertex_count)
-    ctx.fail("{} attribute {} (accessor {}) has {} elements but POSITION has {}", where, name, it->second,
-             elements.count, vertex_count);
-  return to_vectors<Vec>(elements, fill);
+// Where a primitive's attributes come from: its Draco data for the attributes the
+// extension names, its accessors for the others.
+class AttributeSource {
+ public:
+  AttributeSource(const GltfContext& ctx, const tinygltf::Primitive& primitive, const std::string& where)
+      : ctx_(ctx), primitive_(primitive), where_(where) {
+    if (has_draco(primitive)) draco_ = decode_draco(ctx, primitive, where);
+  }
+
+  const std::optional<DracoPrimitive>& draco() const { return draco_; }
+
+  std::optional<FloatElements> read(const std::string& name) const {
+    if (draco_) {
+      const auto decoded = draco_->attributes.find(name);
+      if (decoded != draco_->attributes.end()) return decoded->second;
+    }
+    const auto it = primitive_.attributes.find(name);
+    if (it == primitive_.attributes.end()) return std::nullopt;
+    return read_floats(ctx_, it->second, name + " of " + where_, attribute_format(name));
+  }
+
+  // An optional attribute, checked to have one element per position.
+  template <typename Vec>
+  std::vector<Vec> vectors(const std::string& name, size_t vertex_count, const Vec& fill = Vec(0.0f)) const {
+    const std::optional<FloatElements> elements = read(name);
+    if (!elements) return {};
+    if (elements->count != vertex_count)
+      ctx_.fail("{} attribute {} (accessor {}) has {} elements but POSITION has {}", where_, name,
+                primitive_.attributes.at(name), elements->count, vertex_count);
+    return to_vectors<Vec>(*elements, fill);
+  }
+
+ private:
+  const GltfContext& ctx_;
+  const tinygltf::Primitive& primitive_;
+  const std::string& where_;
+  std::optional<DracoPrimitive> draco_;
+};
+
+bool requires_extension(const tinygltf::Model& model, const char* name) {
+  const auto& required = model.extensionsRequired;
+  return std::find(required.begin(), required.end(), name) != required.end();
+}
+
+// A file that requires Draco keeps its geometry only there: an accessor without data on a
+// primitive without the extension means the compressed data went missing.
+void check_draco_data_present(const GltfContext& ctx, const tinygltf::Primitive& primitive,
+                              const std::string& where) {
+  if (has_draco(primitive) || !requires_extension(ctx.model, "KHR_draco_mesh_compression")) return;
+  const int position = primitive.attributes.at("POSITION");
+  if (!in_range(position, ctx.model.accessors.size())) return;  // read_floats names this error
+  const tinygltf::Accessor& accessor = ctx.model.accessors[static_cast<size_t>(position)];
+  if (accessor.bufferView < 0 && !accessor.sparse.isSparse)
+    ctx.fail(
+        "{} has no KHR_draco_mesh_compression extension and its POSITION accessor {} has no bufferView: "
+        "the file requires KHR_draco_mesh_compression, so the compressed data is missing",
+        where, position);
 }
 
 std::vector<uint32_t> read_checked_indices(const GltfContext& ctx, const tinygltf::Primitive& primitive,
-                                           const std::string& where, size_t vertex_count) {
-  if (primitive.indices < 0) {
-    std::vector<uint32_t> sequential(vertex_count);
-    std::iota(sequential.begin(), sequential.end(), 0u);
-    return sequential;
+                                           const AttributeSource& source, const std::string& where,
+                                           size_t vertex_count) {
+  std::vector<uint32_t> indices;
+  if (source.draco()) {
+    indices = source.draco()->indices;
+  } else if (primitive.indices >= 0) {
+    indices = read_indices(ctx, primitive.indices, "indices of " + where);
+  } else {
+    indices.resize(vertex_count);
+    std::iota(indices.begin(), indices.end(), 0u);
+    return indices;
   }
-  std::vector<uint32_t> indices = read_indices(ctx, primitive.indices, "indices of " + where);
   for (size_t i = 0; i < indices.size(); ++i) {
     if (indices[i] >= vertex_count)
-      ctx.fail("index {} (element {} of accessor {}) is out of range for {} with {} vertices", indices[i], i,
-               primitive.indices, where, vertex_count);
+      ctx.fail("index {} (element {} of {}) is out of range for {} with {} vertices", indices[i], i,
+               source.draco() ? "the Draco faces" : fmt::format("accessor {}", primitive.indices), where,
+               vertex_count);
   }
   return indices;
 }
@@ -109,25 +162,25 @@ std::optional<PrimitiveData> read_primitive(const GltfContext& ctx, int mesh_ind
   const auto position = primitive.attributes.find("POSITION");
   if (position == primitive.attributes.end()) ctx.fail("{} has no POSITION attribute", where);
 
-  PrimitiveData data;
-  data.positions = to_vectors<glm::vec3>(
-      read_floats(ctx, position->second, "POSITION of " + where, {{TINYGLTF_TYPE_VEC3}}));
-  const size_t n = data.positions.size();
-  data.normals = read_attribute<glm::vec3>(ctx, primitive, "NORMAL", where, n, {{TINYGLTF_TYPE_VEC3}});
-  data.tangents = read_attribute<glm::vec4>(ctx, primitive, "TANGENT", where, n, {{TINYGLTF_TYPE_VEC4}});
-  const FloatFormat uv_format{{TINYGLTF_TYPE_VEC2}, true};
-  data.texcoords0 = read_attribute<glm::vec2>(ctx, primitive, "TEXCOORD_0", where, n, uv_format);
-  data.texcoords1 = read_attribute<glm::vec2>(ctx, primitive, "TEXCOORD_1", where, n, uv_format);
-  const FloatFormat colour_format{{TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, true};
-  // RGB colours are opaque.
-  data.colors =
-      read_attribute<glm::vec4>(ctx, primitive, "COLOR_0", where, n, colour_format, glm::vec4(0, 0, 0, 1));
+  check_draco_data_present(ctx, primitive, where);
+  const AttributeSource source(ctx, primitive, where);
 
-  const std::vector<uint32_t> indices = read_checked_indices(ctx, primitive, where, n);
+  PrimitiveData data;
+  data.positions = to_vectors<glm::vec3>(*source.read("POSITION"));
+  const size_t n = data.positions.size();
+  data.normals = source.vectors<glm::vec3>("NORMAL", n);
+  data.tangents = source.vectors<glm::vec4>("TANGENT", n);
+  data.texcoords0 = source.vectors<glm::vec2>("TEXCOORD_0", n);
+  data.texcoords1 = source.vectors<glm::vec2>("TEXCOORD_1", n);
+  // RGB colours are opaque.
+  data.colors = source.vectors<glm::vec4>("COLOR_0", n, glm::vec4(0, 0, 0, 1));
+
+  const std::vector<uint32_t> indices = read_checked_indices(ctx, primitive, source, where, n);
   if (mode == TINYGLTF_MODE_TRIANGLES && indices.size() % 3 != 0)
     ctx.warn("{} has {} indices, not a multiple of 3: the last {} are ignored", where, indices.size(),
              indices.size() % 3);
-  data.triangles = assemble_triangles(indices, mode);
+  // Draco decodes faces, a triangle list whatever the mode (TRIANGLES or TRIANGLE_STRIP).
+  data.triangles = assemble_triangles(indices, source.draco() ? TINYGLTF_MODE_TRIANGLES : mode);
   if (!primitive.targets.empty()) ctx.warn("{} has morph targets: ignored, the base shape is used", where);
   if (data.triangles.empty()) {
     ctx.warn("{} draws no triangle ({} indices): skipped", where, indices.size());

@@ -120,7 +120,7 @@ TEST(GltfBadFiles, UnknownRequiredExtension) {
   EXPECT_THAT(
       load_error(fixture("unknown_required_extension.gltf")),
       HasSubstr(
-          "unknown_required_extension.gltf: required extension KHR_draco_mesh_compression is not supported"));
+          "unknown_required_extension.gltf: required extension EXT_phyir_from_the_future is not supported"));
 }
 
 TEST(GltfBadFiles, MissingTextureImage) {
