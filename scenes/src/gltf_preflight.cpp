@@ -7,6 +7,7 @@
 
 #include "gltf_extensions.h"
 #include "gltf_tinygltf_input.h"
+#include "gltf_schema.h"
 
 namespace phyir::scenes::gltf {
 
@@ -24,6 +25,7 @@ int hex_value(char c) {
 
 bool is_data_uri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
 
+// Integers that passed the schema check are written as integers (gltf_schema_rules.cpp).
 std::optional<uint64_t> unsigned_member(const json& object, const char* key) {
   const auto it = object.find(key);
   if (it == object.end() || !it->is_number_integer() || it->get<int64_t>() < 0) return std::nullopt;
@@ -53,18 +55,15 @@ json parse_json(const GltfFile& file, const Diagnostics& diagnostics) {
   }
 }
 
-void check_asset(const json& doc, const Diagnostics& diagnostics) {
-  const auto asset = doc.find("asset");
-  if (asset == doc.end() || !asset->is_object()) diagnostics.fail("'asset' object missing");
-  const std::string version = string_member(*asset, "version");
-  if (version.empty()) diagnostics.fail("asset.version missing");
+// The schema check has made sure of the version's form; here its major version is read.
+void check_asset_version(const json& doc, const Diagnostics& diagnostics) {
+  const std::string version = string_member(doc.at("asset"), "version");
   if (version.rfind("2.", 0) != 0)
     diagnostics.fail("asset.version '{}' is not supported (glTF 2.x only)", version);
 }
 
 void check_required_extensions(const json& doc, const Diagnostics& diagnostics) {
   for (const json& name : array_member(doc, "extensionsRequired")) {
-    if (!name.is_string()) diagnostics.fail("extensionsRequired holds a non-string entry");
     if (!is_supported_extension(name.get<std::string>())) {
       diagnostics.fail("required extension {} is not supported (supported: {})", name.get<std::string>(),
                        fmt::join(supported_extensions(), ", "));
@@ -90,9 +89,7 @@ std::vector<uint64_t> check_buffers(const json& doc, const GltfFile& file, const
   const json& buffers = array_member(doc, "buffers");
   for (size_t i = 0; i < buffers.size(); ++i) {
     const json& buffer = buffers[i];
-    if (!buffer.is_object()) diagnostics.fail("buffer {} is not a JSON object", i);
     const auto byte_length = unsigned_member(buffer, "byteLength");
-    if (!byte_length) diagnostics.fail("buffer {} has no valid byteLength", i);
     const std::string uri = string_member(buffer, "uri");
     if (uri.empty() && is_meshopt_fallback(buffer)) {  // holds no data and is never read
       sizes.push_back(0);
@@ -130,7 +127,6 @@ void check_images(const json& doc, const GltfFile& file, const std::vector<uint6
   const json& views = array_member(doc, "bufferViews");
   for (size_t i = 0; i < images.size(); ++i) {
     const json& image = images[i];
-    if (!image.is_object()) diagnostics.fail("image {} is not a JSON object", i);
     if (image.contains("bufferView")) {
       const auto view_index = unsigned_member(image, "bufferView");
       if (!view_index || *view_index >= views.size())
@@ -150,7 +146,6 @@ void check_images(const json& doc, const GltfFile& file, const std::vector<uint6
       continue;
     }
     const std::string uri = string_member(image, "uri");
-    if (uri.empty()) diagnostics.fail("image {} has neither a uri nor a bufferView", i);
     if (is_data_uri(uri)) continue;
     const fs::path path = resolve_uri(file.path.parent_path(), uri);
     std::error_code ec;
@@ -184,7 +179,8 @@ fs::path resolve_uri(const fs::path& base_dir, const std::string& uri) {
 void preflight_check(const GltfFile& file, const Diagnostics& diagnostics) {
   const json doc = parse_json(file, diagnostics);
   if (!doc.is_object()) diagnostics.fail("JSON root is not an object");
-  check_asset(doc, diagnostics);
+  check_schema(doc, diagnostics);
+  check_asset_version(doc, diagnostics);
   check_required_extensions(doc, diagnostics);
   const std::vector<uint64_t> buffer_sizes = check_buffers(doc, file, diagnostics);
   check_images(doc, file, buffer_sizes, diagnostics);

@@ -1,7 +1,8 @@
 #pragma once
-// Checks made on the JSON before tinygltf reads the file. They give precise messages
-// where tinygltf's are vague (missing .bin, missing image file, unsupported required
-// extension) and guard its one unchecked read (an image's bufferView range).
+// Checks made on the JSON before tinygltf reads the file: the glTF schema (gltf_schema.h),
+// then precise messages where tinygltf's are vague (missing .bin, missing image file,
+// unsupported required extension) and a guard on its one unchecked read (an image's
+// bufferView range).
 #include "gltf_context.h"
 #include "gltf_file.h"
 

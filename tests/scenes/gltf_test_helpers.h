@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -94,7 +95,7 @@ class GltfBuilder {
 
   // name.gltf plus name.bin in `dir`.
   std::filesystem::path write_gltf(const std::filesystem::path& dir, const std::string& name) {
-    nlohmann::json out = doc;
+    nlohmann::json out = without_empty_arrays(doc);
     if (!bin.empty()) {
       write_bytes(dir / (name + ".bin"), bin.data(), bin.size());
       out["buffers"] = nlohmann::json::array({{{"uri", name + ".bin"}, {"byteLength", bin.size()}}});
@@ -106,7 +107,7 @@ class GltfBuilder {
 
   // A GLB container: header, JSON chunk, BIN chunk (glTF 2.0 section 4.4).
   std::filesystem::path write_glb(const std::filesystem::path& dir, const std::string& name) {
-    nlohmann::json out = doc;
+    nlohmann::json out = without_empty_arrays(doc);
     std::vector<unsigned char> chunk = bin;
     while (chunk.size() % 4 != 0) chunk.push_back(0);
     if (!bin.empty()) out["buffers"] = nlohmann::json::array({{{"byteLength", bin.size()}}});
@@ -136,6 +137,12 @@ class GltfBuilder {
   }
 
  private:
+  // The schema gives every top-level array minItems 1: a test that adds no node, say, omits "nodes".
+  static nlohmann::json without_empty_arrays(nlohmann::json root) {
+    for (auto it = root.begin(); it != root.end();) it = it->is_array() && it->empty() ? root.erase(it) : std::next(it);
+    return root;
+  }
+
   int append(const char* array, const nlohmann::json& item) {
     if (!doc.contains(array)) doc[array] = nlohmann::json::array();
     doc[array].push_back(item);
