@@ -1,5 +1,6 @@
 #include "phyir/render/camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "phyir/core/error.h"
@@ -32,12 +33,19 @@ Ray CameraModel::generate_ray(const glm::vec2& pixel) const {
   ray.origin = position;
   if (projection == Projection::Equirectangular) {
     ray.direction = equirect_direction(glm::vec2(pixel.x / width, pixel.y / height));
+    // A pixel spans pi / height in latitude and 2 pi / width x sin(polar angle) in longitude.
+    const float sin_polar = std::sqrt(std::max(0.0f, 1.0f - ray.direction.y * ray.direction.y));
+    ray.spread = std::sqrt(kPi / float(height) * kTwoPi / float(width) * sin_polar);
     return ray;
   }
   const PerspectiveBasis b = perspective_basis(*this);
   const float sx = (2.0f * pixel.x / width - 1.0f) * b.tan_half_x;
   const float sy = (1.0f - 2.0f * pixel.y / height) * b.tan_half_y;
   ray.direction = safe_normalize(b.forward + sx * b.right + sy * b.up, b.forward);
+  // A pixel of the image plane at distance 1, seen off-axis: its sides shrink by cos and cos^2.
+  const float cos_axis = std::max(glm::dot(ray.direction, b.forward), 0.0f);
+  ray.spread = std::sqrt(2.0f * b.tan_half_x / float(width) * 2.0f * b.tan_half_y / float(height)) *
+               std::pow(cos_axis, 1.5f);
   return ray;
 }
 

@@ -43,10 +43,29 @@ glm::vec2 slot_uv(const scenes::Mesh& mesh, const glm::uvec3& tri, const glm::ve
   return slot.transform.is_identity() ? uv : slot.transform.apply(uv);
 }
 
+float footprint_lod(const scenes::Mesh& mesh, const glm::uvec3& tri, const scenes::TextureSlot& slot,
+                    const scenes::Texture& texture, const TextureFootprint& footprint) {
+  if (!(footprint.area > 0.0f) || texture.mips.empty()) return 0.0f;
+  const std::vector<glm::vec2>& uvs = slot.texcoord == 1 && has_attribute(mesh.texcoords1, mesh) ? mesh.texcoords1
+                                                                                                 : mesh.texcoords0;
+  if (!has_attribute(uvs, mesh)) return 0.0f;
+  const glm::vec3& p0 = mesh.positions[tri.x];
+  const float world_area2 = glm::length(glm::cross(mesh.positions[tri.y] - p0, mesh.positions[tri.z] - p0));
+  const glm::vec2 a = uvs[tri.y] - uvs[tri.x], b = uvs[tri.z] - uvs[tri.x];
+  const float uv_area2 = std::abs(a.x * b.y - a.y * b.x) * std::abs(slot.transform.scale.x * slot.transform.scale.y);
+  const float texels_per_m2 = uv_area2 * float(texture.width) * float(texture.height) / world_area2;
+  const float lod = 0.5f * std::log2(texels_per_m2 * footprint.area);
+  return std::isfinite(lod) ? std::max(lod, 0.0f) : 0.0f;
+}
+
 glm::vec4 sample_slot(const scenes::Scene& scene, const scenes::Mesh& mesh, const glm::uvec3& tri,
-                      const glm::vec3& bary, const scenes::TextureSlot& slot, const glm::vec4& absent) {
+                      const glm::vec3& bary, const scenes::TextureSlot& slot, const glm::vec4& absent,
+                      const TextureFootprint& footprint) {
   if (!slot_valid(scene, slot)) return absent;
-  return finite_or(scene.textures[slot.texture].sample(slot_uv(mesh, tri, bary, slot)), 0.0f);
+  const scenes::Texture& texture = scene.textures[slot.texture];
+  const glm::vec2 uv = slot_uv(mesh, tri, bary, slot);
+  if (!(footprint.area > 0.0f)) return finite_or(texture.sample(uv), 0.0f);
+  return finite_or(texture.sample(uv, footprint_lod(mesh, tri, slot, texture, footprint)), 0.0f);
 }
 
 float material_alpha(const scenes::Scene& scene, const scenes::Mesh& mesh, const scenes::Material& material,
@@ -69,13 +88,16 @@ glm::vec3 emitted_radiance(const scenes::Scene& scene, const scenes::Mesh& mesh,
 }
 
 MaterialPoint evaluate_material(const scenes::Scene& scene, const scenes::Mesh& mesh,
-                                const scenes::Material& material, const glm::uvec3& tri, const glm::vec3& bary) {
+                                const scenes::Material& material, const glm::uvec3& tri, const glm::vec3& bary,
+                                const TextureFootprint& footprint) {
   MaterialPoint m;
 
   // Base colour: factor x texture x COLOR_0 (glTF 2.0, 3.9.2).
   glm::vec4 base = finite_or(material.base_color_factor, 1.0f);
   if (slot_valid(scene, material.base_color_texture))
-    base *= sample_slot(scene, mesh, tri, bary, material.base_color_texture, glm::vec4(1.0f));
+    // A MASK cut-out follows the full-resolution alpha the accelerator tests.
+    base *= sample_slot(scene, mesh, tri, bary, material.base_color_texture, glm::vec4(1.0f),
+                        material.alpha_mode == scenes::AlphaMode::Mask ? TextureFootprint{} : footprint);
   if (has_attribute(mesh.colors, mesh)) base *= finite_or(interpolate(mesh.colors, tri, bary), 1.0f);
   m.brdf.base_color = glm::clamp(glm::vec3(base), glm::vec3(0.0f), glm::vec3(1.0f));
 
@@ -83,7 +105,7 @@ MaterialPoint evaluate_material(const scenes::Scene& scene, const scenes::Mesh& 
   float roughness = material.roughness_factor, metalness = material.metallic_factor;
   if (slot_valid(scene, material.metallic_roughness_texture)) {
     const glm::vec4 mr =
-        sample_slot(scene, mesh, tri, bary, material.metallic_roughness_texture, glm::vec4(1.0f));
+        sample_slot(scene, mesh, tri, bary, material.metallic_roughness_texture, glm::vec4(1.0f), footprint);
     roughness *= mr.y;  // G
     metalness *= mr.z;  // B
   }
@@ -94,7 +116,7 @@ MaterialPoint evaluate_material(const scenes::Scene& scene, const scenes::Mesh& 
 
   float transmission = material.transmission_factor;
   if (slot_valid(scene, material.transmission_texture))
-    transmission *= sample_slot(scene, mesh, tri, bary, material.transmission_texture, glm::vec4(1.0f)).x;  // R
+    transmission *= sample_slot(scene, mesh, tri, bary, material.transmission_texture, glm::vec4(1.0f), footprint).x;  // R
   m.transmission = clamp01(phyir::finite_or(transmission, 0.0f));
   m.ior = (std::isfinite(material.ior) && material.ior >= 1.0f) ? material.ior : 1.5f;
 
@@ -107,7 +129,7 @@ MaterialPoint evaluate_material(const scenes::Scene& scene, const scenes::Mesh& 
 
   // Tangent-space normal: (texel * 2 - 1) * (scale, scale, 1) (glTF 2.0, 3.9.3).
   if (slot_valid(scene, material.normal_texture)) {
-    const glm::vec4 t = sample_slot(scene, mesh, tri, bary, material.normal_texture, glm::vec4(0.5f, 0.5f, 1.0f, 1.0f));
+    const glm::vec4 t = sample_slot(scene, mesh, tri, bary, material.normal_texture, glm::vec4(0.5f, 0.5f, 1.0f, 1.0f), footprint);
     const float scale = phyir::finite_or(material.normal_scale, 1.0f);
     m.normal_ts = (glm::vec3(t) * 2.0f - glm::vec3(1.0f)) * glm::vec3(scale, scale, 1.0f);
     m.has_normal_map = true;

@@ -59,6 +59,16 @@ struct HitFrame {
   bool front_face = true;
 };
 
+// A camera ray's pixel footprint on the surface it hits: (spread x distance)^2, stretched by
+// 1 / |cos| of the incidence (capped at 100x at grazing angles).
+TextureFootprint footprint(const Ray& ray, float distance, const glm::vec3& geometric_normal) {
+  if (!(ray.spread > 0.0f)) return {};
+  const float width = ray.spread * distance;
+  const float cos_incidence = std::max(std::abs(glm::dot(geometric_normal, ray.direction)), 0.01f);
+  const float area = width * width / cos_incidence;
+  return TextureFootprint{std::isfinite(area) ? area : 0.0f};
+}
+
 HitFrame hit_frame(const scenes::Mesh& mesh, const glm::uvec3& tri, const glm::vec3& bary, const Ray& ray,
                    const glm::vec3& facing_ray) {
   const glm::vec3& p0 = mesh.positions[tri.x];
@@ -138,7 +148,7 @@ SurfaceInteraction RenderScene::interact(const Ray& ray, const Hit& hit) const {
   si.material = mesh.material;
   const bool material_valid = mesh.material >= 0 && static_cast<size_t>(mesh.material) < scene_->materials.size();
   const scenes::Material& material = material_valid ? scene_->materials[mesh.material] : default_material();
-  const MaterialPoint mp = evaluate_material(*scene_, mesh, material, tri, bary);
+  const MaterialPoint mp = evaluate_material(*scene_, mesh, material, tri, bary, footprint(ray, hit.t, f.ng));
   apply_normal_map(mp, &f);
   // Both normals point to the side the ray arrived from.
   si.geometric_normal = si.front_face ? f.ng : -f.ng;

@@ -182,6 +182,7 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
   scene.candidate_viewpoints = read_candidate_viewpoints(ctx, default_scene);
   scene.info = source_info(model, default_scene, mesh_instances);
   scene.bounds = scene.compute_bounds();
+  for (Texture& texture : scene.textures) build_mips(texture);  // camera hits filter to their footprint
   return scene;
 }
 

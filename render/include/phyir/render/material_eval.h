@@ -23,9 +23,23 @@ inline glm::vec3 barycentrics(const glm::vec2& b12) { return glm::vec3(1.0f - b1
 glm::vec2 slot_uv(const scenes::Mesh& mesh, const glm::uvec3& tri, const glm::vec3& bary,
                   const scenes::TextureSlot& slot);
 
-// The slot's texel at the point, or `absent` when the slot has no (valid) texture.
+// The surface area a camera ray's pixel covers at its hit (m^2; Ray::spread): textures are
+// filtered to it. 0: no footprint, full resolution (every ray but a camera's).
+struct TextureFootprint {
+  float area = 0.0f;
+};
+
+// The mip level at which a footprint of `area` m^2 covers one texel of `texture` through the
+// slot's UV set on this triangle (its texels per m^2 from the triangle's UV and world areas,
+// times the slot's transform scale); 0 without a footprint or for degenerate triangles.
+float footprint_lod(const scenes::Mesh& mesh, const glm::uvec3& tri, const scenes::TextureSlot& slot,
+                    const scenes::Texture& texture, const TextureFootprint& footprint);
+
+// The slot's texel at the point (filtered to the footprint), or `absent` when the slot has
+// no (valid) texture.
 glm::vec4 sample_slot(const scenes::Scene& scene, const scenes::Mesh& mesh, const glm::uvec3& tri,
-                      const glm::vec3& bary, const scenes::TextureSlot& slot, const glm::vec4& absent);
+                      const glm::vec3& bary, const scenes::TextureSlot& slot, const glm::vec4& absent,
+                      const TextureFootprint& footprint = {});
 
 // Base-colour alpha at the point: factor.a x texture.a x COLOR_0.a (not clamped).
 float material_alpha(const scenes::Scene& scene, const scenes::Mesh& mesh, const scenes::Material& material,
@@ -49,7 +63,8 @@ struct MaterialPoint {
 
 // Factors times textures, clamped to their ranges; never NaN.
 MaterialPoint evaluate_material(const scenes::Scene& scene, const scenes::Mesh& mesh,
-                                const scenes::Material& material, const glm::uvec3& tri, const glm::vec3& bary);
+                                const scenes::Material& material, const glm::uvec3& tri, const glm::vec3& bary,
+                                const TextureFootprint& footprint = {});
 
 // The mean luminance of a texture's texels (the emitter sampler's power estimate of a
 // textured emitter).

@@ -10,6 +10,10 @@ struct Ray {
   glm::vec3 direction{0.0f, 0.0f, -1.0f};  // unit length
   float tmin = 0.0f;
   float tmax = std::numeric_limits<float>::infinity();
+  // Camera rays: the angle one pixel subtends around this ray (radians; the geometric mean
+  // of its two sides), so a hit at distance t sees a footprint about spread x t wide and
+  // filters its textures to it. 0 for every other ray: textures at full resolution.
+  float spread = 0.0f;
 };
 
 // What the accelerator reports; everything else is derived by RenderScene::interact.
