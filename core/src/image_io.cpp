@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cstring>
 
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
@@ -58,9 +59,12 @@ Image read_image(const fs::path& path) {
 Image read_image_from_memory(const std::vector<unsigned char>& bytes, const std::string& what) {
   if (bytes.empty()) fail("{}: image data is empty", what);
   OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
-  // OIIO needs a format hint: sniff the magic numbers of the formats glTF allows.
+  // OIIO needs a format hint: sniff the magic numbers of the formats glTF allows (WebP
+  // through EXT_texture_webp: "RIFF", a size, "WEBP").
   std::string ext = "png";
   if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8) ext = "jpg";
+  if (bytes.size() >= 12 && std::memcmp(bytes.data(), "RIFF", 4) == 0 && std::memcmp(bytes.data() + 8, "WEBP", 4) == 0)
+    ext = "webp";
   if (ext == "png") {
     const std::string problem = png_structure_error(bytes.data(), bytes.size());
     if (!problem.empty()) fail("{}: cannot decode image: {}", what, problem);

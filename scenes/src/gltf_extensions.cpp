@@ -6,9 +6,10 @@
 namespace phyir::scenes::gltf {
 
 const std::vector<std::string>& supported_extensions() {
-  static const std::vector<std::string> names = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
-                                                 "KHR_materials_ior", "KHR_materials_transmission",
-                                                 "KHR_texture_transform",
+  static const std::vector<std::string> names = {"EXT_mesh_gpu_instancing", "EXT_texture_webp",
+                                                 "KHR_lights_punctual", "KHR_materials_emissive_strength",
+                                                 "KHR_materials_ior", "KHR_materials_specular",
+                                                 "KHR_materials_transmission", "KHR_texture_transform",
                                                  "EXT_meshopt_compression", "KHR_draco_mesh_compression",
                                                  "KHR_mesh_quantization"};
   return names;
@@ -26,7 +27,6 @@ std::string unsupported_extension_warning(const std::string& name) {
        "glass treated as a solid refractive dielectric (no thickness, no absorption)"},
       {"KHR_materials_clearcoat", "base layer only"},
       {"KHR_materials_sheen", "base layer only, no sheen"},
-      {"KHR_materials_specular", "dielectric specular from the IOR only"},
       {"KHR_materials_iridescence", "no thin-film interference"},
       {"KHR_materials_anisotropy", "isotropic roughness"},
       {"KHR_materials_dispersion", "one IOR for all wavelengths"},
@@ -34,8 +34,6 @@ std::string unsupported_extension_warning(const std::string& name) {
       {"KHR_materials_variants", "the default material mapping"},
       {"KHR_materials_pbrSpecularGlossiness", "the pbrMetallicRoughness fallback values"},
       {"KHR_texture_basisu", "the texture's core image source, if any"},
-      {"EXT_texture_webp", "the texture's core image source, if any"},
-      {"EXT_mesh_gpu_instancing", "one instance per node"},
   };
   const auto it = fallbacks.find(name);
   return name + " ignored: " + (it != fallbacks.end() ? it->second : "not supported, core glTF data used");

@@ -10,6 +10,7 @@
 #include "gltf_file.h"
 #include "gltf_lights.h"
 #include "gltf_geometry.h"
+#include "gltf_instancing.h"
 #include "gltf_materials.h"
 #include "gltf_nodes.h"
 #include "gltf_parse.h"
@@ -56,12 +57,21 @@ std::vector<glm::vec3> read_candidate_viewpoints(const GltfContext& ctx, int sce
   return viewpoints;
 }
 
-SourceInfo source_info(const tinygltf::Model& model, int default_scene, int mesh_instances) {
+// What InstanceBaker drew, for SourceInfo.
+struct BakeCounts {
+  int mesh_instances = 0;       // nodes with a mesh
+  int gpu_instances = 0;        // EXT_mesh_gpu_instancing copies
+  size_t unique_triangles = 0;  // each primitive drawn counted once
+};
+
+SourceInfo source_info(const tinygltf::Model& model, int default_scene, const BakeCounts& counts) {
   SourceInfo info;
   info.nodes = static_cast<int>(model.nodes.size());
   info.meshes = static_cast<int>(model.meshes.size());
   for (const tinygltf::Mesh& mesh : model.meshes) info.primitives += static_cast<int>(mesh.primitives.size());
-  info.mesh_instances = mesh_instances;
+  info.mesh_instances = counts.mesh_instances;
+  info.gpu_instances = counts.gpu_instances;
+  info.unique_triangles = counts.unique_triangles;
   info.materials = static_cast<int>(model.materials.size());
   info.textures = static_cast<int>(model.textures.size());
   info.images = static_cast<int>(model.images.size());
@@ -75,36 +85,63 @@ SourceInfo source_info(const tinygltf::Model& model, int default_scene, int mesh
   return info;
 }
 
+// Baking copies every GPU instance (the renderer takes world-space meshes), so what
+// instancing may add is bounded: an instancing accessor without a bufferView is up to 2^24
+// zeros in a few bytes of JSON. 2^25 vertices is about 1.2 GB baked with normals, tangents
+// and UVs; beyond that a scene needs instancing in the renderer.
+constexpr size_t kMaxInstancedVertices = size_t{1} << 25;
+
 // Adds the meshes and cameras of the flattened node tree to the scene. Each primitive is
-// read once however many nodes instance its mesh.
+// read once however many nodes (or GPU instances) draw its mesh.
 class InstanceBaker {
  public:
   InstanceBaker(const GltfContext& ctx, Scene& scene) : ctx_(ctx), scene_(scene) {}
 
-  // Returns the number of mesh instances (nodes with a mesh).
-  int add(const std::vector<NodeInstance>& instances) {
-    int mesh_instances = 0;
+  BakeCounts add(const std::vector<NodeInstance>& instances) {
     for (const NodeInstance& instance : instances) {
       const tinygltf::Node& node = ctx_.model.nodes[static_cast<size_t>(instance.node)];
+      const std::optional<InstanceAttributes> gpu = find_gpu_instancing(ctx_, instance.node);
       if (node.mesh >= 0) {
-        add_mesh(node.mesh, instance);
-        ++mesh_instances;
+        add_mesh(node.mesh, instance, gpu);
+        ++counts_.mesh_instances;
       }
       if (node.camera >= 0) scene_.cameras.push_back(make_camera(ctx_, instance));
     }
-    return mesh_instances;
+    return counts_;
   }
 
  private:
-  void add_mesh(int mesh_index, const NodeInstance& instance) {
+  void add_mesh(int mesh_index, const NodeInstance& instance, const std::optional<InstanceAttributes>& gpu) {
     if (!in_range(mesh_index, ctx_.model.meshes.size()))
       ctx_.fail("{} refers to mesh {}, which does not exist ({} meshes)",
                 label("node", instance.node, ctx_.model.nodes), mesh_index, ctx_.model.meshes.size());
+    if (gpu)
+      add_gpu_instances(mesh_index, instance, *gpu);
+    else
+      add_primitives(mesh_index, instance, nullptr);
+  }
+
+  void add_gpu_instances(int mesh_index, const NodeInstance& instance, const InstanceAttributes& gpu) {
+    const size_t per_copy = baked_vertices(mesh_index);
+    if (per_copy == 0) return;  // nothing to draw: the instances are not even read
+    if (gpu.count > (kMaxInstancedVertices - instanced_vertices_) / per_copy)
+      ctx_.fail("{} EXT_mesh_gpu_instancing draws {} instances of {} ({} vertices each): more than the {} "
+                "vertices instancing may add to a scene once baked ({} already)",
+                label("node", instance.node, ctx_.model.nodes), gpu.count,
+                label("mesh", mesh_index, ctx_.model.meshes), per_copy, kMaxInstancedVertices, instanced_vertices_);
+    instanced_vertices_ += gpu.count * per_copy;
+    counts_.gpu_instances += static_cast<int>(gpu.count);
+    const InstanceTransforms transforms(ctx_, instance, gpu);
+    add_primitives(mesh_index, instance, &transforms);
+  }
+
+  // Without `gpu`, one copy placed by the node.
+  void add_primitives(int mesh_index, const NodeInstance& instance, const InstanceTransforms* gpu) {
     const tinygltf::Mesh& source = ctx_.model.meshes[static_cast<size_t>(mesh_index)];
     for (size_t p = 0; p < source.primitives.size(); ++p) {
       const std::optional<PrimitiveData>& data = primitive(mesh_index, static_cast<int>(p));
       if (!data) continue;
-      Mesh mesh = bake_to_world(*data, instance.world);
+      Mesh mesh = gpu != nullptr ? bake_instances(*data, *gpu) : bake_to_world(*data, instance.world);
       check_finite_positions(mesh, mesh_index, static_cast<int>(p), instance.node);
       mesh.name =
           fmt::format("{}/{}", source.name.empty() ? fmt::format("mesh{}", mesh_index) : source.name, p);
@@ -128,9 +165,22 @@ class InstanceBaker {
   const std::optional<PrimitiveData>& primitive(int mesh, int primitive) {
     const auto key = std::make_pair(mesh, primitive);
     auto found = primitives_.find(key);
-    if (found == primitives_.end())
+    if (found == primitives_.end()) {
       found = primitives_.emplace(key, read_primitive(ctx_, mesh, primitive)).first;
+      if (found->second) counts_.unique_triangles += found->second->triangles.size();
+    }
     return found->second;
+  }
+
+  // Vertices one copy of the mesh bakes to (bake_to_world unshares them for flat normals).
+  size_t baked_vertices(int mesh_index) {
+    size_t vertices = 0;
+    const size_t primitives = ctx_.model.meshes[static_cast<size_t>(mesh_index)].primitives.size();
+    for (size_t p = 0; p < primitives; ++p) {
+      const std::optional<PrimitiveData>& data = primitive(mesh_index, static_cast<int>(p));
+      if (data) vertices += data->normals.empty() ? 3 * data->triangles.size() : data->positions.size();
+    }
+    return vertices;
   }
 
   int material_index(int material, int mesh, int primitive) {
@@ -159,6 +209,8 @@ class InstanceBaker {
   Scene& scene_;
   std::map<std::pair<int, int>, std::optional<PrimitiveData>> primitives_;
   int default_material_ = -1;
+  BakeCounts counts_;
+  size_t instanced_vertices_ = 0;  // baked by GPU instances so far, within kMaxInstancedVertices
 };
 
 }  // namespace
@@ -177,10 +229,10 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
   const std::vector<NodeInstance> instances = flatten_nodes(ctx, scene_roots(ctx, default_scene));
   TextureTable textures(ctx, scene.textures, options.load_textures);
   scene.materials = convert_materials(ctx, textures);
-  const int mesh_instances = InstanceBaker(ctx, scene).add(instances);
+  const BakeCounts counts = InstanceBaker(ctx, scene).add(instances);
   scene.lights = read_lights(ctx, instances);
   scene.candidate_viewpoints = read_candidate_viewpoints(ctx, default_scene);
-  scene.info = source_info(model, default_scene, mesh_instances);
+  scene.info = source_info(model, default_scene, counts);
   scene.bounds = scene.compute_bounds();
   for (Texture& texture : scene.textures) build_mips(texture);  // camera hits filter to their footprint
   return scene;

@@ -1,5 +1,7 @@
 #include "gltf_materials.h"
 
+#include <fmt/ranges.h>
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -14,6 +16,7 @@ constexpr const char* kTextureTransform = "KHR_texture_transform";
 constexpr const char* kEmissiveStrength = "KHR_materials_emissive_strength";
 constexpr const char* kTransmission = "KHR_materials_transmission";
 constexpr const char* kIor = "KHR_materials_ior";
+constexpr const char* kSpecular = "KHR_materials_specular";
 
 // A textureInfo, from tinygltf's parsed struct or from an extension's JSON.
 struct TextureRef {
@@ -97,6 +100,27 @@ class MaterialConverter {
         ctx_.warn("{} ior {} is below 1: the default 1.5 is used", where, ior);
       }
     }
+    if (const tinygltf::Value* e = find_extension(source_.extensions, kSpecular)) check_specular(*e);
+  }
+
+  // The model's dielectric F0 is fixed at 0.04 (docs/brdf.md). Blender writes this
+  // extension on every material, mostly with its defaults, which change nothing: those
+  // pass silently; other values are ignored with a warning naming them.
+  void check_specular(const tinygltf::Value& e) {
+    const std::string where = where_ + " " + kSpecular;
+    std::vector<std::string> ignored;
+    const float factor = number_member(ctx_, e, "specularFactor", where).value_or(1.0f);
+    if (factor != 1.0f) ignored.push_back(fmt::format("specularFactor {}", factor));
+    if (const tinygltf::Value* value = member(e, "specularColorFactor")) {
+      const std::optional<glm::vec3> color = as_vec3(*value);
+      if (!color) ctx_.fail("{} specularColorFactor is not an array of three finite numbers", where);
+      if (*color != glm::vec3(1.0f))
+        ignored.push_back(fmt::format("specularColorFactor [{}, {}, {}]", color->x, color->y, color->z));
+    }
+    for (const char* texture : {"specularTexture", "specularColorTexture"})
+      if (member(e, texture) != nullptr) ignored.emplace_back(texture);
+    if (!ignored.empty())
+      ctx_.warn("{} {} ignored: the dielectric F0 stays 0.04 (docs/brdf.md)", where, fmt::join(ignored, ", "));
   }
 
   TextureRef ref_from_value(const tinygltf::Value& info, const std::string& where) {

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 
+#include "gltf_values.h"
 #include "phyir/core/colour.h"
 #include "phyir/core/image_io.h"
 #include "phyir/core/png_structure.h"
@@ -19,15 +21,21 @@ namespace {
 // bytes; the limit is checked on the header, before anything is allocated.
 constexpr uint64_t kMaxTextureValues = uint64_t{1} << 28;
 
+constexpr const char* kWebp = "EXT_texture_webp";
+constexpr const char* kBasisu = "KHR_texture_basisu";
+
 // Width, height and channels from the encoded image's header (nothing decoded), or zeros when
 // OIIO cannot open it (the decoder then reports why). Same format sniffing as
 // read_image_from_memory.
 std::array<uint64_t, 3> encoded_image_size(const std::vector<unsigned char>& bytes) {
   OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
   const bool jpeg = bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8;
+  const bool webp = bytes.size() >= 12 && std::memcmp(bytes.data(), "RIFF", 4) == 0 &&
+                    std::memcmp(bytes.data() + 8, "WEBP", 4) == 0;
   // A PNG whose chunks run past its end never reaches OIIO (png_structure.h says why).
-  if (!jpeg && !png_structure_error(bytes.data(), bytes.size()).empty()) return {0, 0, 0};
-  auto in = OIIO::ImageInput::open(jpeg ? "in-memory.jpg" : "in-memory.png", nullptr, &reader);
+  if (!jpeg && !webp && !png_structure_error(bytes.data(), bytes.size()).empty()) return {0, 0, 0};
+  auto in = OIIO::ImageInput::open(jpeg ? "in-memory.jpg" : webp ? "in-memory.webp" : "in-memory.png", nullptr,
+                                   &reader);
   if (!in) {
     OIIO::geterror();  // clear the message: read_image_from_memory produces its own
     return {0, 0, 0};
@@ -90,16 +98,44 @@ int TextureTable::get(int texture, TextureEncoding encoding, const std::string& 
   return index;
 }
 
+// EXT_texture_webp's image when the texture has one: it is the optimised copy tools write,
+// and OIIO decodes it. Otherwise the core source; KHR_texture_basisu's KTX2 has no decoder
+// here (none in Debian), so the core source stands in for it, with a warning.
+int TextureTable::image_index(int texture_index, const std::string& role) {
+  const tinygltf::Texture& source = ctx_.model.textures[static_cast<size_t>(texture_index)];
+  const std::string texture_name = label("texture", texture_index, ctx_.model.textures);
+  const auto webp = source.extensions.find(kWebp);
+  if (webp != source.extensions.end()) {
+    const std::string where = texture_name + " " + kWebp;
+    const std::optional<int> image = integer_member(ctx_, webp->second, "source", where);
+    if (!image) ctx_.fail("{} has no source", where);
+    if (!in_range(*image, ctx_.model.images.size()))
+      ctx_.fail("{} source {} does not exist ({} images)", where, *image, ctx_.model.images.size());
+    return *image;
+  }
+  const bool basisu = source.extensions.count(kBasisu) != 0;
+  if (!in_range(source.source, ctx_.model.images.size())) {
+    if (basisu)
+      ctx_.fail("{} (used by {}) has only a {} (KTX2) image, which this loader cannot decode (no Basis "
+                "Universal transcoder), and no core source to fall back on",
+                texture_name, role, kBasisu);
+    ctx_.fail("{} (used by {}) has no valid image source (source {}, {} images)", texture_name, role,
+              source.source, ctx_.model.images.size());
+  }
+  if (basisu && warned_basisu_.insert(texture_index).second)
+    ctx_.warn("{}: its {} (KTX2) image is not decoded (no Basis Universal transcoder): core source image {} used",
+              texture_name, kBasisu, source.source);
+  return source.source;
+}
+
 Texture TextureTable::make_texture(int texture_index, TextureEncoding encoding, const std::string& role) {
   const tinygltf::Texture& source = ctx_.model.textures[static_cast<size_t>(texture_index)];
   const std::string texture_name = label("texture", texture_index, ctx_.model.textures);
-  if (!in_range(source.source, ctx_.model.images.size()))
-    ctx_.fail("{} (used by {}) has no valid image source (source {}, {} images)", texture_name, role,
-              source.source, ctx_.model.images.size());
-  const tinygltf::Image& image = ctx_.model.images[static_cast<size_t>(source.source)];
+  const int image_source = image_index(texture_index, role);
+  const tinygltf::Image& image = ctx_.model.images[static_cast<size_t>(image_source)];
 
   Texture texture;
-  texture.name = display_name(image, source.source);
+  texture.name = display_name(image, image_source);
   texture.encoding = encoding;
   if (source.sampler >= 0) {
     if (!in_range(source.sampler, ctx_.model.samplers.size()))
@@ -112,7 +148,7 @@ Texture TextureTable::make_texture(int texture_index, TextureEncoding encoding, 
   }
   if (!decode_) return texture;
 
-  Image pixels = decoded_image(source.source);  // a copy: the sRGB decode is per use
+  Image pixels = decoded_image(image_source);  // a copy: the sRGB decode is per use
   if (encoding == TextureEncoding::SrgbColour) srgb_to_linear(pixels);
   texture.width = pixels.width;
   texture.height = pixels.height;

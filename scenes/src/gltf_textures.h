@@ -1,8 +1,11 @@
 #pragma once
 // Scene textures made from glTF textures on demand. One Scene texture per (glTF texture,
 // encoding): an image used both as colour and as data becomes two entries, one
-// sRGB-decoded, one kept linear. Each image is decoded once, by OpenImageIO.
+// sRGB-decoded, one kept linear. Each image is decoded once, by OpenImageIO. A texture
+// shows its EXT_texture_webp image when it has one; KHR_texture_basisu falls back to the
+// core source.
 #include <map>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -23,6 +26,7 @@ class TextureTable {
   int get(int texture, TextureEncoding encoding, const std::string& role);
 
  private:
+  int image_index(int texture, const std::string& role);
   const Image& decoded_image(int image);
   Texture make_texture(int texture, TextureEncoding encoding, const std::string& role);
 
@@ -31,6 +35,7 @@ class TextureTable {
   bool decode_;
   std::map<std::pair<int, TextureEncoding>, int> entries_;
   std::map<int, Image> images_;
+  std::set<int> warned_basisu_;  // textures whose KTX2 image was replaced, warned once each
 };
 
 }  // namespace phyir::scenes::gltf

@@ -89,6 +89,8 @@ json source_json(const SourceInfo& info) {
           {"meshes", info.meshes},
           {"primitives", info.primitives},
           {"mesh_instances", info.mesh_instances},
+          {"gpu_instances", info.gpu_instances},
+          {"unique_triangles", info.unique_triangles},
           {"materials", info.materials},
           {"textures", info.textures},
           {"images", info.images},
@@ -220,8 +222,11 @@ std::string scene_info_text(const Scene& scene) {
     out += fmt::format("extensions used: {}\n", fmt::join(s.extensions_used, ", "));
   if (!s.extensions_required.empty())
     out += fmt::format("extensions required: {}\n", fmt::join(s.extensions_required, ", "));
-  out += fmt::format("geometry: {} meshes, {} triangles, {} vertices\n", scene.meshes.size(),
-                     scene.triangle_count(), vertex_count(scene));
+  out += fmt::format("geometry: {} meshes, {} triangles, {} vertices; {} unique triangles (each primitive once)\n",
+                     scene.meshes.size(), scene.triangle_count(), vertex_count(scene), s.unique_triangles);
+  if (s.gpu_instances > 0)
+    out += fmt::format("GPU instances: {} (EXT_mesh_gpu_instancing), baked into the meshes above\n",
+                       s.gpu_instances);
   const Bounds bounds = scene.compute_bounds();
   if (!bounds.empty())
     out += fmt::format("bounds: {} to {}, size {}\n", format_vec3(bounds.min), format_vec3(bounds.max),

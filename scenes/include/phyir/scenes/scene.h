@@ -139,6 +139,8 @@ struct SourceInfo {
   int meshes = 0;
   int primitives = 0;       // summed over meshes
   int mesh_instances = 0;   // mesh nodes reached from the default scene
+  int gpu_instances = 0;    // EXT_mesh_gpu_instancing copies drawn, summed over those nodes
+  size_t unique_triangles = 0;  // of the primitives drawn, each counted once (before any instancing)
   int materials = 0;
   int textures = 0;
   int images = 0;
