@@ -554,15 +554,19 @@ def textured(name, category, images):
 
 
 def allocate(requests, total):
-    """Materials per category so that their images add up to exactly `total`: the fixed
-    categories one per request, the others in proportion to their requests."""
+    """Materials per category so that their images add up to exactly `total`: one for every
+    category asked for, then the fixed categories one per request, then the others in
+    proportion to their requests."""
     cost = {c: len(CATEGORIES[c][0]) for c in requests}
-    count = {c: 0 for c in requests}
-    left = total
+    count = {c: 1 for c in requests}
+    left = total - sum(cost.values())
+    if left < 0:
+        sys.exit(f"make_big_room.py: --textures {total} is too few: one material of every category takes "
+                 f"{sum(cost.values())} images")
     for c in FIXED:
         if c in requests:
-            take = min(requests[c], left // cost[c])
-            count[c], left = take, left - take * cost[c]
+            take = min(requests[c] - 1, left // cost[c])
+            count[c], left = count[c] + take, left - take * cost[c]
     others = [c for c in requests if c not in FIXED]
     while left > 0:
         open_ = [c for c in others if count[c] < requests[c] and cost[c] <= left]
