@@ -1,6 +1,8 @@
 // load_gltf: the stages in order. Each stage lives in its own gltf_*.cpp.
 #include "phyir/scenes/gltf_loader.h"
 
+#include <tbb/parallel_for.h>
+
 #include <cmath>
 #include <map>
 #include <optional>
@@ -234,7 +236,8 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
   scene.candidate_viewpoints = read_candidate_viewpoints(ctx, default_scene);
   scene.info = source_info(model, default_scene, counts);
   scene.bounds = scene.compute_bounds();
-  for (Texture& texture : scene.textures) build_mips(texture);  // camera hits filter to their footprint
+  // Camera hits filter textures to their footprint; each pyramid is independent of the others.
+  tbb::parallel_for(size_t(0), scene.textures.size(), [&](size_t i) { build_mips(scene.textures[i]); });
   return scene;
 }
 
