@@ -168,9 +168,9 @@ std::string light_text(const PunctualLight& l) {
   if (l.type == PunctualLight::Type::Spot)
     where += fmt::format(" towards {}, cone {:.1f} to {:.1f} deg", format_vec3(l.direction),
                          l.inner_cone_angle * 180.0f / kPi, l.outer_cone_angle * 180.0f / kPi);
-  return fmt::format("  {}: {} {}, {:.4g} {} = {:.4g} {} (colour {})\n", l.name, to_string(l.type), where,
-                     l.intensity, photometric_unit(l), luminance(l.radiometric()), radiometric_unit(l),
-                     format_vec3(l.color));
+  return fmt::format("  {}: {} {}, {:.4g} {} x colour {} = {:.4g} {} (luminance)\n", l.name, to_string(l.type),
+                     where, l.intensity, photometric_unit(l), format_vec3(l.color), luminance(l.radiometric()),
+                     radiometric_unit(l));
 }
 
 

@@ -73,8 +73,8 @@ TEST(GltfLights, PhotometricUnitsBecomeRadiometricAt683LumensPerWatt) {
   expect_near(scene.lights[1].radiometric(), glm::vec3(2.0f));
   expect_near(scene.lights[2].radiometric(), glm::vec3(10.0f));               // 6830 lx -> W/m^2
   const std::string info = scene_info_text(scene);
-  EXPECT_THAT(info, HasSubstr("6830 lx = 10 W/m^2"));
-  EXPECT_THAT(info, HasSubstr("1366 cd = 2 W/sr"));
+  EXPECT_THAT(info, HasSubstr("6830 lx x colour (1, 1, 1) = 10 W/m^2"));
+  EXPECT_THAT(info, HasSubstr("1366 cd x colour (1, 1, 1) = 2 W/sr"));
   EXPECT_EQ(scene_info_json(scene)["lights"][2]["intensity_unit"], "lx");
 }
 
