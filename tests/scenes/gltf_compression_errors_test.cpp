@@ -34,6 +34,28 @@ std::string load_error(const test::GlbParts& parts) {
   return {};
 }
 
+struct FlipOutcomes {
+  int errors = 0, loads = 0;
+};
+
+// Loads `parts` once per byte of [start, start + length) of its BIN chunk, that byte inverted:
+// each load must end in an error or a scene, never a crash.
+FlipOutcomes flip_each_byte(const test::GlbParts& parts, size_t start, size_t length) {
+  const fs::path dir = test::fresh_test_dir();
+  FlipOutcomes outcomes;
+  for (size_t i = start; i < start + length; ++i) {
+    test::GlbParts flipped = parts;
+    flipped.bin[i] ^= 0xFF;
+    try {
+      load_gltf(test::write_glb(flipped, dir, "flipped"));
+      ++outcomes.loads;
+    } catch (const Error&) {
+      ++outcomes.errors;
+    }
+  }
+  return outcomes;
+}
+
 // --- Draco (quad_draco.glb: bufferView 1 holds the Draco mesh, POSITION id 0) --------
 
 class DracoErrors : public ::testing::Test {
@@ -101,21 +123,9 @@ TEST_F(DracoErrors, RequiredButThePrimitiveHasNoCompressedData) {
 }
 
 TEST_F(DracoErrors, EveryByteFlippedGivesAnErrorOrALoad) {
-  const size_t start = draco_view()["byteOffset"], length = draco_view()["byteLength"];
-  const fs::path dir = test::fresh_test_dir();
-  int errors = 0, loads = 0;
-  for (size_t i = start; i < start + length; ++i) {
-    test::GlbParts flipped = parts;
-    flipped.bin[i] ^= 0xFF;
-    try {
-      load_gltf(test::write_glb(flipped, dir, "flipped"));
-      ++loads;
-    } catch (const Error&) {
-      ++errors;
-    }
-  }
-  EXPECT_GT(errors, 0);
-  std::printf("[compression] Draco bytes flipped: %d errors, %d loads\n", errors, loads);
+  const FlipOutcomes outcomes = flip_each_byte(parts, draco_view()["byteOffset"], draco_view()["byteLength"]);
+  EXPECT_GT(outcomes.errors, 0);
+  std::printf("[compression] Draco bytes flipped: %d errors, %d loads\n", outcomes.errors, outcomes.loads);
 }
 
 // --- meshopt (quad_meshopt.glb: bufferView 2 holds POSITION, 4 elements of 8 bytes) ----
@@ -178,21 +188,9 @@ TEST_F(MeshoptErrors, RequiredButTheViewHasNoCompressedData) {
 }
 
 TEST_F(MeshoptErrors, EveryByteFlippedGivesAnErrorOrALoad) {
-  const size_t start = extension()["byteOffset"], length = extension()["byteLength"];
-  const fs::path dir = test::fresh_test_dir();
-  int errors = 0, loads = 0;
-  for (size_t i = start; i < start + length; ++i) {
-    test::GlbParts flipped = parts;
-    flipped.bin[i] ^= 0xFF;
-    try {
-      load_gltf(test::write_glb(flipped, dir, "flipped"));
-      ++loads;
-    } catch (const Error&) {
-      ++errors;
-    }
-  }
-  EXPECT_GT(errors + loads, 0);
-  std::printf("[compression] meshopt bytes flipped: %d errors, %d loads\n", errors, loads);
+  const FlipOutcomes outcomes = flip_each_byte(parts, extension()["byteOffset"], extension()["byteLength"]);
+  EXPECT_GT(outcomes.errors + outcomes.loads, 0);
+  std::printf("[compression] meshopt bytes flipped: %d errors, %d loads\n", outcomes.errors, outcomes.loads);
 }
 
 // A .gltf whose fallback buffer has no uri: the fallback is never looked for on disk.
