@@ -14,31 +14,7 @@ if [ $# -eq 0 ]; then
   sed -n '2,7p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
   exit 2
 fi
-for tool in node npm; do
-  command -v "$tool" >/dev/null || { echo "gltf_validate: '$tool' not found (apt-get install nodejs npm)" >&2; exit 2; }
-done
+. "$here/npm_package.sh"
+prefix=$(npm_package gltf_validate gltf-validator "$VALIDATOR_VERSION")
 
-cache=${PHYIR_NPM_CACHE:-${HOME:-/nonexistent}/.cache/phyir-npm}
-if ! mkdir -p "$cache" 2>/dev/null || [ ! -w "$cache" ]; then
-  cache=${TMPDIR:-/tmp}/phyir-npm-$(id -u)
-  mkdir -p "$cache"
-fi
-installed=$(node -p "try { require('$cache/node_modules/gltf-validator/package.json').version } catch (e) { '' }")
-if [ "$installed" != "$VALIDATOR_VERSION" ]; then
-  echo "gltf_validate: installing gltf-validator@$VALIDATOR_VERSION into $cache" >&2
-  # Install beside the cache and move it in whole, so a concurrent or interrupted run never
-  # sees half a package.
-  staging=$(mktemp -d "$cache.staging.XXXXXX")
-  trap 'rm -rf "$staging"' EXIT
-  if ! npm install --silent --no-audit --no-fund --prefix "$staging" "gltf-validator@$VALIDATOR_VERSION" >&2; then
-    echo "gltf_validate: npm install gltf-validator@$VALIDATOR_VERSION failed (no network or registry?)" >&2
-    exit 2
-  fi
-  rm -rf "$cache/node_modules.old"
-  [ -d "$cache/node_modules" ] && mv "$cache/node_modules" "$cache/node_modules.old"
-  mv "$staging/node_modules" "$cache/node_modules"
-  rm -rf "$cache/node_modules.old" "$staging"
-  trap - EXIT
-fi
-
-NODE_PATH="$cache/node_modules" exec node "$here/gltf_validate.js" "$@"
+NODE_PATH="$prefix/node_modules" exec node "$here/gltf_validate.js" "$@"

@@ -10,7 +10,7 @@
 #             dequantization goes into the nodes' scale and translation)
 #   instance  EXT_mesh_gpu_instancing for every mesh used by 2 or more nodes (--min 2)
 # Needs node (>= 20) and npm. The CLI, npm package @gltf-transform/cli, is installed on first
-# use into $PHYIR_NPM_CACHE/gltf-transform (default ~/.cache/phyir-npm; a folder under
+# use into $PHYIR_NPM_CACHE/@gltf-transform_cli (scripts/npm_package.sh; default ~/.cache/phyir-npm; a folder under
 # $TMPDIR when $HOME is not writable). Exit status: 0 = written, 1 = a conversion failed,
 # 2 = setup or usage problem.
 set -euo pipefail
@@ -24,34 +24,8 @@ if [ $# -ne 2 ]; then
 fi
 in=$1 outdir=$2
 [ -f "$in" ] || { echo "gltf_variants: input '$in' not found" >&2; exit 2; }
-for tool in node npm; do
-  command -v "$tool" >/dev/null || { echo "gltf_variants: '$tool' not found (apt-get install nodejs npm)" >&2; exit 2; }
-done
-
-cache=${PHYIR_NPM_CACHE:-${HOME:-/nonexistent}/.cache/phyir-npm}
-if ! mkdir -p "$cache" 2>/dev/null || [ ! -w "$cache" ]; then
-  cache=${TMPDIR:-/tmp}/phyir-npm-$(id -u)
-  mkdir -p "$cache"
-fi
-# Its own prefix: gltf_validate.sh replaces $cache/node_modules whole when it updates.
-prefix=$cache/gltf-transform
-installed=$(node -p "try { require('$prefix/node_modules/@gltf-transform/cli/package.json').version } catch (e) { '' }")
-if [ "$installed" != "$CLI_VERSION" ]; then
-  echo "gltf_variants: installing @gltf-transform/cli@$CLI_VERSION into $prefix" >&2
-  # Install beside the cache and move it in whole, so a concurrent or interrupted run never
-  # sees half a package.
-  staging=$(mktemp -d "$prefix.staging.XXXXXX")
-  trap 'rm -rf "$staging"' EXIT
-  if ! npm install --silent --no-audit --no-fund --prefix "$staging" "@gltf-transform/cli@$CLI_VERSION" >&2; then
-    echo "gltf_variants: npm install @gltf-transform/cli@$CLI_VERSION failed (no network or registry?)" >&2
-    exit 2
-  fi
-  rm -rf "$prefix.old"
-  [ -d "$prefix" ] && mv "$prefix" "$prefix.old"
-  mv "$staging" "$prefix"
-  rm -rf "$prefix.old"
-  trap - EXIT
-fi
+. "$here/npm_package.sh"
+prefix=$(npm_package gltf_variants @gltf-transform/cli "$CLI_VERSION")
 cli=$prefix/node_modules/.bin/gltf-transform
 
 mkdir -p "$outdir"
