@@ -33,6 +33,57 @@ float schlick_k(float roughness) {
   return r1 * r1 / 8.0f;
 }
 
+#ifdef PHYIR_BRDF_CYCLES_TERMS
+// Cycles 3.4's Principled v1 specular terms, built only for the comparison with Cycles
+// (cmake -DPHYIR_BRDF_CYCLES_TERMS=ON, docs/cycles-comparison.md): with them the two
+// renderers' materials agree term for term, so what remains between the images is noise or
+// a transport difference. The product and the test suite use the paper's terms (#else).
+
+// Exact Smith masking of GGX, one direction: 2 / (1 + sqrt(1 + alpha^2 tan^2)).
+float G1_smith_exact(float NoX, float alpha) {
+  const float c2 = std::max(NoX * NoX, 1e-12f);
+  return 2.0f / (1.0f + std::sqrt(1.0f + alpha * alpha * std::max(1.0f - c2, 0.0f) / c2));
+}
+
+float specular_masking(float NoV, float NoL, float roughness) {
+  const float alpha = std::max(roughness * roughness, kMinAlpha);
+  return G1_smith_exact(NoV, alpha) * G1_smith_exact(NoL, alpha);  // separable, as Cycles 3.4
+}
+
+// The mirror limit (alpha -> 0) of the exact masking is 1.
+float mirror_masking(float /*NoV*/, float /*roughness*/) { return 1.0f; }
+
+// Unpolarised dielectric Fresnel reflectance at cos(theta) for relative IOR eta.
+float fresnel_dielectric(float cosi, float eta) {
+  const float c = std::fabs(cosi);
+  float g = eta * eta - 1.0f + c * c;
+  if (!(g > 0.0f)) return 1.0f;  // total internal reflection
+  g = std::sqrt(g);
+  const float a = (g - c) / (g + c), b = (c * (g + c) - 1.0f) / (c * (g - c) + 1.0f);
+  return 0.5f * a * a * (1.0f + b * b);
+}
+
+// Principled v1's "interpolated" Fresnel: the IOR-1.5 dielectric curve rescaled to run from
+// F0 (the colour) at normal incidence to white at grazing.
+glm::vec3 specular_fresnel(const glm::vec3& F0, float VoH) {
+  const float f_normal = fresnel_dielectric(1.0f, 1.5f);
+  const float t = (fresnel_dielectric(clamp01(VoH), 1.5f) - f_normal) / (1.0f - f_normal);
+  return F0 * (1.0f - t) + glm::vec3(t);
+}
+#else
+float specular_masking(float NoV, float NoL, float roughness) {
+  return G_SmithSchlick(NoV, NoL, roughness);  // eq. 17
+}
+
+// The alpha -> 0 limit of eq. 17 with k = (R+1)^2/8 kept: G1(NoV)^2.
+float mirror_masking(float NoV, float roughness) {
+  const float G1 = G1_SmithSchlick(NoV, schlick_k(roughness));
+  return G1 * G1;
+}
+
+glm::vec3 specular_fresnel(const glm::vec3& F0, float VoH) { return F_SchlickSG(F0, VoH); }  // eq. 16
+#endif
+
 // The parameters as the BRDF uses them: clamped to their documented ranges.
 using Clamped = BrdfParams;
 Clamped clamp_params(const BrdfParams& p) { return clamped(p); }
@@ -73,8 +124,8 @@ glm::vec3 specular_pair(const Clamped& c, const PairGeometry& q) {
   if (!q.valid || is_mirror(c.roughness)) return glm::vec3(0.0f);
   const float alpha = c.roughness * c.roughness;                          // eq. 15
   const float D = ggx_ndf(q.cos2_h, q.sin2_h, alpha);                     // eq. 15
-  const glm::vec3 F = F_SchlickSG(specular_F0(c.base_color, c.metalness), q.VoH);  // eq. 16
-  const float G = G_SmithSchlick(q.NoV, q.NoL, c.roughness);              // eq. 17
+  const glm::vec3 F = specular_fresnel(specular_F0(c.base_color, c.metalness), q.VoH);  // eq. 16
+  const float G = specular_masking(q.NoV, q.NoL, c.roughness);                         // eq. 17
   return D * F * G / (4.0f * (q.NoV * q.NoL));                            // eq. 14
 }
 
@@ -185,9 +236,9 @@ bool brdf_sample(const BrdfParams& p, const glm::vec3& wo, float u_lobe, const g
     if (mirror) {
       // The alpha -> 0 limit of eq. 14-17: h = n, VoH = NoL = NoV, and the lobe's
       // integral of f_s cos collapses to F(NoV) G1(NoV)^2 (k keeps its (R+1)^2/8 value).
-      const float G1 = G1_SmithSchlick(NoV, schlick_k(c.roughness));
       out->wi = glm::vec3(-wo.x, -wo.y, wo.z);
-      out->weight = F_SchlickSG(specular_F0(c.base_color, c.metalness), NoV) * (G1 * G1) / ps;
+      out->weight = specular_fresnel(specular_F0(c.base_color, c.metalness), NoV) *
+                    mirror_masking(NoV, c.roughness) / ps;
       out->pdf = ps;
       out->delta = true;
       return true;
@@ -259,9 +310,8 @@ struct SpecularAlbedoTable {
   static glm::vec2 integrate(float NoV, float R) {
     constexpr int kStrata = 32;  // 32 x 32 stratified GGX samples per node
     if (is_mirror(R)) {
-      const float G1 = G1_SmithSchlick(NoV, schlick_k(R));
-      return glm::vec2(glm::dvec2(F_SchlickSG(glm::vec3(1.0f), NoV).x, F_SchlickSG(glm::vec3(0.0f), NoV).x) *
-                       double(G1 * G1));
+      return glm::vec2(glm::dvec2(specular_fresnel(glm::vec3(1.0f), NoV).x, specular_fresnel(glm::vec3(0.0f), NoV).x) *
+                       double(mirror_masking(NoV, R)));
     }
     const glm::vec3 wo(std::sqrt(1.0f - NoV * NoV), 0.0f, NoV);
     const BrdfParams white{glm::vec3(1.0f), R, 1.0f}, black{glm::vec3(0.0f), R, 1.0f};
