@@ -74,7 +74,7 @@ std::vector<WallPiece> outside_walls(const ApartmentPlan& plan, const std::vecto
   return pieces;
 }
 
-WallOpening opening_in(const WallPiece& piece, OpeningKind kind, float start, float width, float bottom, float top) {
+WallOpening opening_in(const WallPiece& piece, WallOpeningKind kind, float start, float width, float bottom, float top) {
   WallOpening o;
   o.kind = kind;
   o.room = piece.room;
@@ -104,7 +104,7 @@ bool clear_of_openings(const ApartmentPlan& plan, const WallOpening& candidate) 
 
 // Cuts a hole of `width` at a random place along the piece, clear of the wall's ends and of
 // other openings. The width shrinks to what the piece has room for, down to `min_width`.
-bool try_cut(ApartmentPlan& plan, const WallPiece& piece, OpeningKind kind, float width, float min_width, float bottom,
+bool try_cut(ApartmentPlan& plan, const WallPiece& piece, WallOpeningKind kind, float width, float min_width, float bottom,
              float top, Pcg32& rng) {
   const float lo = piece.from + kMinOpeningMargin, hi = piece.to - kMinOpeningMargin;
   width = std::min(width, hi - lo);
@@ -154,18 +154,18 @@ void cut_doors(ApartmentPlan& plan, const std::vector<Rect2>& cells, Pcg32& rng)
     }
     if (best_to < 0) break;  // unreachable rooms are reported by the plan's checks
     reached[size_t(best_to)] = true;
-    try_cut(plan, best, OpeningKind::Door, rng.uniform(0.8f, 0.9f), 0.8f, 0.0f, kDoorHeight, rng);
+    try_cut(plan, best, WallOpeningKind::Door, rng.uniform(0.8f, 0.9f), 0.8f, 0.0f, kDoorHeight, rng);
   }
   // An open passage between the living room and the kitchen when they touch.
   WallPiece piece;
   const int living = index_of(plan, RoomType::LivingRoom), kitchen = index_of(plan, RoomType::Kitchen);
   if (kitchen >= 0 && shared_wall(plan, cells, living, kitchen, &piece) && rng.chance(0.6f))
-    try_cut(plan, piece, OpeningKind::Door, rng.uniform(1.2f, 1.8f), 0.8f, 0.0f, kDoorHeight, rng);
+    try_cut(plan, piece, WallOpeningKind::Door, rng.uniform(1.2f, 1.8f), 0.8f, 0.0f, kDoorHeight, rng);
   // The entrance, from outside into the hub, or the living room if the hub has no room.
   for (int room : {hub, living}) {
     bool entered = false;
     for (const WallPiece& p : outside_walls(plan, cells, room))
-      if ((entered = try_cut(plan, p, OpeningKind::Door, rng.uniform(0.9f, 1.0f), 0.85f, 0.0f, kDoorHeight, rng))) break;
+      if ((entered = try_cut(plan, p, WallOpeningKind::Door, rng.uniform(0.9f, 1.0f), 0.85f, 0.0f, kDoorHeight, rng))) break;
     if (entered) break;
   }
 }
@@ -180,12 +180,12 @@ void cut_windows(ApartmentPlan& plan, const std::vector<Rect2>& cells, Pcg32& rn
     for (const WallPiece& piece : outside_walls(plan, cells, static_cast<int>(r))) {
       if (cut == wanted) break;
       if (type == RoomType::Bathroom) {
-        cut += try_cut(plan, piece, OpeningKind::Window, rng.uniform(0.5f, 0.8f), 0.45f, 1.3f, top, rng);
+        cut += try_cut(plan, piece, WallOpeningKind::Window, rng.uniform(0.5f, 0.8f), 0.45f, 1.3f, top, rng);
         continue;
       }
       const bool french = type == RoomType::LivingRoom && rng.chance(0.3f);
       const float width = type == RoomType::LivingRoom ? rng.uniform(1.2f, 2.4f) : rng.uniform(0.9f, 1.6f);
-      cut += try_cut(plan, piece, OpeningKind::Window, width, 0.6f, french ? 0.0f : rng.uniform(0.8f, 1.0f), top, rng);
+      cut += try_cut(plan, piece, WallOpeningKind::Window, width, 0.6f, french ? 0.0f : rng.uniform(0.8f, 1.0f), top, rng);
     }
   }
 }

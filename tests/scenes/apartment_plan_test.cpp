@@ -61,7 +61,7 @@ TEST(ApartmentPlan, DoorsReachEveryRoomFromOutside) {
         const auto [near, far] = sides_of(plan, o);
         EXPECT_EQ(near, o.room) << "seed " << seed;  // each opening joins what it says it joins
         EXPECT_EQ(far, o.other) << "seed " << seed;
-        if (o.kind != OpeningKind::Door) continue;
+        if (o.kind != WallOpeningKind::Door) continue;
         EXPECT_EQ(o.bottom, 0.0f);
         entrances += o.other == -1;
         edges.insert({o.room, o.other});
@@ -86,7 +86,7 @@ TEST(ApartmentPlan, LivingRoomsBedroomsAndKitchensHaveWindows) {
     const ApartmentPlan plan = plan_apartment(uint64_t(seed), 1);
     std::vector<int> windows(plan.rooms.size(), 0);
     for (const WallOpening& o : plan.openings) {
-      if (o.kind != OpeningKind::Window) continue;
+      if (o.kind != WallOpeningKind::Window) continue;
       EXPECT_EQ(o.other, -1) << "a window opens to the outside";
       EXPECT_GE(o.width(), 0.45f);
       EXPECT_LT(o.top, plan.height);

@@ -34,11 +34,11 @@ struct ApartmentRoom {
   Rect2 floor;       // the floor between the wall faces
 };
 
-enum class OpeningKind { Door, Window };
+enum class WallOpeningKind { Door, Window };
 
 // A hole through a wall, floor-standing for doors (and French windows).
 struct WallOpening {
-  OpeningKind kind = OpeningKind::Door;
+  WallOpeningKind kind = WallOpeningKind::Door;
   int room = -1;   // the room on one side
   int other = -1;  // the room on the other side, -1 for outside
   // 0: the wall runs along x (the hole passes through it along z); 1: the wall runs along z.
