@@ -8,6 +8,7 @@
 #       [--variants lit_room,no_spot,spot_only,no_spot_direct,spot_only_direct]
 #       [--spp-full 2048] [--spp-variants 1024] [--spp-direct 256] [--width 256] [--height 128]
 #       [--threads 2] [--block 8] [--figures docs/figures] [--name cycles_lit_room] [--report-only]
+#       [--supersample K]
 #
 # Variants: lit_room (the file as exported, --spp-full), no_spot and spot_only (the same file
 # with lights' node references dropped, written into RUNS/scenes; --spp-variants), and the
@@ -18,6 +19,9 @@
 # RUNS/cycles/<variant>_s<seed>.exr (+ .json, .log); each is skipped if it exists (a render
 # made elsewhere can be linked in), so an interrupted run resumes. One render at a time;
 # run it under `nice` on a shared machine. PHYIR and BLENDER override the binaries.
+# --supersample K renders phyir at K x the size with spp / K^2 and box-filters it back (texture
+# footprints K x smaller). PHYIR=build-cycles-terms/cli/phyir (cmake -DPHYIR_BRDF_CYCLES_TERMS=ON)
+# renders with Cycles' specular terms: docs/cycles-comparison.md, "With Cycles' specular terms".
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
@@ -27,7 +31,7 @@ PYTHON=/usr/bin/python3   # Debian's, with numpy, matplotlib and OpenImageIO
 
 runs=/tmp/phyir-cycles/lit_room seeds=1,2 variants=lit_room,no_spot,spot_only,no_spot_direct,spot_only_direct
 spp_full=2048 spp_variants=1024 spp_direct=256 width=256 height=128 threads=2 block=8
-figures="$ROOT/docs/figures" name=cycles_lit_room report_only=0
+figures="$ROOT/docs/figures" name=cycles_lit_room report_only=0 supersample=1
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --runs) runs="$2" ;;
@@ -42,8 +46,9 @@ while [[ $# -gt 0 ]]; do
     --block) block="$2" ;;
     --figures) figures="$2" ;;
     --name) name="$2" ;;
+    --supersample) supersample="$2" ;;
     --report-only) report_only=1; shift; continue ;;
-    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,24p' "$0"; exit 0 ;;
     *) echo "compare_lit_room.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift 2
@@ -78,11 +83,17 @@ ours_bounces_of() { [[ "$1" == *_direct ]] && echo 1 || echo 8; }   # Cycles: ou
 render_ours() {  # VARIANT SEED
   local variant="$1" seed="$2" dir="$runs/phyir/$1_s$2"
   [[ -f "$dir/render.json" ]] && return 0
-  log "phyir $variant seed $seed, $(spp_of "$variant") spp (load $(cut -d' ' -f1 /proc/loadavg))"
-  timed "$dir.time.json" "$PHYIR" --log-level warn render "$(scene_of "$variant")" --out "$dir" \
-    --camera="$camera" --width "$width" --height "$height" --spp "$(spp_of "$variant")" \
+  # --supersample K: K x the size at spp / K^2 (the same samples per output pixel), so each
+  # camera hit's texture footprint is K x smaller; box-filtered back to the output size.
+  local k=$supersample spp=$(( ($(spp_of "$variant") + supersample * supersample - 1) / (supersample * supersample) ))
+  local out="$dir"; [[ $k -gt 1 ]] && out="$dir/supersampled"
+  log "phyir $variant seed $seed, $spp spp at ${k}x (load $(cut -d' ' -f1 /proc/loadavg))"
+  timed "$dir.time.json" "$PHYIR" --log-level warn render "$(scene_of "$variant")" --out "$out" \
+    --camera="$camera" --width $((width * k)) --height $((height * k)) --spp "$spp" \
     --max-bounces "$(ours_bounces_of "$variant")" --seed "$seed" --threads "$threads" --quiet >"$dir.log" 2>&1 ||
     { echo "compare_lit_room.sh: phyir failed, see $dir.log" >&2; tail -20 "$dir.log" >&2; exit 1; }
+  [[ $k -gt 1 ]] && "$PYTHON" "$ROOT/scripts/cycles/lit_room_agreement.py" downsample --dir "$dir" --factor "$k"
+  return 0
 }
 
 render_cycles() {  # VARIANT SEED

@@ -2,6 +2,7 @@
 """The Blender-exported lit room against Cycles: variants, mean radiance, block z-scores, figures.
 
     lit_room_agreement.py variants --gltf lit_room.gltf --out RUNS/scenes
+    lit_room_agreement.py downsample --dir RUNS/phyir/<variant>_s<seed> --factor K
     lit_room_agreement.py report --runs RUNS [--figures docs/figures] [--name cycles_lit_room]
         [--block 8] [--variants lit_room,no_spot,spot_only,...]
 
@@ -47,6 +48,34 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 
 # Which lights each variant keeps (by light name in the extension's list).
 VARIANT_LIGHTS = {"no_spot": {"lamp_point", "sun"}, "spot_only": {"spot"}}
+
+
+# --- supersampled phyir renders ------------------------------------------------------------------
+
+def write_exr(path, image, channels):
+    import OpenImageIO as oiio
+    spec = oiio.ImageSpec(image.shape[1], image.shape[0], image.shape[2], oiio.FLOAT)
+    spec.channelnames = channels
+    tmp = path + ".tmp.exr"
+    out = oiio.ImageOutput.create(tmp)
+    if out is None or not out.open(tmp, spec) or not out.write_image(np.ascontiguousarray(image, np.float32)):
+        sys.exit(f"{path}: cannot write ({oiio.geterror()})")
+    out.close()
+    os.replace(tmp, path)
+
+
+def downsample(args):
+    """DIR/supersampled/ (a render at FACTOR x the size) -> DIR/: colour averaged over each
+    FACTOR x FACTOR block (a box filter, as the pixel filter of both renderers), depth and
+    metalness taken from the sample at the block's centre (they only classify surfaces)."""
+    k, src = args.factor, os.path.join(args.dir, "supersampled")
+    colour = read_exr(os.path.join(src, "color.exr"))
+    h, w = colour.shape[0] // k, colour.shape[1] // k
+    write_exr(os.path.join(args.dir, "color.exr"), colour.reshape(h, k, w, k, 3).mean(axis=(1, 3)), ("R", "G", "B"))
+    for name in ("depth", "metalness"):
+        aov = read_exr(os.path.join(src, f"{name}.exr"), channels=("Y",))
+        write_exr(os.path.join(args.dir, f"{name}.exr"), aov[k // 2::k, k // 2::k], ("Y",))
+    shutil.copy(os.path.join(src, "render.json"), os.path.join(args.dir, "render.json"))
 
 
 # --- variants ------------------------------------------------------------------------------------
@@ -593,9 +622,14 @@ def main():
     r.add_argument("--block", type=int, default=8, help="block size in pixels (default 8)")
     r.add_argument("--figures", default=os.path.join(ROOT, "docs", "figures"))
     r.add_argument("--name", default="cycles_lit_room")
+    d = sub.add_parser("downsample", help="box-filter DIR/supersampled/ (FACTOR x the size) into DIR/")
+    d.add_argument("--dir", required=True)
+    d.add_argument("--factor", type=int, required=True)
     args = p.parse_args()
     if args.command == "variants":
         write_variants(args.gltf, args.out)
+    elif args.command == "downsample":
+        downsample(args)
     else:
         report(args)
 
