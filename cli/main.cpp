@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   app.parse_complete_callback([&] { phyir::set_log_level(log_level); });
 
   phyir::cli::add_scenes_command(app);
+  phyir::cli::add_assets_command(app);
   phyir::cli::add_render_command(app);
   phyir::cli::add_dataset_command(app);
   phyir::cli::add_train_command(app);

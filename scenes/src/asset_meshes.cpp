@@ -1,0 +1,91 @@
+// build_meshes: vertex welding per material.
+#include "asset_meshes.h"
+
+#include <cstring>
+#include <unordered_map>
+
+#include "asset_normals.h"
+
+namespace phyir::scenes {
+
+namespace {
+
+// Twice the area below which a triangle is degenerate: (0.1 um)^2, far below any modelled
+// detail of furniture, above float round-off of collinear corners.
+constexpr float kDegenerateArea2 = 1e-14f;
+
+struct VertexKey {
+  int position;
+  int texcoord;
+  glm::vec3 normal;
+  bool operator==(const VertexKey& o) const {
+    return position == o.position && texcoord == o.texcoord && std::memcmp(&normal, &o.normal, sizeof(normal)) == 0;
+  }
+};
+
+struct VertexKeyHash {
+  size_t operator()(const VertexKey& k) const {
+    uint32_t bits[3];
+    std::memcpy(bits, &k.normal, sizeof(bits));
+    size_t h = std::hash<int>()(k.position) * 0x9E3779B97F4A7C15ull ^ std::hash<int>()(k.texcoord);
+    for (uint32_t b : bits) h = h * 31 + b;
+    return h;
+  }
+};
+
+class MeshWelder {
+ public:
+  MeshWelder(const ObjSoup& soup, int material) : soup_(soup) { mesh_.material = material; }
+
+  void add_corner(const ObjCorner& corner, glm::vec3 normal) {
+    const VertexKey key{corner.position, corner.texcoord, normal};
+    const auto [it, inserted] = index_of_.emplace(key, static_cast<uint32_t>(mesh_.positions.size()));
+    if (inserted) {
+      mesh_.positions.push_back(soup_.positions[static_cast<size_t>(corner.position)]);
+      mesh_.normals.push_back(normal);
+      const glm::vec2 uv = corner.texcoord >= 0 ? soup_.texcoords[static_cast<size_t>(corner.texcoord)] : glm::vec2(0.0f);
+      mesh_.texcoords.push_back({uv.x, 1.0f - uv.y});
+      has_texcoords_ = has_texcoords_ || corner.texcoord >= 0;
+    }
+    mesh_.indices.push_back(it->second);
+  }
+
+  AssetMesh finish() {
+    if (!has_texcoords_) mesh_.texcoords.clear();
+    return std::move(mesh_);
+  }
+  bool empty() const { return mesh_.indices.empty(); }
+
+ private:
+  const ObjSoup& soup_;
+  AssetMesh mesh_;
+  std::unordered_map<VertexKey, uint32_t, VertexKeyHash> index_of_;
+  bool has_texcoords_ = false;
+};
+
+}  // namespace
+
+std::vector<AssetMesh> build_meshes(const ObjSoup& soup, std::vector<std::string>& warnings) {
+  const std::vector<glm::vec3> normals = corner_normals(soup);
+  std::vector<MeshWelder> welders;
+  welders.reserve(soup.materials.size());
+  for (size_t m = 0; m < soup.materials.size(); ++m) welders.emplace_back(soup, static_cast<int>(m));
+  size_t degenerate = 0;
+  for (size_t i = 0; i < soup.triangles.size(); ++i) {
+    const ObjTriangle& t = soup.triangles[i];
+    const glm::vec3 n = area_normal(soup, t);
+    if (!(glm::dot(n, n) > kDegenerateArea2 * kDegenerateArea2)) {
+      ++degenerate;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) welders[static_cast<size_t>(t.material)].add_corner(t.corners[k], normals[3 * i + static_cast<size_t>(k)]);
+  }
+  if (degenerate > 0) warnings.push_back(std::to_string(degenerate) + " zero-area triangles dropped");
+  std::vector<AssetMesh> meshes;
+  for (MeshWelder& welder : welders) {
+    if (!welder.empty()) meshes.push_back(welder.finish());
+  }
+  return meshes;
+}
+
+}  // namespace phyir::scenes
