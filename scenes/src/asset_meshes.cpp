@@ -1,7 +1,6 @@
 // build_meshes: vertex welding per material.
 #include "asset_meshes.h"
 
-#include <cstring>
 #include <unordered_map>
 
 #include "asset_normals.h"
@@ -14,31 +13,35 @@ namespace {
 // detail of furniture, above float round-off of collinear corners.
 constexpr float kDegenerateArea2 = 1e-14f;
 
+// Normals closer than this weld: coplanar triangles of one polygon get flat normals that
+// differ in the last bits (each is its own cross product), 1e-5 rad is far below shading.
+constexpr float kNormalWeldStep = 1e-5f;
+
 struct VertexKey {
   int position;
   int texcoord;
-  glm::vec3 normal;
+  glm::ivec3 normal;  // quantised by kNormalWeldStep
   bool operator==(const VertexKey& o) const {
-    return position == o.position && texcoord == o.texcoord && std::memcmp(&normal, &o.normal, sizeof(normal)) == 0;
+    return position == o.position && texcoord == o.texcoord && normal == o.normal;
   }
 };
 
 struct VertexKeyHash {
   size_t operator()(const VertexKey& k) const {
-    uint32_t bits[3];
-    std::memcpy(bits, &k.normal, sizeof(bits));
     size_t h = std::hash<int>()(k.position) * 0x9E3779B97F4A7C15ull ^ std::hash<int>()(k.texcoord);
-    for (uint32_t b : bits) h = h * 31 + b;
+    for (int i = 0; i < 3; ++i) h = h * 31 + static_cast<size_t>(k.normal[i]);
     return h;
   }
 };
+
+glm::ivec3 quantised(glm::vec3 n) { return glm::ivec3(glm::round(n / kNormalWeldStep)); }
 
 class MeshWelder {
  public:
   MeshWelder(const ObjSoup& soup, int material) : soup_(soup) { mesh_.material = material; }
 
   void add_corner(const ObjCorner& corner, glm::vec3 normal) {
-    const VertexKey key{corner.position, corner.texcoord, normal};
+    const VertexKey key{corner.position, corner.texcoord, quantised(normal)};
     const auto [it, inserted] = index_of_.emplace(key, static_cast<uint32_t>(mesh_.positions.size()));
     if (inserted) {
       mesh_.positions.push_back(soup_.positions[static_cast<size_t>(corner.position)]);

@@ -51,15 +51,29 @@ bool has_own_normals(const ObjSoup& soup, const ObjTriangle& t) {
   return true;
 }
 
-glm::vec3 smooth_normal(const ObjSoup& soup, const Adjacency& adjacency, const std::vector<glm::vec3>& face,
+// The angle of a triangle at its corner on `position` (0 for a degenerate corner).
+float corner_angle(const ObjSoup& soup, const ObjTriangle& t, int position) {
+  int k = 0;
+  while (k < 2 && t.corners[k].position != position) ++k;
+  const glm::vec3 p = soup.positions[static_cast<size_t>(t.corners[k].position)];
+  const glm::vec3 a = unit_or(soup.positions[static_cast<size_t>(t.corners[(k + 1) % 3].position)] - p, glm::vec3(0.0f));
+  const glm::vec3 b = unit_or(soup.positions[static_cast<size_t>(t.corners[(k + 2) % 3].position)] - p, glm::vec3(0.0f));
+  return safe_acos(glm::dot(a, b));
+}
+
+// Weighted by each face's angle at the vertex, so the result does not depend on how the
+// OBJ's polygons were cut into triangles (area weights would favour the side cut twice).
+glm::vec3 smooth_normal(const ObjSoup& soup, const Adjacency& adjacency, const std::vector<glm::vec3>& face_unit,
                         size_t triangle, int position) {
   const unsigned group = soup.triangles[triangle].smoothing;
-  const glm::vec3 own = unit_or(face[triangle], glm::vec3(0.0f));
+  const glm::vec3 own = face_unit[triangle];
   glm::vec3 sum(0.0f);
   for (uint32_t k = adjacency.first[static_cast<size_t>(position)]; k < adjacency.first[static_cast<size_t>(position) + 1]; ++k) {
     const uint32_t other = adjacency.triangles[k];
     if (soup.triangles[other].smoothing != group) continue;
-    if (glm::dot(own, unit_or(face[other], glm::vec3(0.0f))) >= kCosCreaseAngle) sum += face[other];
+    if (glm::dot(own, face_unit[other]) >= kCosCreaseAngle) {
+      sum += corner_angle(soup, soup.triangles[other], position) * face_unit[other];
+    }
   }
   return unit_or(sum, own);
 }
@@ -74,14 +88,14 @@ glm::vec3 area_normal(const ObjSoup& soup, const ObjTriangle& t) {
 }
 
 std::vector<glm::vec3> corner_normals(const ObjSoup& soup) {
-  std::vector<glm::vec3> face(soup.triangles.size());
-  for (size_t i = 0; i < face.size(); ++i) face[i] = area_normal(soup, soup.triangles[i]);
+  std::vector<glm::vec3> face(soup.triangles.size());  // unit; zero for a degenerate triangle
+  for (size_t i = 0; i < face.size(); ++i) face[i] = unit_or(area_normal(soup, soup.triangles[i]), glm::vec3(0.0f));
   const Adjacency adjacency = smooth_adjacency(soup);
   std::vector<glm::vec3> normals(3 * soup.triangles.size());
   for (size_t i = 0; i < soup.triangles.size(); ++i) {
     const ObjTriangle& t = soup.triangles[i];
     const bool own = has_own_normals(soup, t);
-    const glm::vec3 flat = unit_or(face[i], glm::vec3(0.0f, 1.0f, 0.0f));
+    const glm::vec3 flat = face[i];
     for (int k = 0; k < 3; ++k) {
       glm::vec3& n = normals[3 * i + static_cast<size_t>(k)];
       if (own) {

@@ -4,6 +4,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <cctype>
 #include <sstream>
 
@@ -19,6 +20,27 @@ std::string lower(std::string text);
 std::string trim_warning(const std::string& text) {
   const size_t end = text.find_last_not_of(" \n");
   return end == std::string::npos ? "" : text.substr(0, end + 1);
+}
+
+// tinyobjloader's warnings, one per line and often repeated (one per usemtl): each distinct
+// line once, with its count.
+void add_loader_warnings(const std::string& text, const std::string& obj_path, std::vector<std::string>& warnings) {
+  std::vector<std::pair<std::string, int>> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    line = trim_warning(line);
+    line.erase(0, line.find_first_not_of(". "));  // tinyobjloader ends some messages with "\n."
+    if (line.empty()) continue;
+    auto it = std::find_if(lines.begin(), lines.end(), [&](const auto& l) { return l.first == line; });
+    if (it == lines.end()) {
+      lines.emplace_back(line, 1);
+    } else {
+      ++it->second;
+    }
+  }
+  for (const auto& [line, count] : lines) {
+    warnings.push_back(obj_path + ": " + line + (count > 1 ? " (" + std::to_string(count) + " times)" : ""));
+  }
 }
 
 // Reads "mtllib NAME" from the archive, relative to the OBJ's folder (case-insensitive as a
@@ -171,7 +193,7 @@ ObjSoup read_obj(const ZipArchive& zip, const std::string& obj_path) {
   if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &reader, /*triangulate=*/true)) {
     fail("{}: {}: tinyobjloader cannot read it: {}", zip.path().string(), obj_path, trim_warning(err));
   }
-  if (!trim_warning(warn).empty()) soup.warnings.push_back(obj_path + ": " + trim_warning(warn));
+  add_loader_warnings(warn, obj_path, soup.warnings);
   copy_arrays(attrib, soup);
   soup.materials.push_back(default_material());
   copy_triangles(shapes, static_cast<int>(soup.materials.size()) - 1, soup);
