@@ -48,6 +48,32 @@ json gltf_json(const fs::path& path, const std::string& bytes) {
   return json::parse(bytes, nullptr, false);
 }
 
+// The external files a glTF names: buffers, images and the default scene's environment map
+// (extras.phyir.environment.uri), percent-decoded; data: URIs are inside the file.
+std::set<std::string> external_uris(const json& gltf) {
+  std::set<std::string> uris;
+  const auto add = [&](const json& item) {
+    if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) return;
+    const std::string uri = item["uri"].get<std::string>();
+    if (uri.rfind("data:", 0) != 0) uris.insert(percent_decode(uri));
+  };
+  for (const char* key : {"buffers", "images"}) {
+    if (!gltf.contains(key) || !gltf[key].is_array()) continue;
+    for (const json& item : gltf[key]) add(item);
+  }
+  const json scenes = gltf.value("scenes", json::array());
+  const json scene_index = gltf.value("scene", json(0));
+  if (scenes.is_array() && scene_index.is_number_unsigned() && scene_index.get<size_t>() < scenes.size()) {
+    const json* node = &scenes[scene_index.get<size_t>()];
+    for (const char* key : {"extras", "phyir", "environment"}) {
+      node = node->is_object() && node->contains(key) ? &(*node)[key] : nullptr;
+      if (node == nullptr) break;
+    }
+    if (node != nullptr) add(*node);
+  }
+  return uris;
+}
+
 json file_entry(const fs::path& path, const std::string& name) {
   std::error_code ec;
   const auto size = fs::file_size(path, ec);
@@ -88,18 +114,10 @@ json scene_record(const fs::path& scenes_dir, const SceneFile& scene, const std:
   const std::string bytes = read_file(path);
   json record = {{"name", scene.name}, {"file", scene.file}, {"size", bytes.size()}, {"sha256", sha256_hex(bytes)},
                  {"split", split},     {"views", views_per_scene}};
-  // External buffers and images: the files the render read besides the glTF itself.
-  std::set<std::string> uris;
+  // External buffers, images and environment: the files the render read besides the glTF itself.
   const json gltf = gltf_json(path, bytes);
   if (gltf.is_discarded() || !gltf.is_object()) fail("{}: not glTF JSON", path.string());
-  for (const char* key : {"buffers", "images"}) {
-    if (!gltf.contains(key) || !gltf[key].is_array()) continue;
-    for (const json& item : gltf[key])
-      if (item.is_object() && item.contains("uri") && item["uri"].is_string()) {
-        const std::string uri = item["uri"].get<std::string>();
-        if (uri.rfind("data:", 0) != 0) uris.insert(percent_decode(uri));
-      }
-  }
+  const std::set<std::string> uris = external_uris(gltf);
   json dependencies = json::array();
   std::string content = record["sha256"].get<std::string>() + "  " + scene.file + "\n";
   for (const std::string& uri : uris) {

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "gltf_cameras.h"
+#include "gltf_environment.h"
 #include "gltf_extensions.h"
 #include "gltf_file.h"
 #include "gltf_lights.h"
@@ -234,6 +235,7 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
   const BakeCounts counts = InstanceBaker(ctx, scene).add(instances);
   scene.lights = read_lights(ctx, instances);
   scene.candidate_viewpoints = read_candidate_viewpoints(ctx, default_scene);
+  scene.environment = read_environment(ctx, default_scene, path);
   scene.info = source_info(model, default_scene, counts);
   scene.bounds = scene.compute_bounds();
   // Camera hits filter textures to their footprint; each pyramid is independent of the others.

@@ -1,14 +1,18 @@
-// glTF 2.0 writing: JSON via nlohmann::json, geometry in one little-endian buffer with one
-// tightly packed buffer view per accessor (views shared between vertex attributes would
-// need byteStride).
+// glTF 2.0 writing: the document's parts encoded in order (gltf_write_*.cpp), assembled into
+// one JSON object, then the side files, the buffer and the JSON written.
 #include "phyir/scenes/gltf_writer.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <limits>
 #include <set>
 
+#include "gltf_geometry.h"
+#include "gltf_write_buffer.h"
+#include "gltf_write_files.h"
+#include "gltf_write_lights.h"
+#include "gltf_write_materials.h"
+#include "gltf_write_textures.h"
+#include "gltf_write_values.h"
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
 
@@ -16,93 +20,9 @@ namespace phyir::scenes {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using namespace gltf_write;
 
 namespace {
-
-// glTF enums (specification section 5).
-constexpr int kArrayBuffer = 34962;
-constexpr int kElementArrayBuffer = 34963;
-constexpr int kComponentFloat = 5126;
-constexpr int kComponentUnsignedInt = 5125;
-constexpr int kFilterLinear = 9729;
-constexpr int kFilterLinearMipmapLinear = 9987;
-constexpr int kWrapRepeat = 10497;
-
-// Factors rounded to 6 decimals print short ("0.35", not 0.3499999940395355); a millionth
-// is far below what 8-bit textures or renderers resolve.
-double tidy(float v) { return std::round(static_cast<double>(v) * 1e6) / 1e6; }
-
-json tidy_array(const float* v, int n) {
-  json a = json::array();
-  for (int i = 0; i < n; ++i) a.push_back(tidy(v[i]));
-  return a;
-}
-
-// The .bin buffer and the views and accessors into it.
-class BufferEncoder {
- public:
-  template <int N>
-  int add_vectors(const std::vector<glm::vec<N, float>>& data, bool with_bounds) {
-    const size_t offset = bin_.size();
-    glm::vec<N, float> lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    for (const auto& v : data) {
-      for (int c = 0; c < N; ++c) put_float(v[c]);
-      lo = glm::min(lo, v);
-      hi = glm::max(hi, v);
-    }
-    json accessor = {{"bufferView", add_view(offset, kArrayBuffer)},
-                     {"componentType", kComponentFloat},
-                     {"count", data.size()},
-                     {"type", N == 2 ? "VEC2" : "VEC3"}};
-    if (with_bounds) {
-      // Exact float values: the validator compares them with the buffer's contents.
-      json min = json::array(), max = json::array();
-      for (int c = 0; c < N; ++c) {
-        min.push_back(static_cast<double>(lo[c]));
-        max.push_back(static_cast<double>(hi[c]));
-      }
-      accessor["min"] = min;
-      accessor["max"] = max;
-    }
-    return add_accessor(std::move(accessor));
-  }
-
-  int add_indices(const std::vector<uint32_t>& indices) {
-    const size_t offset = bin_.size();
-    for (uint32_t i : indices) put_u32(i);
-    return add_accessor({{"bufferView", add_view(offset, kElementArrayBuffer)},
-                         {"componentType", kComponentUnsignedInt},
-                         {"count", indices.size()},
-                         {"type", "SCALAR"}});
-  }
-
-  const std::string& bytes() const { return bin_; }
-  json views() const { return views_; }
-  json accessors() const { return accessors_; }
-
- private:
-  // Little-endian whatever the host: the file must not depend on the machine.
-  void put_u32(uint32_t w) {
-    for (int b = 0; b < 4; ++b) bin_.push_back(static_cast<char>((w >> (8 * b)) & 0xFFu));
-  }
-  void put_float(float f) {
-    uint32_t w;
-    std::memcpy(&w, &f, sizeof w);
-    put_u32(w);
-  }
-  int add_view(size_t offset, int target) {
-    views_.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bin_.size() - offset}, {"target", target}});
-    return static_cast<int>(views_.size()) - 1;
-  }
-  int add_accessor(json accessor) {
-    accessors_.push_back(std::move(accessor));
-    return static_cast<int>(accessors_.size()) - 1;
-  }
-
-  std::string bin_;
-  json views_ = json::array();
-  json accessors_ = json::array();
-};
 
 void check_mesh(const GltfMesh& m, size_t index, const GltfDocument& doc) {
   const std::string what = "glTF writer: mesh " + std::to_string(index) + " ('" + m.name + "')";
@@ -119,59 +39,59 @@ void check_mesh(const GltfMesh& m, size_t index, const GltfDocument& doc) {
   if (m.material >= static_cast<int>(doc.materials.size())) {
     fail("{} uses material {} of {}", what, m.material, doc.materials.size());
   }
+  if (m.material >= 0 && m.texcoords0.empty() && uses_textures(doc.materials[static_cast<size_t>(m.material)]))
+    fail("{} has no texture coordinates but its material '{}' has textures", what,
+         doc.materials[static_cast<size_t>(m.material)].name);
+  if (!m.extras.is_null() && !m.extras.is_object()) fail("{} extras must be a JSON object", what);
 }
 
-json texture_ref(int texture, const GltfDocument& doc, const std::string& material) {
-  if (texture >= static_cast<int>(doc.textures.size())) {
-    fail("glTF writer: material '{}' uses texture {} of {}", material, texture, doc.textures.size());
-  }
-  return {{"index", texture}};
+const GltfMaterial* material_of(const GltfMesh& m, const GltfDocument& doc) {
+  return m.material >= 0 ? &doc.materials[static_cast<size_t>(m.material)] : nullptr;
 }
 
-json encode_material(const GltfMaterial& m, const GltfDocument& doc, std::set<std::string>& extensions) {
-  json pbr = {{"baseColorFactor", tidy_array(&m.base_color_factor[0], 4)},
-              {"metallicFactor", tidy(m.metallic_factor)},
-              {"roughnessFactor", tidy(m.roughness_factor)}};
-  if (m.base_color_texture >= 0) pbr["baseColorTexture"] = texture_ref(m.base_color_texture, doc, m.name);
-  if (m.metallic_roughness_texture >= 0) {
-    pbr["metallicRoughnessTexture"] = texture_ref(m.metallic_roughness_texture, doc, m.name);
-  }
-  json out = {{"name", m.name}, {"pbrMetallicRoughness", pbr}};
-  if (m.emissive_factor != glm::vec3(0.0f)) out["emissiveFactor"] = tidy_array(&m.emissive_factor[0], 3);
-  json ext = json::object();
-  if (m.emissive_strength != 1.0f) {
-    ext["KHR_materials_emissive_strength"] = {{"emissiveStrength", tidy(m.emissive_strength)}};
-  }
-  if (m.transmission_factor > 0.0f) {
-    ext["KHR_materials_transmission"] = {{"transmissionFactor", tidy(m.transmission_factor)}};
-  }
-  if (m.ior) ext["KHR_materials_ior"] = {{"ior", tidy(*m.ior)}};
-  for (const auto& item : ext.items()) extensions.insert(item.key());
-  if (!ext.empty()) out["extensions"] = ext;
-  return out;
+// The tangents the loader would derive (gltf_geometry.h), written so that viewers need not
+// generate their own (the validator warns that those are not portable).
+std::vector<glm::vec4> tangents_for(const GltfMesh& m) {
+  Mesh mesh;
+  mesh.positions = m.positions;
+  mesh.normals = m.normals;
+  mesh.texcoords0 = m.texcoords0;
+  for (size_t t = 0; t + 2 < m.indices.size(); t += 3)
+    mesh.triangles.emplace_back(m.indices[t], m.indices[t + 1], m.indices[t + 2]);
+  gltf::generate_tangents(mesh, 0);
+  return mesh.tangents;
 }
 
-}  // namespace
+// POSITION and NORMAL; TEXCOORD_0 only where a texture reads it (the validator flags unused
+// ones) and TANGENT where a normal map needs it.
+json encode_attributes(const GltfMesh& m, const GltfMaterial* material, BufferEncoder& buffer) {
+  json attributes = {{"POSITION", buffer.add_vectors(m.positions, true)},
+                     {"NORMAL", buffer.add_vectors(m.normals, false)}};
+  const bool textured = material != nullptr && uses_textures(*material);
+  if (textured) attributes["TEXCOORD_0"] = buffer.add_vectors(m.texcoords0, false);
+  if (textured && material->normal_texture.present()) attributes["TANGENT"] = buffer.add_vectors(tangents_for(m), false);
+  return attributes;
+}
 
-GltfFiles encode_gltf(const GltfDocument& doc, const std::string& bin_uri) {
-  json root;
-  root["asset"] = {{"version", "2.0"}, {"generator", doc.generator}};
-
-  BufferEncoder buffer;
-  json meshes = json::array(), nodes = json::array(), scene_nodes = json::array();
+// The meshes, each on a node of its own.
+json encode_meshes(const GltfDocument& doc, BufferEncoder& buffer, json& nodes, json& scene_nodes) {
+  json meshes = json::array();
   for (size_t i = 0; i < doc.meshes.size(); ++i) {
     const GltfMesh& m = doc.meshes[i];
     check_mesh(m, i, doc);
-    json attributes = {{"POSITION", buffer.add_vectors(m.positions, true)},
-                       {"NORMAL", buffer.add_vectors(m.normals, false)}};
-    if (!m.texcoords0.empty()) attributes["TEXCOORD_0"] = buffer.add_vectors(m.texcoords0, false);
+    const json attributes = encode_attributes(m, material_of(m, doc), buffer);
     json primitive = {{"attributes", attributes}, {"indices", buffer.add_indices(m.indices)}};
     if (m.material >= 0) primitive["material"] = m.material;
     meshes.push_back({{"name", m.name}, {"primitives", json::array({primitive})}});
     scene_nodes.push_back(nodes.size());
-    nodes.push_back({{"name", m.name}, {"mesh", i}});
+    json node = {{"name", m.name}, {"mesh", i}};
+    if (!m.extras.is_null()) node["extras"] = m.extras;
+    nodes.push_back(std::move(node));
   }
+  return meshes;
+}
 
+json encode_cameras(const GltfDocument& doc, json& nodes, json& scene_nodes) {
   json cameras = json::array();
   for (size_t i = 0; i < doc.cameras.size(); ++i) {
     const GltfCamera& c = doc.cameras[i];
@@ -184,13 +104,58 @@ GltfFiles encode_gltf(const GltfDocument& doc, const std::string& bin_uri) {
                      {"translation", tidy_array(&c.position[0], 3)},
                      {"rotation", tidy_array(&c.rotation[0], 4)}});
   }
+  return cameras;
+}
+
+// The scene's extras: the document's, plus phyir.environment when it has one.
+json scene_extras(const GltfDocument& doc, std::vector<GltfSideFile>& side_files) {
+  json extras = doc.scene_extras;
+  if (!extras.is_null() && !extras.is_object()) fail("glTF writer: scene_extras must be a JSON object");
+  if (!doc.environment) return extras;
+  const GltfEnvironment& env = *doc.environment;
+  check_side_uri(env.uri, "environment");
+  check_source(env.source, "environment");
+  if (!(env.scale >= 0.0f) || !std::isfinite(env.scale))
+    fail("glTF writer: environment scale is {}: must be a finite number >= 0", env.scale);
+  json& phyir = extras["phyir"];
+  if (!phyir.is_null() && !phyir.is_object()) fail("glTF writer: scene_extras.phyir must be a JSON object");
+  if (phyir.contains("environment"))
+    fail("glTF writer: scene_extras.phyir.environment is set and so is the document's environment: give one");
+  phyir["environment"] = {{"uri", env.uri}, {"scale", exact(env.scale)}};
+  if (!env.source.empty()) side_files.push_back({env.uri, env.source});
+  return extras;
+}
+
+// The buffer, the images (already one per uri) and the environment each need a file of their own.
+void check_unique_uris(const GltfDocument& doc, const json& images, const std::string& bin_uri) {
+  std::set<std::string> seen{bin_uri};
+  const auto add = [&](const std::string& uri) {
+    if (!seen.insert(uri).second) fail("glTF writer: two files would be written as '{}'", uri);
+  };
+  for (const json& image : images) add(image["uri"].get<std::string>());
+  if (doc.environment) add(doc.environment->uri);
+}
+
+}  // namespace
+
+GltfFiles encode_gltf(const GltfDocument& doc, const std::string& bin_uri) {
+  json root;
+  root["asset"] = {{"version", "2.0"}, {"generator", doc.generator}};
+
+  BufferEncoder buffer;
+  json nodes = json::array(), scene_nodes = json::array();
+  const json meshes = encode_meshes(doc, buffer, nodes, scene_nodes);
+  const json cameras = encode_cameras(doc, nodes, scene_nodes);
+  const json lights = encode_lights(doc.lights, nodes, scene_nodes);
 
   std::set<std::string> extensions;
   json materials = json::array();
   for (const GltfMaterial& m : doc.materials) materials.push_back(encode_material(m, doc, extensions));
+  EncodedTextures textures = encode_textures(doc.textures);
 
   json scene = {{"name", "room"}, {"nodes", scene_nodes}};
-  if (!doc.scene_extras.is_null()) scene["extras"] = doc.scene_extras;
+  const json extras = scene_extras(doc, textures.side_files);
+  if (!extras.is_null()) scene["extras"] = extras;
   root["scene"] = 0;
   root["scenes"] = json::array({scene});
   root["nodes"] = nodes;
@@ -198,31 +163,31 @@ GltfFiles encode_gltf(const GltfDocument& doc, const std::string& bin_uri) {
   if (!materials.empty()) root["materials"] = materials;
   if (!cameras.empty()) root["cameras"] = cameras;
   if (!doc.textures.empty()) {
-    json images = json::array(), textures = json::array();
-    for (size_t i = 0; i < doc.textures.size(); ++i) {
-      images.push_back({{"uri", doc.textures[i].uri}});
-      textures.push_back({{"sampler", 0}, {"source", i}});
-    }
-    root["images"] = images;
-    root["textures"] = textures;
-    root["samplers"] = json::array({{{"magFilter", kFilterLinear},
-                                     {"minFilter", kFilterLinearMipmapLinear},
-                                     {"wrapS", kWrapRepeat},
-                                     {"wrapT", kWrapRepeat}}});
+    root["images"] = textures.images;
+    root["textures"] = textures.textures;
+    root["samplers"] = textures.samplers;
   }
   if (!buffer.bytes().empty()) {
     root["buffers"] = json::array({{{"uri", bin_uri}, {"byteLength", buffer.bytes().size()}}});
     root["bufferViews"] = buffer.views();
     root["accessors"] = buffer.accessors();
   }
+  if (!lights.empty()) {
+    // Required as Blender's exporter writes it: a viewer without lights would show another scene.
+    root["extensions"] = {{"KHR_lights_punctual", {{"lights", lights}}}};
+    root["extensionsRequired"] = json::array({"KHR_lights_punctual"});
+    extensions.insert("KHR_lights_punctual");
+  }
   if (!extensions.empty()) root["extensionsUsed"] = json(std::vector<std::string>(extensions.begin(), extensions.end()));
+  check_unique_uris(doc, textures.images, bin_uri);
 
-  return {root.dump(2) + "\n", buffer.bytes()};
+  return {root.dump(2) + "\n", buffer.bytes(), std::move(textures.side_files)};
 }
 
 void write_gltf(const fs::path& gltf_path, const GltfDocument& document) {
   const std::string bin_name = gltf_path.stem().string() + ".bin";
   const GltfFiles files = encode_gltf(document, bin_name);
+  for (const GltfSideFile& f : files.side_files) write_side_file(gltf_path.parent_path(), f);
   write_file_atomic(gltf_path.parent_path() / bin_name, files.bin);
   write_file_atomic(gltf_path, files.json);
 }

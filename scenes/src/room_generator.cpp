@@ -41,10 +41,10 @@ GltfMaterial to_gltf(const MaterialSpec& m) {
   GltfMaterial g;
   g.name = m.name;
   g.base_color_factor = glm::vec4(m.base_color, 1.0f);
-  g.base_color_texture = m.base_color_texture;
+  g.base_color_texture.texture = m.base_color_texture;
   g.metallic_factor = m.metallic;
   g.roughness_factor = m.roughness;
-  g.metallic_roughness_texture = m.metallic_roughness_texture;
+  g.metallic_roughness_texture.texture = m.metallic_roughness_texture;
   g.emissive_factor = m.emissive_factor;
   g.emissive_strength = m.emissive_strength;
   g.transmission_factor = m.transmission;
@@ -139,7 +139,7 @@ RoomSummary generate_room(const fs::path& out_dir, int index, uint64_t seed, Roo
   for (const TextureSpec& texture : layout.textures) {
     const std::string uri = stem + "_" + texture.name + ".png";
     write_image(out_dir / uri, render_texture(texture));
-    doc.textures.push_back({uri});
+    doc.textures.push_back({uri, {}, {}});  // written above: the writer only refers to it
   }
   for (const MaterialSpec& m : layout.materials) doc.materials.push_back(to_gltf(m));
   add_shell(doc, layout);

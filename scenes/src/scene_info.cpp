@@ -173,6 +173,18 @@ std::string light_text(const PunctualLight& l) {
                      radiometric_unit(l));
 }
 
+json environment_json(const Scene& scene) {
+  if (!scene.environment) return nullptr;
+  const SceneEnvironment& e = *scene.environment;
+  return {{"uri", e.uri}, {"path", e.path.string()}, {"scale", e.scale}};
+}
+
+std::string environment_text(const Scene& scene) {
+  if (!scene.environment) return "environment: none declared (phyir render --environment can add one)\n";
+  const SceneEnvironment& e = *scene.environment;
+  return fmt::format("environment: {} x {:.4g} (extras.phyir.environment; phyir render --environment overrides it)\n",
+                     e.path.string(), e.scale);
+}
 
 }  // namespace
 
@@ -204,6 +216,7 @@ json scene_info_json(const Scene& scene) {
           {"lights", lights_json(scene)},
           {"cameras", cameras_json(scene)},
           {"candidate_viewpoints", viewpoints},
+          {"environment", environment_json(scene)},
           {"bounds",
            bounds.empty() ? json(nullptr) : json{{"min", to_json(bounds.min)}, {"max", to_json(bounds.max)}}},
           {"warnings", scene.warnings}};
@@ -261,6 +274,7 @@ std::string scene_info_text(const Scene& scene) {
         format_vec3(c.position), format_vec3(c.forward));
   }
   out += fmt::format("candidate viewpoints: {}\n", scene.candidate_viewpoints.size());
+  out += environment_text(scene);
   out += fmt::format("warnings ({}):\n", scene.warnings.size());
   for (const std::string& w : scene.warnings) out += fmt::format("  - {}\n", w);
   return out;

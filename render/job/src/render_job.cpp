@@ -90,14 +90,34 @@ nlohmann::json probes_json(const RenderReport::Probes& probes) {
   return block;
 }
 
-std::unique_ptr<EnvironmentLight> load_environment(const RenderJob& job) {
-  if (job.environment_path.empty()) return nullptr;
-  Image image = read_image(job.environment_path);
-  if (image.channels < 3) fail("{}: environment map needs RGB, found {} channel(s)", job.environment_path.string(), image.channels);
+// --environment when given, else the scene's declared environment, else none.
+RenderReport::Environment choose_environment(const RenderJob& job, const scenes::Scene& scene) {
+  RenderReport::Environment chosen;
+  if (!job.environment_path.empty()) {
+    chosen = {"--environment", job.environment_path.string(), job.environment_scale};
+  } else if (scene.environment) {
+    chosen = {"scene", scene.environment->path.string(), scene.environment->scale * job.environment_scale};
+  }
+  return chosen;
+}
+
+std::unique_ptr<EnvironmentLight> read_environment(const std::string& path, float scale) {
+  Image image = read_image(path);
+  if (image.channels < 3) fail("{}: environment map needs RGB, found {} channel(s)", path, image.channels);
   for (float v : image.pixels)
-    if (!std::isfinite(v) || v < 0.0f)
-      fail("{}: environment map holds a negative or non-finite value", job.environment_path.string());
-  return std::make_unique<EnvironmentLight>(image, job.environment_scale);
+    if (!std::isfinite(v) || v < 0.0f) fail("{}: environment map holds a negative or non-finite value", path);
+  return std::make_unique<EnvironmentLight>(image, scale);
+}
+
+// A scene's map that cannot be read fails naming the glTF file and the extras that declare it.
+std::unique_ptr<EnvironmentLight> load_environment(const RenderReport::Environment& chosen, const scenes::Scene& scene) {
+  if (chosen.source == "none") return nullptr;
+  if (chosen.source != "scene") return read_environment(chosen.path, chosen.scale);
+  try {
+    return read_environment(chosen.path, chosen.scale);
+  } catch (const Error& e) {
+    fail("{}: environment '{}' (scene extras.phyir.environment): {}", scene.source, scene.environment->uri, e.what());
+  }
 }
 
 }  // namespace
@@ -164,7 +184,11 @@ RenderReport run_render_job(const RenderJob& job) {
   report.timings.load_seconds = seconds_since(start);
 
   start = Clock::now();
-  const RenderScene render_scene(scene, load_environment(job));
+  report.environment = choose_environment(job, scene);
+  if (report.environment.source != "none")
+    spdlog::info("environment {} (from {}), scale {}", report.environment.path, report.environment.source,
+                 report.environment.scale);
+  const RenderScene render_scene(scene, load_environment(report.environment, scene));
   report.timings.build_seconds = seconds_since(start);
   report.scene = {job.scene_path.string(),
                   scene.meshes.size(),
@@ -240,8 +264,9 @@ nlohmann::json RenderReport::to_json() const {
                         {"threads", threads},
                         {"aovs", job.settings.aovs},
                         {"force_all_effects", job.settings.force_all_effects},
-                        {"environment", job.environment_path.string()},
-                        {"environment_scale", job.environment_scale},
+                        {"environment", environment.path},
+                        {"environment_scale", environment.scale},
+                        {"environment_source", environment.source},
                         {"exposure", job.exposure},
                         {"view", job.view}};
   report["effects"] = effects.to_json();

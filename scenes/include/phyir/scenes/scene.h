@@ -5,6 +5,8 @@
 // seen from the side the geometric normal points to.
 #include <glm/glm.hpp>
 
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -122,6 +124,15 @@ struct PunctualLight {
 
 const char* to_string(PunctualLight::Type type);
 
+// An HDR equirectangular environment the scene declares in its extras.phyir.environment
+// (docs/gltf-support.md#environment): the map in the toolkit's equirect mapping, world-aligned,
+// its radiance times `scale`. The loader checks the file exists; the renderer decodes it.
+struct SceneEnvironment {
+  std::string uri;             // as written in the file
+  std::filesystem::path path;  // resolved relative to the .gltf
+  float scale = 1.0f;
+};
+
 struct Bounds {
   glm::vec3 min{1e30f};
   glm::vec3 max{-1e30f};
@@ -163,6 +174,7 @@ struct Scene {
   std::vector<PunctualLight> lights;  // one per light-carrying node of the default scene
   // Further valid viewpoints (world space), from the scene's extras.phyir.candidate_viewpoints.
   std::vector<glm::vec3> candidate_viewpoints;
+  std::optional<SceneEnvironment> environment;  // from the scene's extras.phyir.environment
   Bounds bounds;
   std::vector<std::string> warnings;  // everything the loader skipped or approximated
 

@@ -26,7 +26,10 @@ struct RenderJob {
   int camera_index = 0;
   RenderSettings settings;
   int threads = 0;                           // 0 = all cores
-  std::filesystem::path environment_path;    // optional HDR equirect environment
+  // An HDR equirect environment (--environment). Empty: the scene's own, declared in its
+  // extras.phyir.environment, if any (docs/gltf-support.md#environment). The scale multiplies
+  // whichever is used (the scene's times its own scale).
+  std::filesystem::path environment_path;
   float environment_scale = 1.0f;
   float exposure = 0.0f;                     // stops, for color.png only
   std::string view = "Standard";             // OCIO view for color.png
@@ -58,7 +61,15 @@ struct RenderReport {
     std::vector<std::string> files;
   };
 
+  // The environment the view was lit by.
+  struct Environment {
+    std::string source = "none";  // "--environment", "scene" (its extras.phyir.environment) or "none"
+    std::string path;             // the file read; empty for none
+    float scale = 1.0f;           // as applied
+  };
+
   SceneSummary scene;
+  Environment environment;
   std::string camera_source;  // "--camera" or the scene camera's index and name
   CameraModel camera;
   RenderJob job;              // the settings it ran with
