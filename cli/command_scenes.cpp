@@ -1,4 +1,4 @@
-// phyir scenes: inspect glTF files and generate procedural rooms.
+// phyir scenes: inspect glTF files, generate procedural rooms and skies.
 #include "commands.h"
 
 namespace phyir::cli {
@@ -8,6 +8,7 @@ void add_scenes_command(CLI::App& app) {
   cmd->require_subcommand(1);
   add_scenes_info_command(*cmd);
   add_scenes_generate_command(*cmd);
+  add_scenes_sky_command(*cmd);
 }
 
 }  // namespace phyir::cli

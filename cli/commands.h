@@ -8,6 +8,7 @@ namespace phyir::cli {
 void add_scenes_command(CLI::App& app);
 void add_scenes_info_command(CLI::App& scenes);      // command_scenes_info.cpp
 void add_scenes_generate_command(CLI::App& scenes);  // command_scenes_generate.cpp
+void add_scenes_sky_command(CLI::App& scenes);       // command_scenes_sky.cpp
 void add_render_command(CLI::App& app);
 void add_dataset_command(CLI::App& app);
 void add_train_command(CLI::App& app);

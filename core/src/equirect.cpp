@@ -1,10 +1,10 @@
-#include "phyir/render/equirect.h"
+#include "phyir/core/equirect.h"
 
 #include <cmath>
 
 #include "phyir/core/safe_math.h"
 
-namespace phyir::render {
+namespace phyir {
 
 glm::vec3 equirect_direction(glm::vec2 uv) {
   const float theta = uv.y * kPi;  // 0 = straight up (+Y)
@@ -34,4 +34,4 @@ float equirect_uv_pdf_to_solid_angle(float sin_theta) {
   return sin_theta > 0.0f ? 1.0f / (2.0f * kPi * kPi * sin_theta) : 0.0f;
 }
 
-}  // namespace phyir::render
+}  // namespace phyir
