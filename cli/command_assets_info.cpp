@@ -28,6 +28,7 @@ void print_entry(const scenes::AssetEntry& e) {
                            e.name, e.category, e.library, e.archive.string(), e.licence, e.creator);
   std::string tags;
   for (const std::string& t : e.tags) tags += (tags.empty() ? "" : ", ") + t;
+  if (!e.licence_file.empty()) std::cout << fmt::format("  licence note: {} (in the archive)\n", e.licence_file);
   std::cout << fmt::format("  tags: {}\n  model: {}\n  size (m): {} (width x height x depth)\n", tags, e.model_path,
                            vec(e.size_m));
   std::cout << fmt::format("  elevation: {:.3f} m, drop on top at {:.3f} of the height, movable: {}\n", e.elevation_m,

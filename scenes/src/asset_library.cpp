@@ -28,6 +28,22 @@ std::vector<std::filesystem::path> archives_in(const std::filesystem::path& dir_
   return archives;
 }
 
+std::string folder_of(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? "" : path.substr(0, slash + 1);
+}
+
+// Folder -> the .txt files directly in it (models' own licence notes).
+std::map<std::string, std::vector<std::string>> text_files_by_folder(const ZipArchive& zip) {
+  std::map<std::string, std::vector<std::string>> result;
+  for (const std::string& name : zip.names()) {
+    if (name.size() > 4 && name.compare(name.size() - 4, 4, ".txt") == 0 && name.find('/') != std::string::npos) {
+      result[folder_of(name)].push_back(name);
+    }
+  }
+  return result;
+}
+
 // One archive's catalog, with the checks that need the archive: every model is there.
 FurnitureCatalog read_archive(const std::filesystem::path& path) {
   const ZipArchive zip(path);
@@ -37,8 +53,11 @@ FurnitureCatalog read_archive(const std::filesystem::path& path) {
   FurnitureCatalog catalog = read_furniture_catalog(as_text(zip.read(kFurnitureCatalogName)), path.string());
   catalog.archive.path = path;
   if (zip.contains("LICENSE.TXT")) catalog.archive.licence_text = as_text(zip.read("LICENSE.TXT"));
+  const auto text_files = text_files_by_folder(zip);
   for (AssetEntry& entry : catalog.entries) {
     entry.archive = path;
+    const auto notes = text_files.find(folder_of(entry.model_path));
+    if (notes != text_files.end() && notes->second.size() == 1) entry.licence_file = notes->second.front();
     if (!zip.contains(entry.model_path)) {
       fail("{}: model#{}={} (entry '{}'): no such file in the archive", path.string(), entry.index,
            "/" + entry.model_path, entry.id);

@@ -90,6 +90,37 @@ TEST(AssetRealLibrary, OpensEveryCatalog) {
   }
   EXPECT_EQ(lights, 34u);
   EXPECT_EQ(openings, 33u);
+  const size_t notes = std::count_if(library.entries().begin(), library.entries().end(),
+                                     [](const AssetEntry& e) { return !e.licence_file.empty(); });
+  std::printf("%zu entries have their own licence note\n", notes);
+  EXPECT_GT(notes, 100u);  // the Blend Swap models
+}
+
+float nearest_vertex(const AssetModel& model, glm::vec3 p) {
+  float nearest = 1e9f;
+  for (const AssetMesh& mesh : model.meshes) {
+    for (const glm::vec3& v : mesh.positions) nearest = std::min(nearest, glm::length(v - p));
+  }
+  return nearest;
+}
+
+// The catalog's lightSourceY counts from the front (Sweet Home 3D places a source at
+// depth/2 - y in its 3D z): lamps whose bulbs sit well in front of or behind their centre
+// have geometry at the sources as placed, not at their mirror images behind.
+TEST(AssetRealLibrary, LightSourcesSitOnTheirLamps) {
+  if (!has_real_library()) GTEST_SKIP() << kDefaultAssetDir << " absent (Debian package sweethome3d-furniture)";
+  const AssetLibrary library = AssetLibrary::open(kDefaultAssetDir);
+  for (const char* id : {"Kator Legaz#wall-lamp-artwork", "Kator Legaz#flashlight", "Kator Legaz#track-lights",
+                         "Scopia#desk_lamp1", "Scopia#desk_lamp2", "Blend Swap CC-0#lamp2"}) {
+    const AssetEntry& lamp = library.at(id);
+    const AssetModel model = load_model(lamp);
+    for (const AssetLightSource& source : lamp.light_sources) {
+      const glm::vec3 placed = source.position(lamp.size_m);
+      const glm::vec3 mirrored(placed.x, placed.y, -placed.z);
+      EXPECT_LT(nearest_vertex(model, placed), 0.03f) << id;  // a bulb inside its shade
+      EXPECT_LT(nearest_vertex(model, placed), nearest_vertex(model, mirrored)) << id;
+    }
+  }
 }
 
 // Loads every model on two threads; a failure is reported with its reason, never a crash.

@@ -62,6 +62,9 @@ struct AssetEntry {
   int index = 0;                   // N of the catalog's key#N
   std::string licence;             // the catalog's license= line, the same for every entry
   std::string creator;             // author of this model (attribution for CC-BY)
+  // The model's own licence note inside the archive (a .txt beside the OBJ, as Blend Swap
+  // models have: author, source, licence), or empty.
+  std::string licence_file;
 
   std::string id;                  // e.g. "Kator Legaz#window-01"; unique in a library
   std::string name;
