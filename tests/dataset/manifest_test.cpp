@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "dataset_test_helpers.h"
+#include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
 #include "phyir/dataset/checksum.h"
 #include "phyir/dataset/manifest.h"
@@ -107,6 +108,23 @@ TEST(Manifest, SceneRecordHashesTheGltfAndItsFiles) {
   const json changed = scene_record(rooms, {"room_0", "room_0.gltf"}, "val", 3);
   EXPECT_EQ(changed["sha256"], r["sha256"]);
   EXPECT_NE(changed["content_sha256"], r["content_sha256"]);
+}
+
+// The environment map a scene declares (extras.phyir.environment) is a file the render reads:
+// changing it must change content_sha256, so views rendered under the old sky are redone.
+TEST(Manifest, SceneRecordCountsTheScenesEnvironmentMap) {
+  const auto dir = test::fresh_test_dir();
+  const auto rooms = test::make_rooms(dir, 1, scenes::RoomPreset::Mini, 2);
+  write_file_atomic(rooms / "sky.exr", "stand-in bytes: only hashed here");
+  json gltf = json::parse(read_file(rooms / "room_0.gltf"));
+  gltf["scenes"][0]["extras"]["phyir"]["environment"] = {{"uri", "sky.exr"}, {"scale", 1.0}};
+  write_file_atomic(rooms / "room_0.gltf", gltf.dump(2));
+  const json r = scene_record(rooms, {"room_0", "room_0.gltf"}, "val", 3);
+  bool listed = false;
+  for (const json& d : r["dependencies"]) listed = listed || d["file"] == "sky.exr";
+  EXPECT_TRUE(listed) << r["dependencies"].dump();
+  write_file_atomic(rooms / "sky.exr", "another sky");
+  EXPECT_NE(scene_record(rooms, {"room_0", "room_0.gltf"}, "val", 3)["content_sha256"], r["content_sha256"]);
 }
 
 TEST(Manifest, DescribeDifferenceNamesTheKey) {
