@@ -26,6 +26,9 @@ constexpr float kMirrorSpecular = 0.9f;
 constexpr float kMirrorDiffuseRatio = 0.75f;
 // Ni = 1 is what Blender and most exporters write when nothing was set; glass is 1.5.
 constexpr float kDefaultIor = 1.5f;
+// Nothing solid or liquid in a home has an index below 1.1 (water 1.33): lower values
+// (1.0, and the 1.02 some exporters write for glass) mean "not set".
+constexpr float kMinIor = 1.1f;
 constexpr float kMaxIor = 3.0f;     // beyond diamond (2.42): a typo or a non-optical value
 // Opacity above this is opaque (MTL files print d with 6 decimals).
 constexpr float kOpaque = 0.999f;
@@ -70,7 +73,7 @@ bool looks_metallic(const MtlMaterial& m) {
 }
 
 float ior(const MtlMaterial& m) {
-  if (m.Ni && *m.Ni > 1.0f + 1e-3f && *m.Ni <= kMaxIor) return *m.Ni;
+  if (m.Ni && *m.Ni >= kMinIor && *m.Ni <= kMaxIor) return *m.Ni;
   return kDefaultIor;
 }
 

@@ -144,6 +144,8 @@ TEST(AssetMtl, SeeThroughIsGlassOrCoverage) {
 TEST(AssetMtl, IorDefaultsToGlass) {
   EXPECT_FLOAT_EQ(mapped("newmtl m\nNi 1.000000\n").ior, 1.5f);  // exporters' "not set"
   EXPECT_FLOAT_EQ(mapped("newmtl m\nNi 0\n").ior, 1.5f);
+  EXPECT_FLOAT_EQ(mapped("newmtl m\nNi 1.021455\n").ior, 1.5f);  // below any real material
+  EXPECT_FLOAT_EQ(mapped("newmtl m\nNi 1.33\n").ior, 1.33f);
   EXPECT_FLOAT_EQ(mapped("newmtl m\nNi 2.42\n").ior, 2.42f);
   EXPECT_FLOAT_EQ(mapped("newmtl m\nNi 3.5\n").ior, 1.5f);  // beyond any optical material here
   EXPECT_FLOAT_EQ(mapped("newmtl m\n").ior, 1.5f);
