@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <memory>
 
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
@@ -20,18 +21,56 @@ using OIIO::TypeDesc;
 
 namespace {
 
-Image read_all(ImageInput& in, const std::string& what) {
-  const ImageSpec& spec = in.spec();
+void check_has_pixels(const ImageSpec& spec, const std::string& what) {
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
     fail("{}: image has no pixels ({}x{}, {} channels)", what, spec.width, spec.height,
          spec.nchannels);
   }
+}
+
+Image read_all(ImageInput& in, const std::string& what) {
+  const ImageSpec& spec = in.spec();
+  check_has_pixels(spec, what);
   Image image(spec.width, spec.height, spec.nchannels);
   if (!in.read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, image.pixels.data())) {
     fail("{}: cannot decode pixels: {}", what, in.geterror());
   }
   return image;
 }
+
+ByteImage read_all_codes(ImageInput& in, const std::string& what) {
+  const ImageSpec& spec = in.spec();
+  check_has_pixels(spec, what);
+  ByteImage image{spec.width, spec.height, spec.nchannels, {}};
+  image.codes.resize(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+  if (!in.read_image(0, 0, 0, spec.nchannels, TypeDesc::UINT8, image.codes.data())) {
+    fail("{}: cannot decode pixels: {}", what, in.geterror());
+  }
+  return image;
+}
+
+// An in-memory image opened for reading. OIIO needs a format hint: sniff the magic numbers of
+// the formats glTF allows (WebP through EXT_texture_webp: "RIFF", a size, "WEBP").
+struct MemoryImageInput {
+  OIIO::Filesystem::IOMemReader reader;
+  std::unique_ptr<ImageInput> in;
+
+  MemoryImageInput(const std::vector<unsigned char>& bytes, const std::string& what)
+      : reader(bytes.data(), bytes.size()) {
+    if (bytes.empty()) fail("{}: image data is empty", what);
+    std::string ext = "png";
+    if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8) ext = "jpg";
+    if (bytes.size() >= 12 && std::memcmp(bytes.data(), "RIFF", 4) == 0 &&
+        std::memcmp(bytes.data() + 8, "WEBP", 4) == 0)
+      ext = "webp";
+    if (ext == "png") {
+      const std::string problem = png_structure_error(bytes.data(), bytes.size());
+      if (!problem.empty()) fail("{}: cannot decode image: {}", what, problem);
+    }
+    in = ImageInput::open("in-memory." + ext, nullptr, &reader);
+    if (!in) fail("{}: cannot decode image: {}", what, OIIO::geterror());
+  }
+};
 
 std::vector<std::string> default_channel_names(int channels) {
   switch (channels) {
@@ -57,21 +96,15 @@ Image read_image(const fs::path& path) {
 }
 
 Image read_image_from_memory(const std::vector<unsigned char>& bytes, const std::string& what) {
-  if (bytes.empty()) fail("{}: image data is empty", what);
-  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
-  // OIIO needs a format hint: sniff the magic numbers of the formats glTF allows (WebP
-  // through EXT_texture_webp: "RIFF", a size, "WEBP").
-  std::string ext = "png";
-  if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8) ext = "jpg";
-  if (bytes.size() >= 12 && std::memcmp(bytes.data(), "RIFF", 4) == 0 && std::memcmp(bytes.data() + 8, "WEBP", 4) == 0)
-    ext = "webp";
-  if (ext == "png") {
-    const std::string problem = png_structure_error(bytes.data(), bytes.size());
-    if (!problem.empty()) fail("{}: cannot decode image: {}", what, problem);
-  }
-  auto in = ImageInput::open("in-memory." + ext, nullptr, &reader);
-  if (!in) fail("{}: cannot decode image: {}", what, OIIO::geterror());
-  return read_all(*in, what);
+  MemoryImageInput input(bytes, what);
+  return read_all(*input.in, what);
+}
+
+std::variant<ByteImage, Image> read_image_from_memory_at_file_depth(const std::vector<unsigned char>& bytes,
+                                                                    const std::string& what) {
+  MemoryImageInput input(bytes, what);
+  if (input.in->spec().format == TypeDesc::UINT8) return read_all_codes(*input.in, what);
+  return read_all(*input.in, what);
 }
 
 void write_image(const fs::path& path, const Image& image,

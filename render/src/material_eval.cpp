@@ -45,7 +45,7 @@ glm::vec2 slot_uv(const scenes::Mesh& mesh, const glm::uvec3& tri, const glm::ve
 
 float footprint_lod(const scenes::Mesh& mesh, const glm::uvec3& tri, const scenes::TextureSlot& slot,
                     const scenes::Texture& texture, const TextureFootprint& footprint) {
-  if (!(footprint.area > 0.0f) || texture.mips.empty()) return 0.0f;
+  if (!(footprint.area > 0.0f) || texture.levels() < 2) return 0.0f;
   const std::vector<glm::vec2>& uvs = slot.texcoord == 1 && has_attribute(mesh.texcoords1, mesh) ? mesh.texcoords1
                                                                                                  : mesh.texcoords0;
   if (!has_attribute(uvs, mesh)) return 0.0f;
@@ -53,7 +53,7 @@ float footprint_lod(const scenes::Mesh& mesh, const glm::uvec3& tri, const scene
   const float world_area2 = glm::length(glm::cross(mesh.positions[tri.y] - p0, mesh.positions[tri.z] - p0));
   const glm::vec2 a = uvs[tri.y] - uvs[tri.x], b = uvs[tri.z] - uvs[tri.x];
   const float uv_area2 = std::abs(a.x * b.y - a.y * b.x) * std::abs(slot.transform.scale.x * slot.transform.scale.y);
-  const float texels_per_m2 = uv_area2 * float(texture.width) * float(texture.height) / world_area2;
+  const float texels_per_m2 = uv_area2 * float(texture.width()) * float(texture.height()) / world_area2;
   const float lod = 0.5f * std::log2(texels_per_m2 * footprint.area);
   return std::isfinite(lod) ? std::max(lod, 0.0f) : 0.0f;
 }
@@ -138,13 +138,14 @@ MaterialPoint evaluate_material(const scenes::Scene& scene, const scenes::Mesh& 
 }
 
 float mean_luminance(const scenes::Texture& texture) {
-  if (texture.texels.empty()) return 1.0f;  // Texture::sample returns 1 for an empty texture
+  if (!texture.has_texels()) return 1.0f;  // Texture::sample returns 1 for an empty texture
   double sum = 0.0;
-  for (const glm::vec4& t : texture.texels) {
-    const float l = luminance(glm::max(glm::vec3(t), glm::vec3(0.0f)));
-    if (std::isfinite(l)) sum += l;
-  }
-  return static_cast<float>(sum / static_cast<double>(texture.texels.size()));
+  for (int y = 0; y < texture.height(); ++y)
+    for (int x = 0; x < texture.width(); ++x) {
+      const float l = luminance(glm::max(glm::vec3(texture.texel(x, y)), glm::vec3(0.0f)));
+      if (std::isfinite(l)) sum += l;
+    }
+  return static_cast<float>(sum / static_cast<double>(texture.texel_count()));
 }
 
 }  // namespace phyir::render

@@ -232,6 +232,7 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
   const std::vector<NodeInstance> instances = flatten_nodes(ctx, scene_roots(ctx, default_scene));
   TextureTable textures(ctx, scene.textures, options.load_textures);
   scene.materials = convert_materials(ctx, textures);
+  textures.decode_all();
   const BakeCounts counts = InstanceBaker(ctx, scene).add(instances);
   scene.lights = read_lights(ctx, instances);
   scene.candidate_viewpoints = read_candidate_viewpoints(ctx, default_scene);
@@ -239,7 +240,7 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
   scene.info = source_info(model, default_scene, counts);
   scene.bounds = scene.compute_bounds();
   // Camera hits filter textures to their footprint; each pyramid is independent of the others.
-  tbb::parallel_for(size_t(0), scene.textures.size(), [&](size_t i) { build_mips(scene.textures[i]); });
+  tbb::parallel_for(size_t(0), scene.textures.size(), [&](size_t i) { scene.textures[i].build_mips(); });
   return scene;
 }
 

@@ -2,10 +2,14 @@
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
+#include <exception>
+#include <variant>
 
 #include "gltf_values.h"
 #include "phyir/core/colour.h"
@@ -73,6 +77,48 @@ std::vector<glm::vec4> to_rgba(const Image& image) {
   return texels;
 }
 
+// The same for 8-bit codes (255 = opaque).
+std::vector<uint8_t> to_rgba(const ByteImage& image) {
+  const size_t texels = static_cast<size_t>(image.width) * image.height;
+  std::vector<uint8_t> rgba(4 * texels);
+  const int c = image.channels;
+  for (size_t i = 0; i < texels; ++i) {
+    const uint8_t* p = &image.codes[i * static_cast<size_t>(c)];
+    uint8_t* q = &rgba[4 * i];
+    if (c >= 3) {
+      q[0] = p[0], q[1] = p[1], q[2] = p[2], q[3] = c >= 4 ? p[3] : 255;
+    } else {
+      q[0] = q[1] = q[2] = p[0];
+      q[3] = c == 2 ? p[1] : 255;
+    }
+  }
+  return rgba;
+}
+
+// Half holds finite values up to 65504; a texel beyond that keeps the texture in float.
+bool fits_half(const std::vector<glm::vec4>& texels) {
+  for (const glm::vec4& t : texels)
+    for (int c = 0; c < 4; ++c)
+      if (std::isfinite(t[c]) && std::abs(t[c]) > 65504.0f) return false;
+  return true;
+}
+
+// Stores a decoded image's texels in `texture`: 8-bit images keep their codes (sRGB-decoded
+// at lookup for colour), deeper ones are decoded now and kept as half.
+void store_texels(Texture& texture, const std::variant<ByteImage, Image>& image) {
+  const bool colour = texture.encoding == TextureEncoding::SrgbColour;
+  if (const ByteImage* codes = std::get_if<ByteImage>(&image)) {
+    texture.assign_codes(codes->width, codes->height, to_rgba(*codes),
+                         colour ? TexelFormat::Srgb8 : TexelFormat::Unorm8);
+    return;
+  }
+  Image pixels = std::get<Image>(image);  // a copy: the sRGB decode is per use
+  if (colour) srgb_to_linear(pixels);
+  const std::vector<glm::vec4> texels = to_rgba(pixels);
+  const TexelFormat format = fits_half(texels) ? TexelFormat::Half : TexelFormat::Float;
+  texture.assign_linear(pixels.width, pixels.height, texels, format);
+}
+
 // The image's name, else its file URI, else "image N" (data URIs are not names).
 std::string display_name(const tinygltf::Image& image, int index) {
   if (!image.name.empty()) return image.name;
@@ -92,8 +138,10 @@ int TextureTable::get(int texture, TextureEncoding encoding, const std::string& 
   const auto key = std::make_pair(texture, encoding);
   const auto found = entries_.find(key);
   if (found != entries_.end()) return found->second;
-  textures_.push_back(make_texture(texture, encoding, role));
+  const int image = image_index(texture, role);
+  textures_.push_back(make_texture(texture, image, encoding));
   const int index = static_cast<int>(textures_.size()) - 1;
+  image_of_.emplace_back(static_cast<size_t>(index), image);
   entries_.emplace(key, index);
   return index;
 }
@@ -128,10 +176,9 @@ int TextureTable::image_index(int texture_index, const std::string& role) {
   return source.source;
 }
 
-Texture TextureTable::make_texture(int texture_index, TextureEncoding encoding, const std::string& role) {
+Texture TextureTable::make_texture(int texture_index, int image_source, TextureEncoding encoding) {
   const tinygltf::Texture& source = ctx_.model.textures[static_cast<size_t>(texture_index)];
   const std::string texture_name = label("texture", texture_index, ctx_.model.textures);
-  const int image_source = image_index(texture_index, role);
   const tinygltf::Image& image = ctx_.model.images[static_cast<size_t>(image_source)];
 
   Texture texture;
@@ -146,19 +193,38 @@ Texture TextureTable::make_texture(int texture_index, TextureEncoding encoding, 
     texture.wrap_t = wrap_mode(ctx_, source.sampler, sampler.wrapT);
     texture.nearest = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
   }
-  if (!decode_) return texture;
-
-  Image pixels = decoded_image(image_source);  // a copy: the sRGB decode is per use
-  if (encoding == TextureEncoding::SrgbColour) srgb_to_linear(pixels);
-  texture.width = pixels.width;
-  texture.height = pixels.height;
-  texture.texels = to_rgba(pixels);
   return texture;
 }
 
-const Image& TextureTable::decoded_image(int index) {
-  const auto found = images_.find(index);
-  if (found != images_.end()) return found->second;
+void TextureTable::decode_all() {
+  if (!decode_) return;
+  // Each image once, with the textures that show it; images in order of their first texture.
+  std::vector<int> images;
+  std::vector<std::vector<size_t>> users;
+  std::map<int, size_t> slot_of_image;
+  for (const auto& [texture, image] : image_of_) {
+    const auto [slot, first] = slot_of_image.emplace(image, images.size());
+    if (first) {
+      images.push_back(image);
+      users.emplace_back();
+    }
+    users[slot->second].push_back(texture);
+  }
+  // Errors are kept per image and the first rethrown: TBB would pass on whichever came first
+  // in time.
+  std::vector<std::exception_ptr> errors(images.size());
+  tbb::parallel_for(size_t(0), images.size(), [&](size_t i) {
+    try {
+      decode_image(images[i], users[i]);
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  });
+  for (const std::exception_ptr& error : errors)
+    if (error) std::rethrow_exception(error);
+}
+
+void TextureTable::decode_image(int index, const std::vector<size_t>& textures) {
   const tinygltf::Image& image = ctx_.model.images[static_cast<size_t>(index)];
   const std::string what = fmt::format("{}: {}", ctx_.file(), label("image", index, ctx_.model.images));
   if (image.image.empty()) phyir::fail("{} has no data (uri '{}')", what, image.uri.substr(0, 200));
@@ -166,7 +232,8 @@ const Image& TextureTable::decoded_image(int index) {
   if (width * height * channels > kMaxTextureValues)  // each <= 2^31: no overflow
     phyir::fail("{} is {} x {} pixels x {} channels, more than a texture may hold (2^28 values, 1 GiB as float)",
                 what, width, height, channels);
-  return images_.emplace(index, read_image_from_memory(image.image, what)).first->second;
+  const std::variant<ByteImage, Image> decoded = read_image_from_memory_at_file_depth(image.image, what);
+  for (size_t texture : textures) store_texels(textures_[texture], decoded);
 }
 
 }  // namespace phyir::scenes::gltf

@@ -1,16 +1,15 @@
 #pragma once
 // Scene textures made from glTF textures on demand. One Scene texture per (glTF texture,
 // encoding): an image used both as colour and as data becomes two entries, one
-// sRGB-decoded, one kept linear. Each image is decoded once, by OpenImageIO. A texture
-// shows its EXT_texture_webp image when it has one; KHR_texture_basisu falls back to the
-// core source.
+// sRGB-decoded, one kept linear. Each image is decoded once, by OpenImageIO, all of them in
+// parallel once the materials have asked for theirs. A texture shows its EXT_texture_webp
+// image when it has one; KHR_texture_basisu falls back to the core source.
 #include <map>
 #include <set>
 #include <utility>
 #include <vector>
 
 #include "gltf_context.h"
-#include "phyir/core/image.h"
 #include "phyir/scenes/texture.h"
 
 namespace phyir::scenes::gltf {
@@ -25,16 +24,21 @@ class TextureTable {
   // names the use in messages ("material 0 'wood' baseColorTexture").
   int get(int texture, TextureEncoding encoding, const std::string& role);
 
+  // Decodes the images of every texture get() returned (nothing with decode = false), in
+  // parallel with TBB, each image once. Results do not depend on the thread count; when images
+  // fail to decode, the error is that of the first failing texture in Scene order.
+  void decode_all();
+
  private:
   int image_index(int texture, const std::string& role);
-  const Image& decoded_image(int image);
-  Texture make_texture(int texture, TextureEncoding encoding, const std::string& role);
+  Texture make_texture(int texture, int image, TextureEncoding encoding);
+  void decode_image(int image, const std::vector<size_t>& textures);
 
   const GltfContext& ctx_;
   std::vector<Texture>& textures_;
   bool decode_;
   std::map<std::pair<int, TextureEncoding>, int> entries_;
-  std::map<int, Image> images_;
+  std::vector<std::pair<size_t, int>> image_of_;  // (Scene texture, glTF image) in get() order
   std::set<int> warned_basisu_;  // textures whose KTX2 image was replaced, warned once each
 };
 

@@ -26,10 +26,36 @@ std::vector<std::string> texture_uses(const Material& m) {
 }
 
 glm::vec3 mean_texel(const Texture& texture) {
-  if (texture.texels.empty()) return glm::vec3(1.0f);  // not decoded: the factor alone
+  if (!texture.has_texels()) return glm::vec3(1.0f);  // not decoded: the factor alone
   glm::dvec3 sum(0.0);
-  for (const glm::vec4& t : texture.texels) sum += glm::dvec3(t);
-  return glm::vec3(sum / static_cast<double>(texture.texels.size()));
+  for (int y = 0; y < texture.height(); ++y)
+    for (int x = 0; x < texture.width(); ++x) sum += glm::dvec3(texture.texel(x, y));
+  return glm::vec3(sum / static_cast<double>(texture.texel_count()));
+}
+
+const char* texel_format_name(TexelFormat format) {
+  switch (format) {
+    case TexelFormat::Srgb8: return "srgb8";
+    case TexelFormat::Unorm8: return "unorm8";
+    case TexelFormat::Half: return "half";
+    case TexelFormat::Float: return "float";
+  }
+  return "?";
+}
+
+// "textures: 300, 151.9 MiB with their mip levels (srgb8 202, unorm8 98)".
+std::string texture_memory_text(const std::vector<Texture>& textures) {
+  size_t bytes = 0;
+  std::map<std::string, int> per_format;
+  for (const Texture& t : textures) {
+    bytes += t.bytes();
+    if (t.has_texels()) ++per_format[texel_format_name(t.format())];
+  }
+  std::vector<std::string> formats;
+  for (const auto& [name, count] : per_format) formats.push_back(fmt::format("{} {}", name, count));
+  const std::string by_format = formats.empty() ? "not decoded" : fmt::format("{}", fmt::join(formats, ", "));
+  return fmt::format("textures: {}, {:.1f} MiB with their mip levels ({})\n", textures.size(),
+                     double(bytes) / (1 << 20), by_format);
 }
 
 struct EmitterSummary {
@@ -193,9 +219,12 @@ json scene_info_json(const Scene& scene) {
   json textures = json::array();
   for (const Texture& t : scene.textures) {
     textures.push_back({{"name", t.name},
-                        {"width", t.width},
-                        {"height", t.height},
-                        {"encoding", t.encoding == TextureEncoding::SrgbColour ? "srgb" : "linear"}});
+                        {"width", t.width()},
+                        {"height", t.height()},
+                        {"encoding", t.encoding == TextureEncoding::SrgbColour ? "srgb" : "linear"},
+                        {"format", texel_format_name(t.format())},
+                        {"levels", t.levels()},
+                        {"bytes", t.bytes()}});
   }
   json viewpoints = json::array();
   for (const glm::vec3& p : scene.candidate_viewpoints) viewpoints.push_back(to_json(p));
@@ -237,6 +266,7 @@ std::string scene_info_text(const Scene& scene) {
     out += fmt::format("extensions required: {}\n", fmt::join(s.extensions_required, ", "));
   out += fmt::format("geometry: {} meshes, {} triangles, {} vertices; {} unique triangles (each primitive once)\n",
                      scene.meshes.size(), scene.triangle_count(), vertex_count(scene), s.unique_triangles);
+  if (!scene.textures.empty()) out += texture_memory_text(scene.textures);
   if (s.gpu_instances > 0)
     out += fmt::format("GPU instances: {} (EXT_mesh_gpu_instancing), baked into the meshes above\n",
                        s.gpu_instances);

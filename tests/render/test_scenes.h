@@ -44,11 +44,8 @@ inline int add_material(scenes::Scene& scene, const scenes::Material& material) 
 // texel values can be read back exactly at texel centres.
 inline int add_texture(scenes::Scene& scene, int width, int height, std::vector<glm::vec4> texels,
                        bool nearest = true, const std::string& name = "texture") {
-  scenes::Texture t;
+  scenes::Texture t = scenes::Texture::from_linear(width, height, texels);  // stored as float: exact
   t.name = name;
-  t.width = width;
-  t.height = height;
-  t.texels = std::move(texels);
   t.nearest = nearest;
   scene.textures.push_back(std::move(t));
   return static_cast<int>(scene.textures.size()) - 1;

@@ -17,43 +17,41 @@ namespace phyir::render {
 namespace {
 
 scenes::Texture ramp_texture(int width, int height) {
-  scenes::Texture t;
-  t.width = width;
-  t.height = height;
+  std::vector<glm::vec4> texels;
   for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) t.texels.push_back(glm::vec4(float(x), float(y), float(x * y), 1.0f));
-  return t;
+    for (int x = 0; x < width; ++x) texels.push_back(glm::vec4(float(x), float(y), float(x * y), 1.0f));
+  return scenes::Texture::from_linear(width, height, texels);  // float: the means are exact
 }
 
 TEST(TextureMips, EachLevelHoldsTheMeansOfTheTexelsBelow) {
   scenes::Texture t = ramp_texture(8, 4);
-  scenes::build_mips(t);
+  t.build_mips();
   ASSERT_EQ(t.levels(), 4);  // 8x4, 4x2, 2x1, 1x1
-  EXPECT_EQ(t.mips[0].width, 4);
-  EXPECT_EQ(t.mips[0].height, 2);
-  EXPECT_EQ(t.mips[2].width, 1);
-  EXPECT_EQ(t.mips[2].height, 1);
+  EXPECT_EQ(t.level_width(1), 4);
+  EXPECT_EQ(t.level_height(1), 2);
+  EXPECT_EQ(t.level_width(3), 1);
+  EXPECT_EQ(t.level_height(3), 1);
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 4; ++x) {
       glm::vec4 mean(0.0f);
       for (int dy = 0; dy < 2; ++dy)
-        for (int dx = 0; dx < 2; ++dx) mean += t.texels[size_t((2 * y + dy) * 8 + 2 * x + dx)] / 4.0f;
-      const glm::vec4 level1 = t.mips[0].texels[size_t(y * 4 + x)];
+        for (int dx = 0; dx < 2; ++dx) mean += t.texel(2 * x + dx, 2 * y + dy) / 4.0f;
+      const glm::vec4 level1 = t.texel(x, y, 1);
       for (int c = 0; c < 4; ++c) EXPECT_NEAR(level1[c], mean[c], 1e-5f) << x << "," << y;
     }
   // The 1x1 top is the mean of everything: x 3.5, y 1.5, xy 5.25.
-  EXPECT_NEAR(t.mips[2].texels[0].x, 3.5f, 1e-4f);
-  EXPECT_NEAR(t.mips[2].texels[0].y, 1.5f, 1e-4f);
-  EXPECT_NEAR(t.mips[2].texels[0].z, 5.25f, 1e-4f);
+  EXPECT_NEAR(t.texel(0, 0, 3).x, 3.5f, 1e-4f);
+  EXPECT_NEAR(t.texel(0, 0, 3).y, 1.5f, 1e-4f);
+  EXPECT_NEAR(t.texel(0, 0, 3).z, 5.25f, 1e-4f);
   scenes::Texture odd = ramp_texture(5, 3);
-  scenes::build_mips(odd);
+  odd.build_mips();
   EXPECT_EQ(odd.levels(), 4);  // 5x3, 3x2, 2x1, 1x1
-  EXPECT_EQ(odd.mips[0].width, 3);
+  EXPECT_EQ(odd.level_width(1), 3);
 }
 
 TEST(TextureMips, LookupsBlendTheTwoLevelsAroundTheLod) {
   scenes::Texture t = ramp_texture(8, 8);
-  scenes::build_mips(t);
+  t.build_mips();
   const glm::vec2 uv(0.3f, 0.6f);
   EXPECT_EQ(t.sample(uv, 0.0f), t.sample(uv));
   EXPECT_EQ(t.sample(uv, -2.0f), t.sample(uv));
@@ -71,11 +69,11 @@ struct CheckerFloor {
   scenes::Scene scene;
   CameraModel camera;
   CheckerFloor() {
-    scenes::Texture checker;
-    checker.width = checker.height = 512;
+    std::vector<glm::vec4> texels;
     for (int y = 0; y < 512; ++y)
-      for (int x = 0; x < 512; ++x) checker.texels.push_back(glm::vec4(glm::vec3(float((x + y) % 2)), 1.0f));
-    scenes::build_mips(checker);
+      for (int x = 0; x < 512; ++x) texels.push_back(glm::vec4(glm::vec3(float((x + y) % 2)), 1.0f));
+    scenes::Texture checker = scenes::Texture::from_linear(512, 512, texels);
+    checker.build_mips();
     scene.textures.push_back(std::move(checker));
     scenes::Material m = test::make_material(glm::vec3(1.0f));
     m.base_color_texture.texture = 0;

@@ -443,7 +443,7 @@ TEST(GltfContainer, LoadTexturesFalseKeepsSlotsWithoutTexels) {
   b.set_scene({b.add_node({{"mesh", 0}})});
   const Scene scene = load_gltf(b.write_gltf(dir, "lazy"), LoadOptions{false});
   ASSERT_EQ(scene.textures.size(), 1u);
-  EXPECT_TRUE(scene.textures[0].texels.empty());
+  EXPECT_FALSE(scene.textures[0].has_texels());
   EXPECT_EQ(scene.textures[0].name, "white.png");
   EXPECT_TRUE(scene.materials[0].base_color_texture.present());
 }

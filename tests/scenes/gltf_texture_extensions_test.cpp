@@ -70,11 +70,12 @@ struct QuadFixture {
 };
 
 void expect_same_texels(const Texture& actual, const Texture& expected, float tolerance) {
-  ASSERT_EQ(actual.width, expected.width);
-  ASSERT_EQ(actual.height, expected.height);
-  ASSERT_EQ(actual.texels.size(), expected.texels.size());
-  for (size_t i = 0; i < actual.texels.size(); ++i)
-    for (int c = 0; c < 4; ++c) EXPECT_NEAR(actual.texels[i][c], expected.texels[i][c], tolerance) << i;
+  ASSERT_EQ(actual.width(), expected.width());
+  ASSERT_EQ(actual.height(), expected.height());
+  for (int y = 0; y < actual.height(); ++y)
+    for (int x = 0; x < actual.width(); ++x)
+      for (int c = 0; c < 4; ++c)
+        EXPECT_NEAR(actual.texel(x, y)[c], expected.texel(x, y)[c], tolerance) << x << "," << y;
 }
 
 TEST(GltfTextureWebp, LosslessWebpDecodesToThePngTexels) {

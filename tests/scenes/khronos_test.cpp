@@ -99,8 +99,8 @@ TEST(KhronosFeatures, CamerasFilePerspectiveAndOrthographic) {
 TEST(KhronosFeatures, BoxTexturedDecodesItsNonPowerOfTwoTexture) {
   const Scene scene = load_gltf(khronos("BoxTextured.gltf"));
   ASSERT_EQ(scene.textures.size(), 1u);
-  EXPECT_EQ(scene.textures[0].width, 211);  // README: 211x211 PNG, wrap REPEAT
-  EXPECT_EQ(scene.textures[0].height, 211);
+  EXPECT_EQ(scene.textures[0].width(), 211);  // README: 211x211 PNG, wrap REPEAT
+  EXPECT_EQ(scene.textures[0].height(), 211);
   EXPECT_EQ(scene.textures[0].wrap_s, WrapMode::Repeat);
   EXPECT_EQ(scene.textures[0].encoding, TextureEncoding::SrgbColour);
   EXPECT_EQ(scene.meshes[0].texcoords0.size(), scene.meshes[0].positions.size());

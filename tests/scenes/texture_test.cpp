@@ -61,24 +61,24 @@ TEST(GltfTextures, ColourIsSrgbDecodedDataStaysLinear) {
   const Texture& data = scene.textures[static_cast<size_t>(m.metallic_roughness_texture.texture)];
   EXPECT_EQ(colour.encoding, TextureEncoding::SrgbColour);
   EXPECT_EQ(data.encoding, TextureEncoding::LinearData);
-  ASSERT_EQ(colour.width, 2);
-  ASSERT_EQ(colour.height, 1);
+  ASSERT_EQ(colour.width(), 2);
+  ASSERT_EQ(colour.height(), 1);
   for (int c = 0; c < 3; ++c) {
-    EXPECT_NEAR(colour.texels[0][c], srgb_decode(kLeft[c]), 2e-3f) << "channel " << c;
-    EXPECT_NEAR(colour.texels[1][c], srgb_decode(kRight[c]), 2e-3f) << "channel " << c;
-    EXPECT_NEAR(data.texels[0][c], kLeft[c], 1e-6f);
-    EXPECT_NEAR(data.texels[1][c], kRight[c], 1e-6f);
+    EXPECT_NEAR(colour.texel(0, 0)[c], srgb_decode(kLeft[c]), 2e-3f) << "channel " << c;
+    EXPECT_NEAR(colour.texel(1, 0)[c], srgb_decode(kRight[c]), 2e-3f) << "channel " << c;
+    EXPECT_NEAR(data.texel(0, 0)[c], kLeft[c], 1e-6f);
+    EXPECT_NEAR(data.texel(1, 0)[c], kRight[c], 1e-6f);
   }
-  EXPECT_EQ(colour.texels[0].w, 1.0f);  // RGB images are opaque
+  EXPECT_EQ(colour.texel(0, 0).w, 1.0f);  // RGB images are opaque
 }
 
 TEST(GltfTextures, ImageInsideGlbBufferView) {
   const Scene scene = load_textured(json::object(), /*glb=*/true);
   const Texture& data =
       scene.textures[static_cast<size_t>(scene.materials[0].metallic_roughness_texture.texture)];
-  ASSERT_EQ(data.texels.size(), 2u);
-  EXPECT_NEAR(data.texels[0].x, kLeft[0], 1e-6f);
-  EXPECT_NEAR(data.texels[1].y, kRight[1], 1e-6f);
+  ASSERT_EQ(data.texel_count(), 2u);
+  EXPECT_NEAR(data.texel(0, 0).x, kLeft[0], 1e-6f);
+  EXPECT_NEAR(data.texel(1, 0).y, kRight[1], 1e-6f);
 }
 
 TEST(GltfTextures, SamplerWrapModesAndNearestMagFilter) {
@@ -105,18 +105,15 @@ TEST(GltfTextures, HandWrittenFixtureWithExternalFilesRelativeToTheGltf) {
   const Texture& checker = scene.textures[0];
   EXPECT_EQ(checker.name, "textures/checker.png");
   EXPECT_TRUE(checker.nearest);
-  ASSERT_EQ(checker.texels.size(), 4u);
-  EXPECT_NEAR(checker.texels[0].x, 1.0f, 1e-4f);  // white stays white through the sRGB decode
-  EXPECT_NEAR(checker.texels[1].x, 0.0f, 1e-6f);
+  ASSERT_EQ(checker.texel_count(), 4u);
+  EXPECT_NEAR(checker.texel(0, 0).x, 1.0f, 1e-4f);  // white stays white through the sRGB decode
+  EXPECT_NEAR(checker.texel(1, 0).x, 0.0f, 1e-6f);
   EXPECT_EQ(scene.materials[0].name, "checker");
   EXPECT_EQ(scene.materials[0].metallic_factor, 0.0f);
 }
 
 Texture two_texel_texture(WrapMode wrap) {
-  Texture t;
-  t.width = 2;
-  t.height = 1;
-  t.texels = {glm::vec4(0.0f), glm::vec4(1.0f)};
+  Texture t = Texture::from_linear(2, 1, {glm::vec4(0.0f), glm::vec4(1.0f)});
   t.wrap_s = t.wrap_t = wrap;
   t.nearest = true;
   return t;

@@ -2,6 +2,7 @@
 // Image files through OpenImageIO. Writers are atomic (temporary name, then rename).
 #include <filesystem>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "phyir/core/image.h"
@@ -16,6 +17,12 @@ Image read_image(const std::filesystem::path& path);
 // Decodes an image held in memory (e.g. a glTF data: URI or a .glb buffer view).
 // `what` names the source in error messages.
 Image read_image_from_memory(const std::vector<unsigned char>& bytes, const std::string& what);
+
+// The same decode, at the depth the file stores: an 8-bit image (JPEG, WebP, most PNGs) as its
+// code values, anything deeper (16-bit PNG) as float like read_image_from_memory. The bytes
+// are what read_image_from_memory scales by 1/255.
+std::variant<ByteImage, Image> read_image_from_memory_at_file_depth(const std::vector<unsigned char>& bytes,
+                                                                    const std::string& what);
 
 // Writes float data. The extension picks the format: .exr is written as 32-bit float
 // (lossless ZIP compression); .png/.jpg are quantised to 8 bits (values clamped to [0,1]).
