@@ -6,7 +6,7 @@
 //
 //   const AssetLibrary library = AssetLibrary::open("/usr/share/sweethome3d/furniture");
 //   for (const AssetEntry* lamp : library.in_category("Lights")) { ... }
-//   const AssetModel model = load_model(library.at("Scopia#halogen"));
+//   const AssetModel model = load_model(library.at("Scopia#desk_lamp1"));
 #include <cstddef>
 #include <filesystem>
 #include <map>
