@@ -58,8 +58,8 @@ struct GltfMaterial {
 };
 
 // Where the writer gets a file it puts beside the .gltf: copied from `file`, or `bytes`
-// written as they are. With neither, the caller has written the file itself and the writer
-// only refers to it.
+// written as they are (the bytes when both are set). With neither, the caller has written
+// the file itself and the writer only refers to it.
 struct GltfFileSource {
   std::filesystem::path file;
   std::string bytes;
