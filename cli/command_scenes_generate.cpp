@@ -50,6 +50,7 @@ nlohmann::json to_json(const scenes::ApartmentSummary& s, int index) {
   j["lamps_lit"] = s.lamps_lit;
   j["punctual_lights"] = s.punctual_lights;
   j["attribution"] = s.attributions;
+  j["missing_roles"] = s.missing_roles;
   return j;
 }
 
@@ -133,7 +134,7 @@ void add_scenes_generate_command(CLI::App& scenes) {
   cmd->add_option("--assets", options->assets,
                   "apartment: folder of .sh3f furniture libraries (Debian: sweethome3d-furniture)")
       ->capture_default_str();
-  cmd->add_option("--lighting", options->lighting, "apartment: day, night, or mixed (each apartment's from the seed)")
+  cmd->add_option("--lighting", options->lighting, "apartment: day, night, or mixed (even apartments by day, odd ones at night)")
       ->capture_default_str();
   cmd->add_option("--rooms", options->rooms, "apartment: rooms per apartment, 2 to 6; 0 draws it from the seed")
       ->capture_default_str();

@@ -3,7 +3,6 @@
 // the model made for the wall (doorOrWindowWallThickness at doorOrWindowWallDistance) spans
 // the wall's thickness. Fronts face the room the opening belongs to.
 #include "apartment_roles.h"
-#include "phyir/core/error.h"
 #include "phyir/scenes/apartment_furnishing.h"
 
 namespace phyir::scenes {
@@ -40,7 +39,8 @@ PlacedAsset fitted(const WallOpening& o, const AssetEntry* entry, const char* ro
 
 }  // namespace
 
-void fit_openings(const ApartmentPlan& plan, const AssetLibrary& library, std::vector<PlacedAsset>& items, Pcg32& rng) {
+void fit_openings(const ApartmentPlan& plan, const AssetLibrary& library, std::vector<PlacedAsset>& items, Pcg32& rng,
+                  std::vector<std::string>& missing) {
   // One model per role for the whole apartment, as a builder would buy them.
   std::map<std::string, const AssetEntry*> chosen;
   for (const WallOpening& o : plan.openings) {
@@ -50,10 +50,11 @@ void fit_openings(const ApartmentPlan& plan, const AssetLibrary& library, std::v
       const std::vector<const AssetEntry*> candidates = role_candidates(library, role_spec(role));
       const AssetEntry* e = pick(candidates, rng);
       if (!e && std::string(role) == "french_window") e = pick(role_candidates(library, role_spec("window")), rng);
-      if (!e) fail("apartment: the furniture library has no {} (Doors and windows category)", role);
       it = chosen.emplace(role, e).first;
     }
-    items.push_back(fitted(o, it->second, role));
+    // A library without such a model leaves the opening open.
+    if (it->second) items.push_back(fitted(o, it->second, role));
+    else missing.push_back(role);
   }
 }
 

@@ -20,9 +20,10 @@ namespace {
 constexpr float kCameraYfov = 1.2f;  // radians, as the single rooms' cameras
 constexpr int kSkyWidth = 1024;      // texels around the horizon
 
-ApartmentLighting choose_lighting(const ApartmentOptions& options, Pcg32& rng) {
-  const bool night = rng.chance(0.5f);  // drawn always, so the choice does not shift the stream
-  return options.lighting ? *options.lighting : night ? ApartmentLighting::Night : ApartmentLighting::Day;
+// Mixed: even apartments by day, odd ones at night, so any two in a row have both.
+ApartmentLighting choose_lighting(const ApartmentOptions& options, int index) {
+  if (options.lighting) return *options.lighting;
+  return index % 2 == 0 ? ApartmentLighting::Day : ApartmentLighting::Night;
 }
 
 // Daylight: a clear sky of random turbidity and a sun between 15 and 60 degrees up.
@@ -83,7 +84,7 @@ ApartmentSummary generate_apartment(const fs::path& out_dir, int index, uint64_t
                                     const ApartmentOptions& options) {
   const ApartmentPlan plan = plan_apartment(seed, index, options.rooms);
   Pcg32 light_rng = apartment_rng(seed, index, ApartmentStream::Lights);
-  const ApartmentLighting lighting = choose_lighting(options, light_rng);
+  const ApartmentLighting lighting = choose_lighting(options, index);
   AssetModelCache models;
   const ApartmentFurnishing furnishing = furnish_apartment(plan, library, models, lighting);
   const std::vector<ApartmentViewpoint> viewpoints = plan_apartment_viewpoints(plan, furnishing.items);
@@ -107,6 +108,10 @@ ApartmentSummary generate_apartment(const fs::path& out_dir, int index, uint64_t
   summary.lamps_lit = pieces.lamps_lit;
   summary.punctual_lights = doc.lights.size();
   summary.attributions = pieces.attributions;
+  summary.missing_roles = furnishing.unfurnished_roles;
+  std::sort(summary.missing_roles.begin(), summary.missing_roles.end());
+  summary.missing_roles.erase(std::unique(summary.missing_roles.begin(), summary.missing_roles.end()),
+                              summary.missing_roles.end());
   RoomSummary& files = summary.files;
   files.file = stem + ".gltf";
   files.meshes = doc.meshes.size();

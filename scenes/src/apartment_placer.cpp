@@ -68,7 +68,7 @@ PlacedAsset RoomPlacer::make(const AssetEntry* entry, const std::string& role) c
 bool RoomPlacer::is_free(const PlacedAsset& piece, int may_overlap) const {
   const Box3 box = piece.bounds();
   if (box.min.x < floor_.min.x || box.max.x > floor_.max.x || box.min.z < floor_.min.y || box.max.z > floor_.max.y ||
-      box.max.y > plan_.height - 0.005f)
+      box.max.y > plan_.height + 1e-4f)
     return false;
   for (const Box3& k : keepouts_)
     if (box.overlaps(k, 0.0f)) return false;
@@ -225,7 +225,7 @@ int RoomPlacer::on_ceiling(const AssetEntry* entry, const std::string& role) {
   if (!entry) return -1;
   PlacedAsset p = make(entry, role);
   const glm::vec2 c = floor_.centre();
-  p.position = glm::vec3(c.x, plan_.height - entry->size_m.y - 0.001f, c.y);
+  p.position = glm::vec3(c.x, plan_.height - entry->size_m.y, c.y);  // hanging from the ceiling
   p.quarter_turns = floor_.size().x >= floor_.size().y ? 0 : 1;
   return try_add(p);
 }

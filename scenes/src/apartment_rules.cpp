@@ -6,11 +6,11 @@
 #include "apartment_placer.h"
 #include "apartment_roles.h"
 #include "apartment_steps.h"
-#include "phyir/core/error.h"
 
 namespace phyir::scenes {
 
-void fit_openings(const ApartmentPlan& plan, const AssetLibrary& library, std::vector<PlacedAsset>& items, Pcg32& rng);
+void fit_openings(const ApartmentPlan& plan, const AssetLibrary& library, std::vector<PlacedAsset>& items, Pcg32& rng,
+                  std::vector<std::string>& missing);
 
 namespace {
 
@@ -163,7 +163,7 @@ ApartmentFurnishing furnish_apartment(const ApartmentPlan& plan, const AssetLibr
   }
   for (PlacedAsset& p : out.items) p.lamp_on = lighting == ApartmentLighting::Night && is_lamp_role(p.role);
   Pcg32 fittings = apartment_rng(plan.seed, plan.index, ApartmentStream::Openings);
-  fit_openings(plan, library, out.items, fittings);
+  fit_openings(plan, library, out.items, fittings, out.unfurnished_roles);
   return out;
 }
 

@@ -50,12 +50,12 @@ const char* apartment_lighting_name(ApartmentLighting lighting);
 
 struct ApartmentFurnishing {
   std::vector<PlacedAsset> items;
-  std::vector<std::string> unfurnished_roles;  // roles no library entry matched (for messages)
+  std::vector<std::string> unfurnished_roles;  // roles no library entry matched, once per attempt
 };
 
-// Places furniture, doors, windows and lamps. Lamps are lit at night. Throws phyir::Error
-// naming the library when it lacks what every apartment needs (a sofa, a bed, a door, a
-// window).
+// Places furniture, doors, windows and lamps; lamps are lit at night. A role the library has
+// no model for is skipped (an opening without a door or window model stays open) and listed
+// in unfurnished_roles.
 ApartmentFurnishing furnish_apartment(const ApartmentPlan& plan, const AssetLibrary& library,
                                       AssetModelCache& models, ApartmentLighting lighting);
 

@@ -39,6 +39,7 @@ struct ApartmentSummary {
   size_t lamps_lit = 0;
   size_t punctual_lights = 0;  // the lamps' light sources and the sun
   nlohmann::json attributions; // [{name, library, creator, licence, id}] of every piece used, once each
+  std::vector<std::string> missing_roles;  // roles the library had no model for, sorted, once each
 };
 
 // Writes apartment_<index>.gltf, its .bin, images and (by day) its sky into out_dir.
