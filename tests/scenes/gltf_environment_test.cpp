@@ -7,6 +7,7 @@
 #include "gltf_test_helpers.h"
 #include "phyir/core/error.h"
 #include "phyir/scenes/gltf_loader.h"
+#include "phyir/scenes/scene_info.h"
 
 namespace phyir::scenes {
 namespace {
@@ -56,6 +57,17 @@ TEST(GltfEnvironment, UriResolvesBesideTheFileAndScaleDefaultsToOne) {
   const Scene scaled = load_gltf(scene_with_extras(dir, environment({{"uri", "my%20sky.exr"}, {"scale", 0.25}})));
   EXPECT_EQ(scaled.environment->path, dir / "my sky.exr");  // percent-decoded
   EXPECT_EQ(scaled.environment->scale, 0.25f);
+}
+
+TEST(GltfEnvironment, ScenesInfoPrintsIt) {
+  const fs::path dir = test::fresh_test_dir();
+  const Scene scene = load_gltf(scene_with_extras(dir, environment({{"uri", "sky.exr"}, {"scale", 0.25}})));
+  EXPECT_THAT(scene_info_text(scene), HasSubstr("environment: " + (dir / "sky.exr").string() + " x 0.25"));
+  EXPECT_EQ(scene_info_json(scene)["environment"],
+            json({{"uri", "sky.exr"}, {"path", (dir / "sky.exr").string()}, {"scale", 0.25}}));
+  const Scene plain = load_gltf(scene_with_extras(dir, nullptr));
+  EXPECT_THAT(scene_info_text(plain), HasSubstr("environment: none declared"));
+  EXPECT_TRUE(scene_info_json(plain)["environment"].is_null());
 }
 
 TEST(GltfEnvironment, MissingFileNamesTheGltfTheUriAndThePathLookedFor) {
