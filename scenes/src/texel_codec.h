@@ -12,10 +12,20 @@ namespace phyir::scenes::texels {
 
 // Linear value of each 8-bit sRGB code: OpenColorIO's srgb_texture -> scene_linear transform
 // (the one srgb_to_linear applies) of the code scaled as OpenImageIO scales 8-bit data, so a
-// table lookup equals decoding the image as float and then through OCIO. Built on first use.
-const std::array<float, 256>& srgb8_decode_table();
+// table lookup equals decoding the image as float and then through OCIO.
+std::array<float, 256> make_srgb8_decode_table();
 // Each 8-bit code scaled to [0, 1] exactly as OpenImageIO converts 8-bit data to float.
-const std::array<float, 256>& unorm8_decode_table();
+std::array<float, 256> make_unorm8_decode_table();
+
+// The tables, built on first use. Inline: every lookup asks for them.
+inline const std::array<float, 256>& srgb8_decode_table() {
+  static const std::array<float, 256> table = make_srgb8_decode_table();
+  return table;
+}
+inline const std::array<float, 256>& unorm8_decode_table() {
+  static const std::array<float, 256> table = make_unorm8_decode_table();
+  return table;
+}
 
 // Readers of one level's texels by index, one per format: reader(i) is texel i, linear RGBA.
 struct Srgb8Reader {

@@ -199,8 +199,19 @@ TEST(TextureStorage, EncodingLinearValuesPicksTheNearestCode) {
     for (int i = 0; i < 256; ++i) rgba.insert(rgba.end(), {uint8_t(i), uint8_t(i), uint8_t(i), uint8_t(i)});
     return rgba;
   }(), TexelFormat::Srgb8);
-  const Texture again = Texture::from_linear(256, 1, level_texels(codes, 0), TexelFormat::Srgb8);
+  const std::vector<glm::vec4> table = level_texels(codes, 0);
+  const Texture again = Texture::from_linear(256, 1, table, TexelFormat::Srgb8);
   for (int i = 0; i < 256; ++i) EXPECT_TRUE(same_bits(again.texel(i, 0), codes.texel(i, 0))) << "code " << i;
+  // Values between codes: the nearest (ties to the lower code), as a search of every code finds it.
+  std::vector<glm::vec4> values;
+  for (int i = 0; i <= 20000; ++i) values.push_back(glm::vec4(float(i) / 20000.0f));
+  const Texture encoded = Texture::from_linear(int(values.size()), 1, values, TexelFormat::Srgb8);
+  for (size_t i = 0; i < values.size(); ++i) {
+    size_t best = 0;
+    for (size_t code = 1; code < 256; ++code)
+      if (std::abs(table[code].x - values[i].x) < std::abs(table[best].x - values[i].x)) best = code;
+    ASSERT_EQ(encoded.texel(int(i), 0).x, table[best].x) << "value " << values[i].x;
+  }
   const glm::vec4 unorm =
       Texture::from_linear(1, 1, {glm::vec4(0.6f, -1.0f, 2.0f, NAN)}, TexelFormat::Unorm8).texel(0, 0);
   const glm::vec4 want(153.0f / 255.0f, 0.0f, 1.0f, 0.0f);  // clamped, NaN to 0
