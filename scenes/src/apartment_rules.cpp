@@ -53,13 +53,9 @@ class Furnisher {
     return place(role, [&](const AssetEntry* e, const std::string& r) { return placer_.in_middle(e, r); });
   }
   // A set of one kind: every piece the same model, as in a real room.
-  int beside(int bed, const std::string& role) {
-    const AssetEntry* e = pick(candidates_of(role), rng_);
-    return placer_.beside(bed, e, role);
-  }
+  int beside(int bed, const std::string& role) { return placer_.beside(bed, one_model(role), role); }
   int around(int table, const std::string& role, int most) {
-    const AssetEntry* e = pick(candidates_of(role), rng_);
-    return placer_.around(table, e, role, most);
+    return placer_.around(table, one_model(role), role, most);
   }
   void decorate(int host, int most) {
     for (int k = 0; k < most && host >= 0; ++k) on_top(host, "decor");
@@ -68,6 +64,13 @@ class Furnisher {
   Pcg32& rng() { return rng_; }
 
  private:
+  // One entry of the role, or nullptr (recorded as missing) when the library has none.
+  const AssetEntry* one_model(const std::string& role) {
+    const AssetEntry* e = pick(candidates_of(role), rng_);
+    if (!e) missing_.push_back(role);
+    return e;
+  }
+
   const std::vector<const AssetEntry*>& candidates_of(const std::string& role) {
     auto it = cache_.find(role);
     if (it == cache_.end()) it = cache_.emplace(role, role_candidates(library_, role_spec(role))).first;
