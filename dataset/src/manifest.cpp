@@ -74,6 +74,35 @@ std::set<std::string> external_uris(const json& gltf) {
   return uris;
 }
 
+// The default scene's "extras" object, or an empty object.
+json default_scene_extras(const json& gltf) {
+  const json scenes = gltf.value("scenes", json::array());
+  const json scene_index = gltf.value("scene", json(0));
+  if (!scenes.is_array() || !scene_index.is_number_unsigned() || scene_index.get<size_t>() >= scenes.size())
+    return json::object();
+  const json& scene = scenes[scene_index.get<size_t>()];
+  return scene.is_object() && scene.contains("extras") && scene["extras"].is_object() ? scene["extras"] : json::object();
+}
+
+// Every credited model of the manifest's scenes once, sorted, without public-domain ones
+// (CC-0 asks for no credit): the attribution the dataset's views need.
+json credits(const std::vector<json>& scenes) {
+  std::map<std::string, json> by_key;
+  for (const json& s : scenes) {
+    if (!s.contains("attribution")) continue;
+    for (const json& a : s["attribution"]) {
+      const std::string licence = a.value("licence", "");
+      if (licence.find("Public domain") != std::string::npos || licence.find("CC-0") != std::string::npos ||
+          licence.find("CC0") != std::string::npos)
+        continue;
+      by_key.emplace(a.value("library", "") + "|" + a.value("id", ""), a);
+    }
+  }
+  json out = json::array();
+  for (auto& [key, a] : by_key) out.push_back(a);
+  return out;
+}
+
 json file_entry(const fs::path& path, const std::string& name) {
   std::error_code ec;
   const auto size = fs::file_size(path, ec);
@@ -127,6 +156,11 @@ json scene_record(const fs::path& scenes_dir, const SceneFile& scene, const std:
   }
   record["dependencies"] = dependencies;
   record["content_sha256"] = sha256_hex(content);
+  // The third-party models the scene holds (extras.attribution, written by the apartment
+  // generator): what a view's publication must credit.
+  const json scene_extras = default_scene_extras(gltf);
+  if (scene_extras.contains("attribution") && scene_extras["attribution"].is_array())
+    record["attribution"] = scene_extras["attribution"];
   return record;
 }
 
@@ -187,6 +221,8 @@ std::string manifest_text(const Manifest& m) {
   field("scene_names", json(m.scene_names).dump());
   field("conventions", indented(dataset_conventions()));
   field("scenes", one_per_line(m.scenes));
+  const json credited = credits(m.scenes);
+  if (!credited.empty()) field("attribution", one_per_line(std::vector<json>(credited.begin(), credited.end())));
   field("views", one_per_line(views), true);
   return text + "}\n";
 }

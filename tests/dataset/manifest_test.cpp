@@ -127,6 +127,29 @@ TEST(Manifest, SceneRecordCountsTheScenesEnvironmentMap) {
   EXPECT_NE(scene_record(rooms, {"room_0", "room_0.gltf"}, "val", 3)["content_sha256"], r["content_sha256"]);
 }
 
+// A scene's extras.attribution (furnished apartments) travels into its record, and the
+// manifest credits every CC-BY model once, leaving public-domain ones out.
+TEST(Manifest, CollectsTheAttributionsItsViewsNeed) {
+  const auto dir = test::fresh_test_dir();
+  const auto rooms = test::make_rooms(dir, 1, scenes::RoomPreset::Mini, 2);
+  json gltf = json::parse(read_file(rooms / "room_0.gltf"));
+  const json by = {{"name", "Sofa"}, {"id", "Scopia#sofa"}, {"library", "Scopia"}, {"creator", "eTeks"},
+                   {"licence", "Creative Commons Attribution 3.0 Unported license"}};
+  const json cc0 = {{"name", "Comb"}, {"id", "Blend Swap CC-0#comb"}, {"library", "Blend Swap CC-0"},
+                    {"creator", "JonFreer"}, {"licence", "Public domain"}};
+  gltf["scenes"][0]["extras"]["attribution"] = json::array({by, cc0});
+  write_file_atomic(rooms / "room_0.gltf", gltf.dump(2));
+  const json r = scene_record(rooms, {"room_0", "room_0.gltf"}, "train", 1);
+  ASSERT_EQ(r["attribution"].size(), 2u);
+  Manifest m = sample_manifest();
+  m.scenes = {r, r};  // the same model in two scenes is credited once
+  const json text = json::parse(manifest_text(m));
+  ASSERT_TRUE(text.contains("attribution"));
+  ASSERT_EQ(text["attribution"].size(), 1u);
+  EXPECT_EQ(text["attribution"][0]["id"], "Scopia#sofa");
+  EXPECT_FALSE(json::parse(manifest_text(sample_manifest())).contains("attribution"));  // rooms credit nobody
+}
+
 TEST(Manifest, DescribeDifferenceNamesTheKey) {
   const json a = {{"render", {{"spp", 4}, {"width", 64}}}};
   json b = a;
