@@ -103,7 +103,8 @@ void run(const GenerateOptions& options) {
                                   {"count", options.count},
                                   {"rooms", rooms}};
   write_file_atomic(out / "rooms.json", summary.dump(2) + "\n");
-  spdlog::info("wrote {} {} room(s) and rooms.json to {}", options.count, options.preset, out.string());
+  spdlog::info("wrote {} {} and rooms.json to {}", options.count,
+               options.preset == "apartment" ? "apartment(s)" : options.preset + " room(s)", out.string());
 }
 
 }  // namespace

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # One command from a fresh Debian 12 machine to a working toolkit: installs the Debian
-# packages (as root or via sudo), builds, then runs the main job on a small built-in
-# example: a procedural `mini` room, rendered as a 360-degree HDR panorama with AOVs.
-# Outputs land in example/ (override with PHYIR_EXAMPLE_DIR).
+# packages (as root or via sudo), builds, then runs the main job on a built-in example: a
+# furnished three-room apartment from Debian's furniture library, its living room rendered
+# by day as a 360-degree HDR panorama with its labels and a 32 x 64 grid of light probes
+# (a minute or two on 2 cores), and one contact-sheet PNG of it all. Outputs land in
+# example/ (override with PHYIR_EXAMPLE_DIR).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/install_deps.sh"
@@ -10,9 +12,13 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 phyir="${PHYIR_BUILD_DIR:-$root/build}/cli/phyir"
 out="${PHYIR_EXAMPLE_DIR:-$root/example}"
 "$phyir" --version
-"$phyir" scenes generate --out "$out/rooms" --count 1 --seed 1 --preset mini
-"$phyir" scenes info "$out/rooms/room_0.gltf"
-"$phyir" render "$out/rooms/room_0.gltf" --out "$out/render" --width 512 --height 256 --spp 64 --seed 1
+"$phyir" scenes generate --out "$out/apartment" --count 1 --seed 1 --preset apartment --rooms 3 --lighting day
+"$phyir" scenes info "$out/apartment/apartment_0.gltf" | head -8
+"$phyir" render "$out/apartment/apartment_0.gltf" --out "$out/render" --width 512 --height 256 --spp 64 --seed 1 \
+  --probes --probe-grid 32x64
+/usr/bin/python3 "$root/scripts/apartments/contact_sheet.py" --out "$out/contact_sheet.png" --width 320 --probes 4 \
+  "$out/render"
 echo
-echo "setup: done. The example room is $out/rooms/room_0.gltf; its panorama and labels are in $out/render/"
+echo "setup: done. The example apartment is $out/apartment/apartment_0.gltf; its panorama, labels and"
+echo "probes are in $out/render/, and $out/contact_sheet.png shows them side by side."
 ls -l "$out/render"

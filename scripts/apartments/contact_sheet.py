@@ -1,9 +1,11 @@
 #!/usr/bin/python3
 """One PNG of rendered views: a row per render folder (phyir render --out DIR), the columns
 colour (exposed so the 95th percentile of luminance maps to 0.8 before the sRGB curve),
-base colour, normal (n * 0.5 + 0.5), depth (0-8 m, near = light), roughness and metalness.
+base colour, normal (n * 0.5 + 0.5), depth (0-8 m, near = light), roughness and metalness,
+and with --probes N a last tile of N light probes (phyir render --probes) from the grid's
+lower middle row, left to right, with the colour's exposure.
 
-    contact_sheet.py --out sheet.png [--labels "a,b,c"] [--width 384] DIR...
+    contact_sheet.py --out sheet.png [--width 384] [--probes 4] DIR...
 
 Needs Debian's python3-openimageio and python3-numpy (/usr/bin/python3).
 """
@@ -36,9 +38,7 @@ def as_rgb(image):
 def tile(folder, column):
     image = as_rgb(read(os.path.join(folder, f"{column}.exr")))
     if column == "color":
-        luminance = image @ np.array([0.2126, 0.7152, 0.0722])
-        p95 = np.percentile(luminance, 95)
-        return srgb(image * (0.8 / p95 if p95 > 0 else 1.0))
+        return srgb(image * colour_scale(folder))
     if column == "basecolor":
         return srgb(image)
     if column == "normal":
@@ -46,6 +46,28 @@ def tile(folder, column):
     if column == "depth":
         return np.clip(1.0 - image / 8.0, 0.0, 1.0)
     return np.clip(image, 0.0, 1.0)
+
+
+def probe_tile(folder, count, colour_scale):
+    """`count` probes of the grid row at 60% of its height, evenly across, in a 2-row mosaic."""
+    probes = read(os.path.join(folder, "probes.exr"))[..., :3]
+    mask = read(os.path.join(folder, "probe_mask.exr"))[..., 0]
+    grid_h, grid_w = mask.shape
+    h, w = probes.shape[0] // grid_h, probes.shape[1] // grid_w
+    i = int(grid_h * 0.6)
+    picked = []
+    for k in range(count):
+        j = int((k + 0.5) * grid_w / count)
+        block = probes[i * h:(i + 1) * h, j * w:(j + 1) * w] if mask[i, j] > 0 else np.zeros((h, w, 3))
+        picked.append(srgb(block * colour_scale))
+    rows = [np.concatenate(picked[r::2], axis=1) for r in range(2)] if count > 1 else picked
+    return np.concatenate(rows, axis=0)
+
+
+def colour_scale(folder):
+    image = as_rgb(read(os.path.join(folder, "color.exr")))
+    p95 = np.percentile(image @ np.array([0.2126, 0.7152, 0.0722]), 95)
+    return 0.8 / p95 if p95 > 0 else 1.0
 
 
 def resized(image, width):
@@ -61,8 +83,15 @@ def main():
     parser.add_argument("folders", nargs="+")
     parser.add_argument("--out", required=True)
     parser.add_argument("--width", type=int, default=384, help="width of one tile in pixels")
+    parser.add_argument("--probes", type=int, default=0, help="light probes shown per row (even; 0: none)")
     args = parser.parse_args()
-    rows = [np.concatenate([resized(tile(f, c), args.width) for c in COLUMNS], axis=1) for f in args.folders]
+    rows = []
+    for f in args.folders:
+        tiles = [resized(tile(f, c), args.width) for c in COLUMNS]
+        if args.probes > 0:
+            mosaic = probe_tile(f, args.probes, colour_scale(f))
+            tiles.append(resized(mosaic, tiles[0].shape[0] * mosaic.shape[1] // mosaic.shape[0]))
+        rows.append(np.concatenate(tiles, axis=1))
     sheet = (np.concatenate(rows, axis=0) * 255.0 + 0.5).astype(np.uint8)
     out = oiio.ImageBuf(oiio.ImageSpec(sheet.shape[1], sheet.shape[0], 3, oiio.UINT8))
     out.set_pixels(oiio.ROI(), sheet)
@@ -70,7 +99,8 @@ def main():
     if not out.write(tmp):
         sys.exit(f"{args.out}: cannot write ({out.geterror()})")
     os.replace(tmp, args.out)
-    print(f"wrote {args.out}: {len(rows)} rows x {len(COLUMNS)} columns ({', '.join(COLUMNS)})")
+    columns = list(COLUMNS) + ([f"{args.probes} probes"] if args.probes else [])
+    print(f"wrote {args.out}: {len(rows)} rows x {len(columns)} columns ({', '.join(columns)})")
 
 
 if __name__ == "__main__":
