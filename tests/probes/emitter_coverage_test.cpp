@@ -155,5 +155,20 @@ TEST(EmitterCoverage, OneSidedLightsAreOnlySeenFromTheFrontAndTexturedOnesAreNot
   EXPECT_FALSE(EmitterCoverage(scenes::Scene{}).usable());
 }
 
+// A lamp shade of thousands of small glowing triangles (real furniture's lamps at night):
+// no coverage is traced, so a probe inside it does not trace every triangle it sees.
+TEST(EmitterCoverage, ScenesWithThousandsOfLightTrianglesAreNotTraced) {
+  scenes::Scene shade;
+  const int material = test::add_material(shade, test::make_emitter(glm::vec3(1.0f)));
+  for (int k = 0; k < 2100; ++k) {  // 4200 triangles
+    const float a = 0.003f * float(k);
+    test::add_quad(shade, glm::vec3(std::cos(a), 0.5f, std::sin(a)), glm::vec3(0.0f, 0.1f, 0.0f),
+                   glm::vec3(-0.003f * std::sin(a), 0.0f, 0.003f * std::cos(a)), material, "shade");
+  }
+  EXPECT_FALSE(EmitterCoverage(shade).usable());
+  shade.meshes.resize(1000);  // 2000 triangles: traced
+  EXPECT_TRUE(EmitterCoverage(shade).usable());
+}
+
 }  // namespace
 }  // namespace phyir::render

@@ -16,6 +16,13 @@ constexpr int kArcPoints = 96;
 // its steps are halved until they are below this (unwrapping stays unambiguous).
 constexpr double kMaxPhiStep = 0.05;
 constexpr int kMaxHalvings = 30;
+// An outline longer than this gives up (the probe keeps the plain estimate): an arc passing
+// close to, not through, a pole turns fast in phi all along, and 30 halvings per step could
+// otherwise make 2^30 points (a probe inside a lamp shade of thousands of triangles).
+constexpr size_t kMaxOutlinePoints = 4096;
+// Scenes with more light triangles than this (glowing lamp shades of real furniture) do not
+// trace coverage: one probe would trace every triangle it sees.
+constexpr size_t kMaxTracedTriangles = 4096;
 
 // phi of the equirectangular map (equirect.cpp): 0 towards -Z, increasing towards +X.
 double phi_of(const glm::dvec3& d) { return std::atan2(d.x, -d.z); }
@@ -29,6 +36,7 @@ bool append_arc(const glm::dvec3& a, double phi_a, const glm::dvec3& b, int dept
   if (!(std::hypot(u.x, u.z) > 1e-12)) return false;
   double phi = phi_of(u);
   phi += kTwoPi * std::round((phi_a - phi) / kTwoPi);
+  if (out->size() >= kMaxOutlinePoints) return false;
   if (std::abs(phi - phi_a) > kMaxPhiStep) {
     if (depth >= kMaxHalvings) return false;
     const glm::dvec3 m = 0.5 * (a + b);
@@ -81,7 +89,7 @@ double clipped_area(const std::vector<glm::dvec2>& poly, double x0, double x1, d
 }  // namespace
 
 EmitterCoverage::EmitterCoverage(const scenes::Scene& scene) : triangles_(light_triangles(scene)) {
-  usable_ = !triangles_.empty() &&
+  usable_ = !triangles_.empty() && triangles_.size() <= kMaxTracedTriangles &&
             std::all_of(triangles_.begin(), triangles_.end(), [](const LightTriangle& t) { return t.uniform; });
 }
 

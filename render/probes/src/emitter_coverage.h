@@ -24,8 +24,8 @@ class EmitterCoverage {
  public:
   explicit EmitterCoverage(const scenes::Scene& scene);
 
-  // False when a light's emission is textured (not one value per triangle), or there are
-  // no lights: then no texel gets the control variate.
+  // False when a light's emission is textured (not one value per triangle), when there are
+  // no lights or more than 4096 light triangles: then no texel gets the control variate.
   bool usable() const { return usable_; }
 
   // The lights as seen from one probe origin.
