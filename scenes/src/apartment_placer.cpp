@@ -92,26 +92,33 @@ int RoomPlacer::try_add(PlacedAsset piece, int may_overlap) {
 
 int RoomPlacer::wall_of(int piece) const { return piece >= 0 && size_t(piece) < wall_of_.size() ? wall_of_[piece] : -1; }
 
+// The room's extent along wall w: its start and end coordinates.
+glm::vec2 RoomPlacer::wall_extent(int w) const {
+  return along_axis(w) == 0 ? glm::vec2(floor_.min.x, floor_.max.x) : glm::vec2(floor_.min.y, floor_.max.y);
+}
+
+int RoomPlacer::try_on_wall(const AssetEntry* entry, const std::string& role, int w, float along) {
+  PlacedAsset p = make(entry, role);
+  p.quarter_turns = turns_facing(inward(w));
+  const float back = w == 0 ? floor_.min.y : w == 1 ? floor_.max.x : w == 2 ? floor_.max.y : floor_.min.x;
+  const float across = back + (w == 0 || w == 3 ? 1.0f : -1.0f) * (0.5f * entry->size_m.z + kWallGap);
+  const bool along_x = along_axis(w) == 0;
+  p.position.x = along_x ? along : across;
+  p.position.z = along_x ? across : along;
+  const int index = try_add(p);
+  if (index >= 0) wall_of_[size_t(index)] = w;
+  return index;
+}
+
 int RoomPlacer::against_wall(const AssetEntry* entry, const std::string& role, int wall) {
   if (!entry) return -1;
   for (int t = 0; t < kTries; ++t) {
     const int w = wall >= 0 && t < kTries / 2 ? wall : int(rng_.below(4));
-    PlacedAsset p = make(entry, role);
-    p.quarter_turns = turns_facing(inward(w));
-    const glm::vec3 s = entry->size_m;
-    const int a = along_axis(w);
-    const float lo = (a == 0 ? floor_.min.x : floor_.min.y) + 0.5f * s.x, hi = (a == 0 ? floor_.max.x : floor_.max.y) - 0.5f * s.x;
+    const glm::vec2 extent = wall_extent(w);
+    const float lo = extent.x + 0.5f * entry->size_m.x, hi = extent.y - 0.5f * entry->size_m.x;
     if (hi < lo) continue;
-    const float along = rng_.uniform(lo, hi);
-    const float back = w == 0 ? floor_.min.y : w == 1 ? floor_.max.x : w == 2 ? floor_.max.y : floor_.min.x;
-    const float across = back + (w == 0 || w == 3 ? 1.0f : -1.0f) * (0.5f * s.z + kWallGap);
-    p.position.x = a == 0 ? along : across;
-    p.position.z = a == 0 ? across : along;
-    const int index = try_add(p);
-    if (index >= 0) {
-      wall_of_[size_t(index)] = w;
-      return index;
-    }
+    const int index = try_on_wall(entry, role, w, rng_.uniform(lo, hi));
+    if (index >= 0) return index;
   }
   return -1;
 }
@@ -121,21 +128,10 @@ int RoomPlacer::in_corner(const AssetEntry* entry, const std::string& role) {
   for (int t = 0; t < kTries; ++t) {
     const int w = int(rng_.below(4));
     const bool high_end = rng_.chance(0.5f);
-    PlacedAsset p = make(entry, role);
-    p.quarter_turns = turns_facing(inward(w));
-    const glm::vec3 s = entry->size_m;
-    const int a = along_axis(w);
-    const float along = high_end ? (a == 0 ? floor_.max.x : floor_.max.y) - 0.5f * s.x - kWallGap
-                                 : (a == 0 ? floor_.min.x : floor_.min.y) + 0.5f * s.x + kWallGap;
-    const float back = w == 0 ? floor_.min.y : w == 1 ? floor_.max.x : w == 2 ? floor_.max.y : floor_.min.x;
-    const float across = back + (w == 0 || w == 3 ? 1.0f : -1.0f) * (0.5f * s.z + kWallGap);
-    p.position.x = a == 0 ? along : across;
-    p.position.z = a == 0 ? across : along;
-    const int index = try_add(p);
-    if (index >= 0) {
-      wall_of_[size_t(index)] = w;
-      return index;
-    }
+    const glm::vec2 extent = wall_extent(w);
+    const float half = 0.5f * entry->size_m.x + kWallGap;
+    const int index = try_on_wall(entry, role, w, high_end ? extent.y - half : extent.x + half);
+    if (index >= 0) return index;
   }
   return -1;
 }

@@ -40,6 +40,9 @@ class RoomPlacer {
 
  private:
   int try_add(PlacedAsset piece, int may_overlap = -1);
+  // Back against wall w at `along` on it, front into the room; records the wall.
+  int try_on_wall(const AssetEntry* entry, const std::string& role, int w, float along);
+  glm::vec2 wall_extent(int w) const;
   bool is_free(const PlacedAsset& piece, int may_overlap) const;
   PlacedAsset make(const AssetEntry* entry, const std::string& role) const;
   void add_keepouts();
