@@ -21,7 +21,8 @@
 # (render.json load/build seconds and rays/s, peak RSS) and `phyir bench throughput` (256 x 128,
 # 16 spp, plus raw Embree on 200k replayed rays). Writes DIR/runs.csv (every run, with the
 # 1-minute load average before it), DIR/scale.csv and DIR/scale.json (per scene: minimum times
-# and peak RSS, maximum rays/s, texture memory as float RGBA) and DIR/scale.md (the table of
+# and peak RSS, maximum rays/s, texture memory with every mip level: `scenes info`'s bytes, or
+# float RGBA for binaries that do not report them) and DIR/scale.md (the table of
 # docs/performance.md, "Large scenes"). Needs blender (only to generate), node (variants),
 # /usr/bin/python3. Exit status 0 = measured, 1 = a step failed, 2 = usage.
 set -euo pipefail
@@ -30,7 +31,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 phyir=$root/build/cli/phyir out=bench-scale scene_dir=""
 triangles=1500000 textures=300 seed=1 texture_size=512
 repeats=3 width=512 height=256 spp=16 variants=instance
-usage() { sed -n '2,26p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,27p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; }
 while [ $# -gt 0 ]; do
   case $1 in --help | -h) usage; exit 0 ;; esac
   [ $# -ge 2 ] || { echo "bench_scale: $1 needs a value (see --help)" >&2; exit 2; }
@@ -120,6 +121,14 @@ import csv, json, os, platform, sys
 out, width, height, spp = sys.argv[1], *map(int, sys.argv[2:5])
 runs = list(csv.DictReader(open(os.path.join(out, "runs.csv"))))
 scenes = list(dict.fromkeys(r["scene"] for r in runs))
+def float_pyramid_bytes(t):  # binaries before `bytes` kept float RGBA, mips halved down to 1x1
+    w, h, total = t["width"], t["height"], 0
+    while w * h > 0:
+        total += w * h * 16
+        if w == 1 and h == 1:
+            break
+        w, h = max(1, (w + 1) // 2), max(1, (h + 1) // 2)
+    return total
 rows = []
 for scene in scenes:
     mine = [r for r in runs if r["scene"] == scene]
@@ -127,7 +136,7 @@ for scene in scenes:
     info = json.load(open(pick("info")[0]["result"]))
     renders = [json.load(open(r["result"])) for r in pick("render")]
     throughputs = [json.load(open(r["result"])) for r in pick("throughput")]
-    texture_bytes = sum(t["width"] * t["height"] * 16 for t in info["textures"])  # float RGBA
+    texture_bytes = sum(t["bytes"] if "bytes" in t else float_pyramid_bytes(t) for t in info["textures"])
     rows.append({
         "scene": scene,
         "file": info["source"],
