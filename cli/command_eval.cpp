@@ -22,6 +22,7 @@ namespace {
 struct EvalFlags {
   eval::EvalOptions options;
   std::string gt, pred, out, model;
+  std::string depth_protocol = "toolkit";
   int threads = 0;
   int model_threads = 1;
   uint64_t model_seed = 1;
@@ -78,6 +79,10 @@ void add_eval_command(CLI::App& app) {
   cmd->add_option("--sphere-spp", f->options.settings.sphere.spp, "samples per pixel of the relit spheres")
       ->capture_default_str();
   cmd->add_option("--seed", f->options.settings.sphere.seed, "seed of the relighting renders")->capture_default_str();
+  cmd->add_option("--depth-protocol", f->depth_protocol,
+                  "rules of the depth metrics: toolkit (the toolkit's masks, RMSE log in ln), unifuse (UniFuse's "
+                  "evaluation exactly: its mask, clamps to [0.1, 10] m, RMSE log in log10), unifuse-median (the same "
+                  "with its median alignment); docs/eval.md")->capture_default_str();
   cmd->add_flag("--no-relight", f->no_relight, "skip the relighting spheres (Table 5)");
   cmd->add_flag("--no-baselines", f->no_baselines, "skip the baseline rows");
   cmd->add_option("--baseline-max-views", f->options.baseline_max_views,
@@ -96,6 +101,11 @@ void add_eval_command(CLI::App& app) {
     if (f->threads > 0)
       limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, f->threads);
     eval::EvalOptions& o = f->options;
+    try {  // before any inference
+      o.settings.depth_protocol = eval::parse_depth_protocol(f->depth_protocol);
+    } catch (const Error& e) {
+      fail("phyir eval --depth-protocol: {}", e.what());
+    }
     o.gt_dir = f->gt;
     o.out_dir = f->out;
     o.settings.relight = !f->no_relight;

@@ -35,7 +35,8 @@ const std::vector<std::string>& metric_names() {
       n.push_back("relight_" + m.key + "_mae");
       n.push_back("relight_" + m.key + "_rmse");
     }
-    for (const char* c : {"pixels_maps", "pixels_rerender", "probes_compared", "relight_positions"}) n.push_back(c);
+    for (const char* c : {"pixels_maps", "pixels_depth", "pixels_rerender", "probes_compared", "relight_positions"})
+      n.push_back(c);
     return n;
   }();
   return names;
@@ -76,7 +77,8 @@ Metrics evaluate_view(const GroundTruthView& gt, const Prediction& pred, const E
       m["normal_deg"] = mean_angular_error_deg(normalised(at_size(*pred.normal, size)),
                                                normalised(at_size(gt.normal, size)), mask);
     if (pred.depth) {
-      const DepthMetrics d = depth_metrics(at_size(*pred.depth, size), at_size(gt.depth, size), mask);
+      const DepthMetrics d = view_depth_metrics(settings.depth_protocol, *pred.depth, gt.depth, gt.valid);
+      m["pixels_depth"] = double(d.pixels);
       m["depth_mae"] = d.mae, m["depth_abs_rel"] = d.abs_rel, m["depth_sq_rel"] = d.sq_rel;
       m["depth_rmse"] = d.rmse, m["depth_rmse_log"] = d.rmse_log, m["depth_log10"] = d.log10;
       m["depth_delta1"] = d.delta1, m["depth_delta2"] = d.delta2, m["depth_delta3"] = d.delta3;

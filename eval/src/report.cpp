@@ -5,10 +5,19 @@
 #include <string>
 #include <vector>
 
+#include "phyir/eval/depth_protocol.h"
+
 namespace phyir::eval {
 namespace {
 
 using nlohmann::json;
+
+// The protocol of the depth metrics; files written before there was a choice used `toolkit`.
+DepthProtocol depth_protocol_of(const json& j) {
+  const json& s = j.at("settings");
+  return s.contains("depth_protocol") ? parse_depth_protocol(s["depth_protocol"].get<std::string>())
+                                      : DepthProtocol::kToolkit;
+}
 
 std::string cell(const json& metrics, const std::string& key, const char* format = "{:.4f}", double scale = 1.0) {
   if (!metrics.contains(key) || metrics[key].is_null()) return "-";
@@ -95,13 +104,14 @@ std::string report_markdown(const json& j) {
        "in u), averaged over the probes valid on both sides; re-render MSE as in Table 2.\n\n";
   r += table(j, {{"SSIM ↑", "probe_ssim", "{:.4f}"}, {"Re-render error (MSE) ↓", "rerender_mse", "{:.4f}"}});
 
+  const DepthProtocol depth = depth_protocol_of(j);
   r += "\n## Depth (layout of Tables 7 and 11)\n\n";
-  r += "Euclidean depth in metres, no median scaling; predictions clamped below at 1 mm.\n\n";
+  r += depth_protocol_description(depth) + "\n\n";
   r += table(j, {{"MAE", "depth_mae", "{:.4f}"},
                  {"Abs Rel", "depth_abs_rel", "{:.4f}"},
                  {"Sq Rel", "depth_sq_rel", "{:.4f}"},
                  {"RMSE", "depth_rmse", "{:.4f}"},
-                 {"RMSElog", "depth_rmse_log", "{:.4f}"},
+                 {depth == DepthProtocol::kToolkit ? "RMSElog (ln)" : "RMSElog (log10)", "depth_rmse_log", "{:.4f}"},
                  {"Log10", "depth_log10", "{:.4f}"},
                  {"δ1 ↑", "depth_delta1", "{:.4f}"},
                  {"δ2 ↑", "depth_delta2", "{:.4f}"},
@@ -122,15 +132,22 @@ std::string report_markdown(const json& j) {
 
   r += "\n## Masks and resolutions\n\n";
   r += "- Maps and the re-render count the pixels where the ground truth sees a surface (`mask_geometry`) that is "
-       "neither emissive (`mask_emissive`) nor transparent (`mask_transparent`). Depth also needs ground truth > 0.\n";
+       "neither emissive (`mask_emissive`) nor transparent (`mask_transparent`). ";
+  r += depth == DepthProtocol::kToolkit
+           ? "Depth also needs ground truth > 0.\n"
+           : "Depth (protocol `" + depth_protocol_name(depth) + "`) counts every pixel whose ground truth is in "
+             "(0, 10] m instead, lights and glass included, as UniFuse's mask.\n";
   r += "- Prediction and ground truth are compared at the coarser of their two resolutions: the finer one is "
        "area-averaged onto it (normals renormalised); a coarse pixel counts only if every fine pixel it covers is "
-       "valid.\n";
+       "valid.";
+  r += depth == DepthProtocol::kToolkit ? "\n" : " Depth is not: see its protocol above.\n";
   r += "- Probes count where both `probe_mask.exr` are 1; grids are compared on the one with fewer probes (the "
        "other side's probe whose cell holds the cell centre), texels at the smaller texel resolution (area).\n";
   const json& pm = j["methods"]["prediction"]["mean"];
-  r += fmt::format("- Mean counted per view: {} map pixels, {} re-render pixels, {} probes, {} relighting positions.\n",
-                   cell(pm, "pixels_maps", "{:.0f}"), cell(pm, "pixels_rerender", "{:.0f}"),
+  r += fmt::format("- Mean counted per view: {} map pixels, {} depth pixels, {} re-render pixels, {} probes, {} "
+                   "relighting positions.\n",
+                   cell(pm, "pixels_maps", "{:.0f}"), cell(pm, "pixels_depth", "{:.0f}"),
+                   cell(pm, "pixels_rerender", "{:.0f}"),
                    cell(pm, "probes_compared", "{:.0f}"), cell(pm, "relight_positions", "{:.0f}"));
 
   if (!j["figures"].empty()) {

@@ -79,6 +79,22 @@ Image mask_resize(const Image& mask, int width, int height) {
   return out;
 }
 
+Image nearest_resize(const Image& image, int width, int height) {
+  if (width <= 0 || height <= 0 || image.empty()) fail("nearest_resize: bad size {}x{}", width, height);
+  auto source = [](int out, int in) {
+    const double step = 1.0 / (double(out) / double(in));  // OpenCV's 1 / inv_scale
+    std::vector<int> index(static_cast<size_t>(out));
+    for (int o = 0; o < out; ++o) index[size_t(o)] = std::min(int(std::floor(o * step)), in - 1);
+    return index;
+  };
+  const std::vector<int> sx = source(width, image.width), sy = source(height, image.height);
+  Image out(width, height, image.channels);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < image.channels; ++c) out.at(x, y, c) = image.at(sx[size_t(x)], sy[size_t(y)], c);
+  return out;
+}
+
 Size coarser(Size a, Size b) {
   return int64_t(b.width) * b.height < int64_t(a.width) * a.height ? b : a;
 }

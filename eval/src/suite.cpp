@@ -177,7 +177,8 @@ nlohmann::json run_eval(const EvalOptions& o) {
                    {"sphere_size", o.settings.sphere.size},
                    {"sphere_spp", o.settings.sphere.spp},
                    {"sphere_max_bounces", o.settings.sphere.max_bounces},
-                   {"seed", o.settings.sphere.seed}};
+                   {"seed", o.settings.sphere.seed},
+                   {"depth_protocol", depth_protocol_name(o.settings.depth_protocol)}};
   j["baseline_source"] = o.baselines ? nlohmann::json(stats.source) : nlohmann::json(nullptr);
   j["missing_optional_files"] = missing;
   j["figures"] = figure_files;

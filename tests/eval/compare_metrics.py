@@ -41,7 +41,7 @@ def cpu_identity():
         pass
     isa = next((f for f in ("avx512f", "avx2", "avx", "sse4_2") if f in flags), "baseline")
     return f"{name} ({isa})"
-COUNT_KEYS = {"pixels_maps", "pixels_rerender", "probes_compared", "relight_positions"}
+COUNT_KEYS = {"pixels_maps", "pixels_depth", "pixels_rerender", "probes_compared", "relight_positions"}
 HIGHER_IS_BETTER = {"probe_ssim", "depth_delta1", "depth_delta2", "depth_delta3"}
 
 

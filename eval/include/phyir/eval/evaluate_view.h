@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "phyir/eval/depth_protocol.h"
 #include "phyir/eval/relight.h"
 #include "phyir/eval/views.h"
 
@@ -15,14 +16,15 @@ struct EvalSettings {
   bool relight = true;
   int relight_positions = 2;  // probe positions per view (spread over the valid probes)
   RelightSettings sphere;
+  DepthProtocol depth_protocol = DepthProtocol::kToolkit;  // the rules of the depth_* metrics
 };
 
 using Metrics = std::map<std::string, double>;
 
 // Every metric key, in report order: basecolor_mse, normal_deg, roughness_mse,
 // metalness_mse, rerender_mse, depth_{mae,abs_rel,sq_rel,rmse,rmse_log,log10,delta1,2,3},
-// probe_ssim, relight_<material>_{mae,rmse}; and counts: pixels_maps, pixels_rerender,
-// probes_compared, relight_positions.
+// probe_ssim, relight_<material>_{mae,rmse}; and counts: pixels_maps, pixels_depth (under
+// the depth protocol's mask), pixels_rerender, probes_compared, relight_positions.
 const std::vector<std::string>& metric_names();
 bool higher_is_better(const std::string& metric);  // SSIM and the deltas
 
@@ -32,8 +34,8 @@ struct ViewImages {
   std::vector<RelitSphere> spheres_pred, spheres_gt;  // first relighting position, per material
 };
 
-// Resolutions (docs/eval.md): maps at the coarser of the two; the re-render against
-// color.exr at the coarser of the two; probes as probe_set.h says.
+// Resolutions (docs/eval.md): maps at the coarser of the two (depth as its protocol says);
+// the re-render against color.exr at the coarser of the two; probes as probe_set.h says.
 Metrics evaluate_view(const GroundTruthView& gt, const Prediction& pred, const EvalSettings& settings,
                       ViewImages* images = nullptr);
 

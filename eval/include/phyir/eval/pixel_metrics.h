@@ -17,9 +17,10 @@ double masked_mae(const Image& pred, const Image& gt, const Image& mask);
 // (Table 2). A zero-length vector on either side counts as 90 degrees.
 double mean_angular_error_deg(const Image& pred, const Image& gt, const Image& mask);
 
-// The standard depth metrics (Eigen et al. 2014; as UniFuse / BiFuse report them for
-// panoramas): over pixels with a counted mask and ground truth > 0, predictions clamped
-// below at kMinDepth (log needs a positive value), no median scaling (metric depth).
+// The standard depth metrics (Eigen et al. 2014) under the toolkit's rules (depth protocol
+// `toolkit`, the default): over pixels with a counted mask and ground truth > 0, predictions
+// clamped below at kMinDepth (log needs a positive value), no upper cap, no median scaling
+// (metric depth), RMSE log in ln. UniFuse's rules differ: unifuse_depth.h.
 struct DepthMetrics {
   double mae = 0, abs_rel = 0, sq_rel = 0, rmse = 0, rmse_log = 0, log10 = 0;
   double delta1 = 0, delta2 = 0, delta3 = 0;  // fraction with max(p/g, g/p) < 1.25^n

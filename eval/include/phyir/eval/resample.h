@@ -15,6 +15,11 @@ namespace phyir::eval {
 // takes the overlap-weighted mean of the few source pixels it covers).
 Image area_resize(const Image& image, int width, int height);
 
+// Nearest-neighbour resampling as OpenCV's cv2.resize(..., INTER_NEAREST), which UniFuse's
+// loaders use for ground-truth depth: output x reads source min(floor(x * s), in - 1) with
+// s = 1 / (out / in) in double (not pixel-centre aligned: a 2x reduction keeps even pixels).
+Image nearest_resize(const Image& image, int width, int height);
+
 // Conservative mask resampling: output 1 where every overlapped source pixel is > 0.5.
 Image mask_resize(const Image& mask, int width, int height);
 
