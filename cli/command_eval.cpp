@@ -80,9 +80,9 @@ void add_eval_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--seed", f->options.settings.sphere.seed, "seed of the relighting renders")->capture_default_str();
   cmd->add_option("--depth-protocol", f->depth_protocol,
-                  "rules of the depth metrics: toolkit (the toolkit's masks, RMSE log in ln), unifuse (UniFuse's "
-                  "evaluation exactly: its mask, clamps to [0.1, 10] m, RMSE log in log10), unifuse-median (the same "
-                  "with its median alignment); docs/eval.md")->capture_default_str();
+                  "rules of the depth metrics: toolkit (the maps' mask, RMSE log in ln), unifuse (UniFuse's "
+                  "evaluation exactly: ground truth in (0, 10] m, its clamps at 0.1 and 10 m, RMSE log in log10), "
+                  "unifuse-median (the same with its median alignment); docs/eval.md")->capture_default_str();
   cmd->add_flag("--no-relight", f->no_relight, "skip the relighting spheres (Table 5)");
   cmd->add_flag("--no-baselines", f->no_baselines, "skip the baseline rows");
   cmd->add_option("--baseline-max-views", f->options.baseline_max_views,
