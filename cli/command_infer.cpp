@@ -25,7 +25,15 @@ void add_infer_command(CLI::App& app) {
   cmd->add_option("--out", o->out_dir, "output folder")->required();
   cmd->add_option("--threads", o->threads, "torch threads")->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed of the rendering layer's samples")->capture_default_str();
-  cmd->add_option("--exposure", o->exposure, "exposure in stops for an .exr input")->capture_default_str();
+  cmd->add_option("--exposure", o->exposure,
+                  "the input's exposure in stops: an .exr is exposed by it (default: the dataset's auto exposure); "
+                  "a .png was written at it (default: its folder's view.json, else unknown)");
+  auto radiance = std::make_shared<std::string>("absolute");
+  cmd->add_option("--radiance", *radiance,
+                  "unit of probes.exr and rerender.exr: absolute (when the exposure is known) or input (the "
+                  "input's relative units, as the network predicts them)")
+      ->check(CLI::IsMember({"absolute", "input"}))
+      ->capture_default_str();
   auto check = std::make_shared<model::RenderCheckOptions>();
   cmd->add_option("--check-render-layer", check->view_dir,
                   "instead: re-render a view folder's ground-truth maps and probes (phyir render --probes) "
@@ -33,7 +41,8 @@ void add_infer_command(CLI::App& app) {
       ->check(CLI::ExistingDirectory);
   cmd->add_option("--diffuse-samples", check->diffuse_samples, "with --check-render-layer")->capture_default_str();
   cmd->add_option("--specular-samples", check->specular_samples, "with --check-render-layer")->capture_default_str();
-  cmd->callback([o, check] {
+  cmd->callback([o, check, radiance] {
+    o->absolute = *radiance == "absolute";
     if (!check->view_dir.empty()) {
       check->out_dir = o->out_dir;
       check->seed = o->seed;

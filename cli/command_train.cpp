@@ -19,12 +19,12 @@ void add_train_command(CLI::App& app) {
   auto quiet = std::make_shared<bool>(false);
   auto w = std::make_shared<model::LossWeights>();
   auto* cmd = app.add_subcommand(
-      "train", "Train one stage of the PhyIR network (gmnet, lnet, joint, gsnet): checkpoint.pt, "
-               "train_log.csv/json, loss_curve.png");
+      "train", "Train one stage of the PhyIR network (gmnet, lnet, joint, gsnet): checkpoint.pt, best.pt, "
+               "train_log.csv/json, val_log.csv, loss_curve.png");
   model::ModelConfig& c = o->config;
   cmd->add_option("--data", o->data_dir, "dataset folder (view folders with color.exr, input.png, AOVs, probes)")
       ->required()->check(CLI::ExistingDirectory);
-  cmd->add_option("--out", o->out_dir, "output folder (checkpoint, logs, loss curve)")->required();
+  cmd->add_option("--out", o->out_dir, "output folder (checkpoints, logs, loss curve)")->required();
   cmd->add_option("--stage", *stage, "gmnet | lnet | joint | gsnet (paper appendix B.1)")->capture_default_str();
   cmd->add_option("--split", o->split, "with a manifest.json: the split to train on (train, val, test; \"\" = all)")
       ->capture_default_str();
@@ -60,9 +60,36 @@ void add_train_command(CLI::App& app) {
   wopt->add_option("--w-coherence", w->coherence, "beta_SC");
   wopt->add_option("--w-render", w->render, "beta_render");
   (void)first;
+  auto jitter = std::make_shared<std::vector<double>>();
+  auto* aug = cmd->add_option_group("augmentation", "training only, drawn per (seed, epoch, view); docs/model.md");
+  aug->add_flag("!--no-augment", o->augment.enabled, "no yaw rotation, mirroring or exposure jitter");
+  aug->add_flag("!--no-rotate", o->augment.rotate, "no yaw rotation");
+  aug->add_flag("!--no-mirror", o->augment.mirror, "no horizontal mirroring");
+  aug->add_option("--exposure-jitter", *jitter, "LO,HI: exposure jitter U[LO, HI) stops on input and targets "
+                  "(default -1,0.5; 0,0 = none)")->delimiter(',')->expected(2);
+  auto* val = cmd->add_option_group("validation", "every N epochs on the dataset's validation split");
+  val->add_option("--val-split", o->validation.split, "split to validate on (\"\" = none)")->capture_default_str();
+  val->add_option("--val-every", o->validation.every, "epochs between validation passes (0 = none)")->capture_default_str();
+  val->add_option("--val-views", o->validation.max_views, "validate on the first N views of the split (0 = all)")
+      ->capture_default_str();
+  val->add_option("--best-metric", o->validation.best_metric,
+                  "keep best.pt by val_loss or a phyir eval metric (normal_deg, basecolor_mse, depth_abs_rel, "
+                  "probe_ssim, rerender_mse, ...)")->capture_default_str();
+  auto* sched = cmd->add_option_group("learning-rate schedule", "the rate of every step from the base rate (--lr)");
+  sched->add_option("--lr-schedule", o->schedule.kind, "constant (the paper's), step or cosine (default constant; "
+                    "a resumed run keeps its checkpoint's)");
+  sched->add_option("--lr-step-epochs", o->schedule.step_epochs, "step: multiply by --lr-gamma every N epochs "
+                    "(default a third of --epochs)");
+  sched->add_option("--lr-gamma", o->schedule.gamma, "step: the factor")->capture_default_str();
+  sched->add_option("--lr-min-fraction", o->schedule.min_fraction, "cosine: the last step's rate / the base rate")
+      ->capture_default_str();
   cmd->add_flag("--quiet", *quiet, "no per-step progress lines");
-  cmd->callback([o, stage, quiet, w, cmd] {
+  cmd->callback([o, stage, quiet, w, jitter, cmd] {
     o->stage = model::parse_stage(*stage);
+    if (jitter->size() == 2) {
+      o->augment.exposure_min_stops = (*jitter)[0];
+      o->augment.exposure_max_stops = (*jitter)[1];
+    }
     o->progress = !*quiet;
     bool any_weight = false;
     for (const char* name : {"--w-basecolor", "--w-roughness", "--w-metalness", "--w-depth", "--w-normal",

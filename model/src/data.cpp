@@ -2,6 +2,7 @@
 #include "data.h"
 
 #include <algorithm>
+#include <atomic>
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -10,6 +11,7 @@
 #include "phyir/core/colour.h"
 #include "phyir/core/error.h"
 #include "phyir/core/image_io.h"
+#include "phyir/core/log.h"
 
 namespace F = torch::nn::functional;
 namespace fs = std::filesystem;
@@ -61,14 +63,17 @@ torch::Tensor image_to_tensor(const phyir::Image& image) {
   return t.permute({2, 0, 1}).clone();
 }
 
-void write_tensor_image(const fs::path& path, const torch::Tensor& chw_in,
-                        const std::vector<std::string>& channel_names) {
+phyir::Image tensor_to_image(const torch::Tensor& chw_in) {
   const torch::Tensor chw = chw_in.detach().to(torch::kFloat).contiguous();
   const int C = static_cast<int>(chw.size(0)), H = static_cast<int>(chw.size(1)), W = static_cast<int>(chw.size(2));
   phyir::Image image(W, H, C);
   const torch::Tensor hwc = chw.permute({1, 2, 0}).contiguous();
   std::copy(hwc.data_ptr<float>(), hwc.data_ptr<float>() + hwc.numel(), image.pixels.begin());
-  write_image(path, image, channel_names);
+  return image;
+}
+
+void write_tensor_image(const fs::path& path, const torch::Tensor& chw, const std::vector<std::string>& channel_names) {
+  write_image(path, tensor_to_image(chw), channel_names);
 }
 
 torch::Tensor resize(const torch::Tensor& x, int height, int width) {
@@ -133,29 +138,28 @@ std::vector<fs::path> find_view_folders(const fs::path& root, const std::string&
   return out;
 }
 
-ViewTensors load_view(const fs::path& dir, const ModelConfig& c) {
-  ViewTensors v;
-  v.name = dir.filename().string();
-  const int Hi = c.input_height, Wi = c.input_width, Hr = c.render_height, Wr = c.render_width;
-  torch::Tensor color = read_chw(dir / "color.exr", false);
+namespace {
+
+// The network's input: input.png, or (a `phyir render` folder) color.exr through the
+// dataset's display transform at the view's exposure.
+torch::Tensor load_input(const fs::path& dir, const torch::Tensor& color, const InputExposure& exposure, int h,
+                         int w) {
   torch::Tensor input = read_chw(dir / "input.png", false);
   if (!input.defined()) {
     if (!color.defined()) fail("{}: neither input.png nor color.exr", dir.string());
-    // No LDR input: tone-map color.exr as the dataset does (OpenColorIO, sRGB Standard view).
-    input = image_to_tensor(linear_to_display(read_image(dir / "color.exr"), 0.0f, "Standard"));
+    input = image_to_tensor(linear_to_display(read_image(dir / "color.exr"), static_cast<float>(exposure.stops),
+                                              exposure.raw_view ? "Raw" : "Standard"));
+  } else if (!exposure.recorded) {
+    static std::atomic<bool> warned{false};
+    if (!warned.exchange(true))
+      spdlog::warn("{}: input.png without a view.json exposure: taken as written at 0 stops (docs/model.md)",
+                   dir.string());
   }
-  v.image = to_size(channels(input, 3, dir / "input.png"), Hi, Wi).clamp(0.0, 1.0);
-  if (!color.defined()) fail("{}: missing color.exr (the re-render target)", (dir / "color.exr").string());
-  v.color_lo = to_size(channels(color, 3, dir / "color.exr"), Hr, Wr);
-  v.depth = to_size(channels(read_chw(dir / "depth.exr", true), 1, dir / "depth.exr"), Hi, Wi);
-  v.normal = F::normalize(to_size(channels(read_chw(dir / "normal.exr", true), 3, dir / "normal.exr"), Hi, Wi),
-                          F::NormalizeFuncOptions().dim(0).eps(1e-6));
-  v.base_color = to_size(channels(read_chw(dir / "basecolor.exr", true), 3, dir / "basecolor.exr"), Hi, Wi);
-  v.roughness = to_size(channels(read_chw(dir / "roughness.exr", true), 1, dir / "roughness.exr"), Hi, Wi);
-  v.metalness = to_size(channels(read_chw(dir / "metalness.exr", true), 1, dir / "metalness.exr"), Hi, Wi);
-  torch::Tensor geometry = read_chw(dir / "mask_geometry.exr", false);
-  if (!geometry.defined()) geometry = (read_chw(dir / "depth.exr", true).narrow(0, 0, 1) > 0).to(torch::kFloat);
-  v.mask = mask_to_size(geometry, Hi, Wi);
+  return to_size(channels(input, 3, dir / "input.png"), h, w).clamp(0.0, 1.0);
+}
+
+// Surface, not emissive, not transparent, at the rendering resolution.
+torch::Tensor load_render_mask(const fs::path& dir, const torch::Tensor& geometry, int Hr, int Wr) {
   torch::Tensor render_mask = mask_to_size(geometry, Hr, Wr);
   for (const char* name : {"mask_emissive.exr", "mask_transparent.exr"}) {
     const torch::Tensor m = read_chw(dir / name, false);
@@ -168,27 +172,59 @@ ViewTensors load_view(const fs::path& dir, const ModelConfig& c) {
       excluded = F::max_pool2d(cirpad(excluded.unsqueeze(0), 1, 1), F::MaxPool2dFuncOptions(3).stride(1)).squeeze(0);
     render_mask = render_mask * (1.0 - excluded);
   }
-  v.render_mask = render_mask;
+  return render_mask;
+}
+
+// probes.exr on the rendering grid and its validity (probe_mask.exr and the render mask).
+void load_probes(const fs::path& dir, const torch::Tensor& color, const ModelConfig& c, ViewTensors& v) {
   const torch::Tensor mosaic = read_chw(dir / "probes.exr", false);
-  if (mosaic.defined()) {
-    torch::Tensor pmask = read_chw(dir / "probe_mask.exr", false);
-    // The probe grid is probe_mask.exr's size, or else the colour image's.
-    const int gh = static_cast<int>(pmask.defined() ? pmask.size(1) : color.size(1));
-    const int gw = static_cast<int>(pmask.defined() ? pmask.size(2) : color.size(2));
-    if (mosaic.size(1) % gh != 0 || mosaic.size(2) % gw != 0)
-      fail("{}: {}x{} is not a grid of {}x{} probes", (dir / "probes.exr").string(), mosaic.size(2),
-           mosaic.size(1), gw, gh);
-    v.probes = resample_probes(channels(mosaic, 3, dir / "probes.exr"), gh, gw, Hr, Wr, c.probe_height,
-                               c.probe_width);
-    if (!pmask.defined()) pmask = torch::ones({1, gh, gw});
-    v.probe_mask = (resample_probes(channels(pmask.narrow(0, 0, 1), 3, dir / "probe_mask.exr"), gh, gw, Hr, Wr, 1, 1)
-                        .select(4, 0)
-                        .reshape({1, Hr, Wr}) > 0.5)
-                       .to(torch::kFloat) *
-                   render_mask;
-  }
+  if (!mosaic.defined()) return;
+  const int Hr = c.render_height, Wr = c.render_width;
+  torch::Tensor pmask = read_chw(dir / "probe_mask.exr", false);
+  // The probe grid is probe_mask.exr's size, or else the colour image's.
+  const int gh = static_cast<int>(pmask.defined() ? pmask.size(1) : color.size(1));
+  const int gw = static_cast<int>(pmask.defined() ? pmask.size(2) : color.size(2));
+  if (mosaic.size(1) % gh != 0 || mosaic.size(2) % gw != 0)
+    fail("{}: {}x{} is not a grid of {}x{} probes", (dir / "probes.exr").string(), mosaic.size(2), mosaic.size(1), gw,
+         gh);
+  v.probes = resample_probes(channels(mosaic, 3, dir / "probes.exr"), gh, gw, Hr, Wr, c.probe_height, c.probe_width);
+  if (!pmask.defined()) pmask = torch::ones({1, gh, gw});
+  v.probe_mask = (resample_probes(channels(pmask.narrow(0, 0, 1), 3, dir / "probe_mask.exr"), gh, gw, Hr, Wr, 1, 1)
+                      .select(4, 0)
+                      .reshape({1, Hr, Wr}) > 0.5)
+                     .to(torch::kFloat) *
+                 v.render_mask;
+}
+
+}  // namespace
+
+ViewTensors load_view(const fs::path& dir, const ModelConfig& c, Radiance radiance) {
+  ViewTensors v;
+  v.name = dir.filename().string();
+  v.exposure = read_input_exposure(dir);
+  const int Hi = c.input_height, Wi = c.input_width, Hr = c.render_height, Wr = c.render_width;
+  const torch::Tensor color = read_chw(dir / "color.exr", false);
+  v.image = load_input(dir, color, v.exposure, Hi, Wi);
+  if (!color.defined()) fail("{}: missing color.exr (the re-render target)", (dir / "color.exr").string());
+  v.color_lo = to_size(channels(color, 3, dir / "color.exr"), Hr, Wr);
+  v.depth = to_size(channels(read_chw(dir / "depth.exr", true), 1, dir / "depth.exr"), Hi, Wi);
+  v.normal = F::normalize(to_size(channels(read_chw(dir / "normal.exr", true), 3, dir / "normal.exr"), Hi, Wi),
+                          F::NormalizeFuncOptions().dim(0).eps(1e-6));
+  v.base_color = to_size(channels(read_chw(dir / "basecolor.exr", true), 3, dir / "basecolor.exr"), Hi, Wi);
+  v.roughness = to_size(channels(read_chw(dir / "roughness.exr", true), 1, dir / "roughness.exr"), Hi, Wi);
+  v.metalness = to_size(channels(read_chw(dir / "metalness.exr", true), 1, dir / "metalness.exr"), Hi, Wi);
+  torch::Tensor geometry = read_chw(dir / "mask_geometry.exr", false);
+  if (!geometry.defined()) geometry = (read_chw(dir / "depth.exr", true).narrow(0, 0, 1) > 0).to(torch::kFloat);
+  v.mask = mask_to_size(geometry, Hi, Wi);
+  v.render_mask = load_render_mask(dir, geometry, Hr, Wr);
+  load_probes(dir, color, c, v);
   for (const torch::Tensor* t : {&v.image, &v.depth, &v.normal, &v.base_color, &v.roughness, &v.metalness, &v.color_lo})
     if (!torch::isfinite(*t).all().item<bool>()) fail("{}: non-finite values in the maps", dir.string());
+  if (radiance == Radiance::kInputUnits) {
+    const double f = v.exposure.factor();
+    v.color_lo = v.color_lo * f;
+    if (v.probes.defined()) v.probes = v.probes * f;
+  }
   return v;
 }
 

@@ -7,15 +7,18 @@
 #include <string>
 #include <vector>
 
+#include "exposure.h"
 #include "phyir/core/image.h"
 #include "phyir/model/training.h"
 
 namespace phyir::model {
 
 // One view at the network's resolutions. Input-resolution maps are [C, Hi, Wi]; rendering-
-// resolution ones [C, Hr, Wr]; probes [Hr, Wr, h, w, 3] linear radiance.
+// resolution ones [C, Hr, Wr]; probes [Hr, Wr, h, w, 3] linear radiance (in the unit load_view
+// was asked for: exposure.h).
 struct ViewTensors {
   std::string name;
+  InputExposure exposure;    // input.png's, from view.json
   torch::Tensor image;       // LDR input (input.png, sRGB-encoded, [0,1])
   torch::Tensor depth, normal, base_color, roughness, metalness;
   torch::Tensor mask;        // 1 where a surface is seen (mask_geometry)
@@ -36,7 +39,10 @@ struct Batch {
 std::vector<std::filesystem::path> find_view_folders(const std::filesystem::path& root,
                                                      const std::string& split = "");
 
-ViewTensors load_view(const std::filesystem::path& folder, const ModelConfig& config);
+// Radiance (color_lo, probes) as the files hold it, or in input units (x 2^exposure_stops,
+// exposure.h): training asks for input units.
+ViewTensors load_view(const std::filesystem::path& folder, const ModelConfig& config,
+                      Radiance radiance = Radiance::kAbsolute);
 
 Batch make_batch(const std::vector<ViewTensors>& views, const std::vector<size_t>& indices);
 
@@ -46,6 +52,7 @@ torch::Tensor read_mask(const std::filesystem::path& path, int height, int width
 
 // Image <-> tensor [C, H, W].
 torch::Tensor image_to_tensor(const phyir::Image& image);
+phyir::Image tensor_to_image(const torch::Tensor& chw);
 void write_tensor_image(const std::filesystem::path& path, const torch::Tensor& chw,
                         const std::vector<std::string>& channel_names = {});
 

@@ -49,6 +49,7 @@ DatasetExample ManifestDataset::get(size_t index) {
   DatasetExample e;
   e.id = ids_[index];
   e.index = static_cast<int64_t>(index);
+  e.exposure_stops = v.exposure.stops;
   e.image = std::move(v.image);
   e.depth = std::move(v.depth);
   e.normal = std::move(v.normal);

@@ -35,6 +35,9 @@ struct ExampleSize {
 struct DatasetExample {
   std::string id;     // "room_0/v003"
   int64_t index = 0;  // position in the dataset (the sampler's index)
+  double exposure_stops = 0.0;     // input.png's exposure (view.json; 0 without): color and probes
+                                   // are absolute, x 2^exposure_stops puts them in the input's
+                                   // units as `phyir train` uses them (exposure.h)
   torch::Tensor image;             // [3] the network's input (input.png, sRGB-encoded, [0,1])
   torch::Tensor depth;             // [1] metres, Euclidean (0 where nothing is seen)
   torch::Tensor normal;            // [3] world space, unit length

@@ -2,13 +2,19 @@
 #include <unistd.h>
 
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "data.h"
+#include "exposure.h"
 #include "nets.h"
 #include "phyir/core/error.h"
 #include "phyir/core/image_io.h"
+#include "phyir/dataset/manifest.h"
 #include "phyir/model/training.h"
+#include "lr_schedule.h"
+#include "validation.h"
 #include "render_layer.h"
+#include "tiny_dataset.h"
 
 namespace pm = phyir::model;
 namespace fs = std::filesystem;
@@ -38,6 +44,8 @@ void write_view(const fs::path& dir, int seed) {
   pm::write_tensor_image(dir / "roughness.exr", rough, {"Y"});
   pm::write_tensor_image(dir / "metalness.exr", metal, {"Y"});
   pm::write_tensor_image(dir / "mask_geometry.exr", torch::ones({1, H, W}), {"Y"});
+  pm::write_tensor_image(dir / "mask_emissive.exr", torch::zeros({1, H, W}), {"Y"});
+  pm::write_tensor_image(dir / "mask_transparent.exr", torch::zeros({1, H, W}), {"Y"});
   pm::write_tensor_image(dir / "probes.exr", pm::probes_to_mosaic(probe.contiguous())[0]);
   pm::write_tensor_image(dir / "probe_mask.exr", torch::ones({1, gh, gw}), {"Y"});
 }
@@ -49,6 +57,42 @@ fs::path dataset() {
     write_view(r / "room0" / "view0", 0);
     write_view(r / "room0" / "view1", 1);
     write_view(r / "room1" / "view0", 2);
+    return r;
+  }();
+  return root;
+}
+
+// A dataset with a manifest: views 0-2 in train, 3-4 in val, each with a view.json exposure.
+fs::path manifest_dataset() {
+  static const fs::path root = [] {
+    const fs::path r = fs::temp_directory_path() / ("phyir_model_test_data_" + std::to_string(::getpid())) / "manifest";
+    fs::remove_all(r);
+    nlohmann::json views = nlohmann::json::array();
+    for (int k = 0; k < 5; ++k) {
+      const std::string id = fmt::format("s{}/v000", k), dir = "views/" + id;
+      const std::string split = k < 3 ? "train" : "val";
+      const nlohmann::json record = {{"id", id}, {"dir", dir}, {"split", split}, {"scene", {{"name", fmt::format("s{}", k)}}},
+                                     {"index", 0}, {"seed", k}, {"files", nlohmann::json::array()},
+                                     {"input", {{"exposure_stops", -1.0 + 0.5 * k}, {"view", "Standard"}}}};
+      write_view(r / dir, k);
+      std::ofstream(r / dir / "view.json") << record.dump(2);
+      views.push_back(record);
+    }
+    // The fields phyir::dataset::read_manifest requires (the validation pass reads it).
+    nlohmann::json scenes = nlohmann::json::array(), names = nlohmann::json::array();
+    for (const auto& v : views) {
+      names.push_back(v["scene"]["name"]);
+      scenes.push_back({{"name", v["scene"]["name"]}, {"split", v["split"]}, {"views", 1}});
+    }
+    std::ofstream(r / "manifest.json") << nlohmann::json({{"format", phyir::dataset::kManifestFormat},
+                                                          {"format_version", phyir::dataset::kManifestVersion},
+                                                          {"settings", {{"views_per_scene", 1}}},
+                                                          {"scenes_dir", "scenes"},
+                                                          {"shard", {{"index", 0}, {"count", 1}}},
+                                                          {"scene_names", names},
+                                                          {"scenes", scenes},
+                                                          {"views", views}})
+                                                .dump(2);
     return r;
   }();
   return root;
@@ -115,6 +159,22 @@ bool same_tensors(const std::vector<torch::Tensor>& a, const std::vector<torch::
   for (size_t i = 0; i < a.size(); ++i)
     if (!torch::equal(a[i], b[i])) return false;
   return true;
+}
+
+nlohmann::json checkpoint_meta(const fs::path& path) {
+  torch::serialize::InputArchive archive;
+  archive.load_from(path.string());
+  c10::IValue v;
+  archive.read("meta", v);
+  return nlohmann::json::parse(v.toStringRef());
+}
+
+// A CSV's rows without its last column (seconds: the one that differs between runs).
+std::vector<std::string> csv_rows_without_time(const fs::path& path) {
+  std::vector<std::string> rows;
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);) rows.push_back(line.substr(0, line.rfind(',')));
+  return rows;
 }
 
 }  // namespace
@@ -204,6 +264,9 @@ TEST(ModelTrain, LaterStagesRunFromTheGMNetCheckpoint) {
   os.init = (j / "checkpoint.pt").string();
   os.epochs = 3;
   os.learning_rate = 1e-2;
+  // On three views the augmentation's variation between epochs exceeds what three GSNet
+  // steps change; the check is that GSNet learns.
+  os.augment.enabled = false;
   const auto ss = pm::train(os);
   EXPECT_LT(ss.last_loss, ss.first_loss);
 
@@ -283,4 +346,225 @@ TEST(ModelData, ManifestSplitsAndDeepFolders) {
   EXPECT_EQ(train[0], root / "views" / "s" / "v000");
   EXPECT_EQ(pm::find_view_folders(root, "").size(), 2u);
   EXPECT_THROW(pm::find_view_folders(root, "test"), phyir::Error);
+}
+
+TEST(ModelTrain, ResumeIsExactWithScheduleValidationAndBestCheckpoint) {
+  // A: 3 epochs straight with augmentation, a cosine schedule and validation every epoch.
+  // C: stopped after step 3 (mid epoch 2) and resumed. D: A without validation.
+  const fs::path a = scratch("val_a"), c = scratch("val_c"), d = scratch("val_d");
+  pm::TrainOptions o = options(a.string(), pm::Stage::kGMNet);
+  o.data_dir = manifest_dataset().string();
+  o.epochs = 3;
+  o.batch_size = 2;
+  o.learning_rate = 1e-3;
+  o.schedule.kind = "cosine";
+  o.validation.every = 1;
+  o.plot_script = std::string(PHYIR_SOURCE_ROOT) + "/scripts/plot_training.py";
+  const pm::TrainSummary sa = pm::train(o);
+  EXPECT_EQ(sa.steps, 6);  // 3 train views, batch 2
+  ASSERT_EQ(sa.validations.size(), 3u);
+  EXPECT_TRUE(fs::is_regular_file(a / "best.pt"));
+  EXPECT_TRUE(fs::is_regular_file(a / "loss_curve.png"));
+
+  pm::TrainOptions oc = o;
+  oc.out_dir = c.string();
+  oc.plot_script.clear();
+  oc.max_steps = 3;
+  EXPECT_EQ(pm::train(oc).steps, 3);
+  oc.max_steps = 0;
+  oc.resume = true;
+  oc.schedule.kind.clear();  // not given again: the checkpoint's (cosine)
+  oc.learning_rate = 0.0;
+  EXPECT_EQ(pm::train(oc).steps, 6);
+  const auto ta = checkpoint_tensors((a / "checkpoint.pt").string());
+  EXPECT_TRUE(same_tensors(ta, checkpoint_tensors((c / "checkpoint.pt").string())));
+  EXPECT_TRUE(same_tensors(checkpoint_tensors((a / "best.pt").string()), checkpoint_tensors((c / "best.pt").string())));
+  EXPECT_EQ(checkpoint_meta(a / "checkpoint.pt")["best"], checkpoint_meta(c / "checkpoint.pt")["best"]);
+  EXPECT_EQ(checkpoint_meta(c / "checkpoint.pt")["schedule"]["kind"], "cosine");
+  EXPECT_EQ(csv_rows_without_time(a / "val_log.csv"), csv_rows_without_time(c / "val_log.csv"));
+  EXPECT_EQ(csv_rows_without_time(a / "train_log.csv"), csv_rows_without_time(c / "train_log.csv"));
+
+  // Validation changes nothing in training (its generator use is undone).
+  pm::TrainOptions od = o;
+  od.out_dir = d.string();
+  od.plot_script.clear();
+  od.validation.every = 0;
+  EXPECT_TRUE(pm::train(od).validations.empty());
+  EXPECT_TRUE(same_tensors(ta, checkpoint_tensors((d / "checkpoint.pt").string())));
+  EXPECT_FALSE(fs::exists(d / "val_log.csv"));
+
+  // In the lnet stage the rendering layer draws from torch's generator every step: there too a
+  // validation pass changes nothing and a resume is exact.
+  const fs::path l1 = scratch("val_l1"), l2 = scratch("val_l2"), l3 = scratch("val_l3");
+  pm::TrainOptions ol = options(l1.string(), pm::Stage::kLNet);
+  ol.data_dir = manifest_dataset().string();
+  ol.init = (a / "checkpoint.pt").string();
+  ol.epochs = 2;
+  ol.batch_size = 2;
+  ol.learning_rate = 1e-3;
+  ol.validation.every = 1;
+  ol.validation.best_metric = "probe_ssim";
+  const pm::TrainSummary sl = pm::train(ol);
+  ASSERT_EQ(sl.validations.size(), 2u);
+  EXPECT_TRUE(std::isfinite(pm::metric_value(sl.validations[0], "probe_ssim")));
+  pm::TrainOptions ol2 = ol;
+  ol2.out_dir = l2.string();
+  ol2.validation.every = 0;
+  pm::train(ol2);
+  const auto tl = checkpoint_tensors((l1 / "checkpoint.pt").string());
+  EXPECT_TRUE(same_tensors(tl, checkpoint_tensors((l2 / "checkpoint.pt").string())));
+  pm::TrainOptions ol3 = ol;
+  ol3.out_dir = l3.string();
+  ol3.max_steps = 3;
+  pm::train(ol3);
+  ol3.max_steps = 0;
+  ol3.resume = true;
+  pm::train(ol3);
+  EXPECT_TRUE(same_tensors(tl, checkpoint_tensors((l3 / "checkpoint.pt").string())));
+  EXPECT_EQ(csv_rows_without_time(l1 / "val_log.csv"), csv_rows_without_time(l3 / "val_log.csv"));
+
+  // The best checkpoint is the pass with the lowest validation loss.
+  size_t best = 0;
+  for (size_t k = 1; k < sa.validations.size(); ++k)
+    if (sa.validations[k].loss < sa.validations[best].loss) best = k;
+  const nlohmann::json meta = checkpoint_meta(a / "best.pt");
+  EXPECT_EQ(meta["best"]["epoch"], sa.validations[best].epoch);
+  EXPECT_EQ(meta["epoch"], sa.validations[best].epoch);
+  EXPECT_EQ(sa.best_epoch, sa.validations[best].epoch);
+  EXPECT_DOUBLE_EQ(sa.best_value, sa.validations[best].loss);
+
+  // A resumed run compares against the best so far: an epoch at a ruinous learning rate does
+  // not replace it.
+  const fs::path w = scratch("val_w");
+  fs::copy(a, w);
+  const auto best_a = checkpoint_tensors((w / "best.pt").string());
+  pm::TrainOptions worse = o;
+  worse.out_dir = w.string();
+  worse.plot_script.clear();
+  worse.resume = true;
+  worse.epochs = 4;
+  worse.learning_rate = 0.5;
+  const pm::TrainSummary sw = pm::train(worse);
+  ASSERT_EQ(sw.validations.size(), 1u);
+  EXPECT_GT(sw.validations[0].loss, sa.best_value);
+  EXPECT_EQ(sw.best_epoch, sa.best_epoch);
+  EXPECT_TRUE(same_tensors(best_a, checkpoint_tensors((w / "best.pt").string())));
+
+  // The validation log: the loss, its parts and phyir eval's metrics (finite for GMNet's maps,
+  // empty for the probes and the re-render, which an untrained LNet does not predict).
+  std::ifstream in(a / "val_log.csv");
+  std::string header;
+  std::getline(in, header);
+  for (const char* column : {"train_loss", "val_loss", "val_basecolor", "basecolor_mse", "normal_deg", "depth_abs_rel",
+                             "probe_ssim", "rerender_mse", "lr"})
+    EXPECT_NE(header.find(column), std::string::npos) << column << " in " << header;
+  for (const auto& [name, value] : sa.validations[0].metrics) {
+    if (name == "probe_ssim" || name == "rerender_mse") EXPECT_TRUE(std::isnan(value)) << name;
+    else EXPECT_TRUE(std::isfinite(value)) << name;
+  }
+  std::ifstream json_in(a / "train_log.json");
+  const nlohmann::json log = nlohmann::json::parse(json_in);
+  EXPECT_EQ(log["validation_passes"].size(), 3u);
+  EXPECT_EQ(log["validation_views"], 2);
+
+  // The learning rate of every step is the schedule's.
+  std::ifstream steps(a / "train_log.csv");
+  std::string line;
+  std::getline(steps, line);
+  const pm::LrSchedule sched = pm::make_schedule(o.schedule, nullptr, 1e-3, 3, 2);
+  for (int64_t k = 0; std::getline(steps, line); ++k) {
+    const size_t last = line.rfind(','), before = line.rfind(',', last - 1);
+    EXPECT_NEAR(std::stod(line.substr(before + 1, last - before - 1)), sched.at(k), 1e-12) << k;
+  }
+}
+
+TEST(ModelTrain, LearningRateSchedules) {
+  pm::LrScheduleOptions o;
+  const pm::LrSchedule constant = pm::make_schedule(o, nullptr, 1e-4, 10, 5);
+  EXPECT_EQ(constant.kind, "constant");
+  EXPECT_EQ(constant.at(0), 1e-4);
+  EXPECT_EQ(constant.at(49), 1e-4);
+  o.kind = "step";
+  const pm::LrSchedule step = pm::make_schedule(o, nullptr, 1e-4, 9, 5);  // every 3 epochs (a third)
+  EXPECT_EQ(step.step_epochs, 3);
+  EXPECT_DOUBLE_EQ(step.at(14), 1e-4);       // epoch 3 (0-based 2)
+  EXPECT_DOUBLE_EQ(step.at(15), 1e-5);       // epoch 4
+  EXPECT_DOUBLE_EQ(step.at(44), 1e-6);
+  o.kind = "cosine";
+  o.min_fraction = 0.01;
+  const pm::LrSchedule cosine = pm::make_schedule(o, nullptr, 1e-4, 10, 5);
+  EXPECT_DOUBLE_EQ(cosine.at(0), 1e-4);
+  EXPECT_NEAR(cosine.at(49), 1e-6, 1e-18);
+  EXPECT_NEAR(cosine.at(1000), 1e-6, 1e-18);  // past the planned end: the last rate
+  EXPECT_LT(cosine.at(30), cosine.at(20));
+  // Resumed without --lr-schedule: the checkpoint's kind and parameters.
+  const pm::LrSchedule resumed = pm::make_schedule(pm::LrScheduleOptions{}, step.to_json(), 1e-4, 9, 5);
+  EXPECT_EQ(resumed.kind, "step");
+  EXPECT_EQ(resumed.step_epochs, 3);
+  o.kind = "exponential";
+  EXPECT_THROW(pm::make_schedule(o, nullptr, 1e-4, 10, 5), phyir::Error);
+  pm::TrainOptions bad = options(scratch("bad_metric").string(), pm::Stage::kGMNet);
+  bad.validation.best_metric = "accuracy";
+  EXPECT_THROW(pm::train(bad), phyir::Error);
+}
+
+TEST(ModelTrainCli, ManifestDatasetWithAValSplitEndToEnd) {
+  // `phyir train` on a dataset of the real pipeline: GMNet then LNet with validation on its
+  // val split and the best checkpoint kept; `phyir infer` on a val view in absolute units
+  // (its view.json's exposure) and in the input's units.
+  const tiny::Dataset& data = tiny::dataset();
+  if (data.root.empty() && data.error.empty()) GTEST_SKIP() << PHYIR_BINARY << " not built";
+  ASSERT_TRUE(data.error.empty()) << data.error;
+  const fs::path val_view = data.view("val"), work = scratch("cli");
+  fs::create_directories(work);
+  ASSERT_FALSE(val_view.empty());
+  ASSERT_FALSE(data.view("train").empty());
+  const std::string bin = std::string(PHYIR_BINARY) + " --log-level warn ";
+  const std::string net = " --input-height 32 --input-width 64 --render-height 16 --render-width 32 --probe-height 4"
+                          " --probe-width 8 --diffuse-samples 8 --specular-samples 4 --width-divisor 4 --threads 1 --quiet";
+  const std::string log = " >> " + (work / "log.txt").string() + " 2>&1";
+  ASSERT_EQ(std::system((bin + "train --data " + data.root.string() + " --out " + (work / "gm").string() +
+                         " --stage gmnet --epochs 2 --batch 1 --lr 1e-3 --lr-schedule cosine" + net + log).c_str()), 0)
+      << work / "log.txt";
+  ASSERT_EQ(std::system((bin + "train --data " + data.root.string() + " --out " + (work / "l").string() +
+                         " --stage lnet --epochs 1 --batch 1 --lr 1e-3 --best-metric probe_ssim --init " +
+                         (work / "gm" / "checkpoint.pt").string() + " --threads 1 --quiet" + log).c_str()), 0)
+      << work / "log.txt";
+  for (const char* run : {"gm", "l"}) {
+    EXPECT_TRUE(fs::is_regular_file(work / run / "best.pt")) << run;
+    std::ifstream in(work / run / "train_log.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    ASSERT_FALSE(j["validation_passes"].empty()) << run;
+    EXPECT_TRUE(j["validation_passes"][0]["normal_deg"].is_number()) << run;
+  }
+  std::ifstream in(work / "l" / "train_log.json");
+  const nlohmann::json lj = nlohmann::json::parse(in);
+  EXPECT_TRUE(lj["validation_passes"][0]["probe_ssim"].is_number());
+  EXPECT_TRUE(lj["validation_passes"][0]["rerender_mse"].is_number());
+  EXPECT_EQ(lj["best"]["metric"], "probe_ssim");
+
+  // Inference: absolute radiance from the view's recorded exposure, or the input's units.
+  const std::string model = " --model " + (work / "l" / "best.pt").string();
+  const auto infer = [&](const fs::path& input, const std::string& out, const std::string& extra) {
+    EXPECT_EQ(std::system((bin + "infer" + model + " --input " + input.string() + " --out " + (work / out).string() +
+                           " --seed 3" + extra + log).c_str()), 0);
+    std::ifstream f(work / out / "infer.json");
+    return nlohmann::json::parse(f)["radiance"];
+  };
+  const double stops = pm::read_input_exposure(val_view).stops;
+  const nlohmann::json abs = infer(val_view / "input.png", "abs", "");
+  EXPECT_EQ(abs["unit"], "absolute");
+  EXPECT_NEAR(abs["exposure_stops"].get<double>(), stops, 1e-6);
+  const nlohmann::json rel = infer(val_view / "input.png", "rel", " --radiance input");
+  EXPECT_EQ(rel["unit"], "input");
+  const torch::Tensor pa = pm::image_to_tensor(phyir::read_image(work / "abs" / "probes.exr"));
+  const torch::Tensor pr = pm::image_to_tensor(phyir::read_image(work / "rel" / "probes.exr"));
+  EXPECT_TRUE(torch::allclose(pa, pr * std::exp2(-stops), 1e-5, 1e-9));
+  // Without view.json or --exposure the unit is the input's; --exposure makes it absolute.
+  fs::create_directories(work / "bare");
+  fs::copy_file(val_view / "input.png", work / "bare" / "pano.png");
+  EXPECT_EQ(infer(work / "bare" / "pano.png", "bare_out", "")["unit"], "input");
+  const nlohmann::json given = infer(work / "bare" / "pano.png", "given_out", " --exposure 1.5");
+  EXPECT_EQ(given["unit"], "absolute");
+  EXPECT_EQ(given["exposure_source"], "--exposure");
 }

@@ -3,7 +3,9 @@
 // and functions, so the CLI (and anything else) compiles without LibTorch's headers.
 // Network, rendering layer and losses: model/src (private, torch types). Docs: docs/model.md.
 #include <cstdint>
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace phyir::model {
@@ -43,6 +45,33 @@ struct StageDefaults {
 };
 StageDefaults stage_defaults(Stage stage);
 
+// Training-time augmentation (model/src/augment.h, docs/model.md "Augmentation"). Each draw
+// depends only on (seed, epoch, view), so runs are reproducible and resumable.
+struct AugmentOptions {
+  bool enabled = true;     // off: every view as loaded (validation and evaluation never augment)
+  bool rotate = true;      // yaw: a circular shift of the panorama by a multiple of 1/gcd(widths)
+  bool mirror = true;      // horizontal flip (x -> -x), with probability 1/2
+  double exposure_min_stops = -1.0;  // exposure jitter U[min, max) stops on input and targets
+  double exposure_max_stops = 0.5;   // (equal: no jitter)
+};
+
+// Validation on the dataset's `split` every `every` epochs (model/src/validation.h).
+struct ValidationOptions {
+  std::string split = "val";   // empty, or a dataset without this split: no validation
+  int every = 1;               // epochs between passes (0: never)
+  int max_views = 16;          // the first N views of the split (0: all)
+  std::string best_metric = "val_loss";  // val_loss or a `phyir eval` metric (docs/model.md)
+};
+
+// The learning rate over the run (model/src/lr_schedule.h). The base rate is TrainOptions'.
+struct LrScheduleOptions {
+  std::string kind;          // constant (the paper's), step or cosine; empty: constant, or
+                             // the checkpoint's when resuming
+  int step_epochs = 0;       // step: multiply by gamma every N epochs (0: a third of --epochs)
+  double gamma = 0.1;        // step
+  double min_fraction = 0.01;  // cosine: the last step's rate over the base rate
+};
+
 struct TrainOptions {
   std::string data_dir;     // a dataset (manifest.json, docs/dataset.md) or a folder of view folders
   std::string split = "train";  // the manifest's split to train on (empty: every view)
@@ -64,6 +93,19 @@ struct TrainOptions {
   int max_views = 0;           // use only the first N views (0: all)
   bool progress = true;        // one line per step with live loss values
   std::string plot_script;     // scripts/plot_training.py; empty: no loss-curve PNG
+  AugmentOptions augment;
+  ValidationOptions validation;
+  LrScheduleOptions schedule;
+};
+
+// One validation pass: the stage's loss on the validation views and `phyir eval`'s metrics
+// (NaN where the stage's networks do not predict them).
+struct ValidationRecord {
+  int epoch = 0;               // epochs done when it ran
+  int64_t step = 0;            // optimiser steps done when it ran
+  double loss = 0.0;                                        // the stage's weighted loss
+  std::vector<std::pair<std::string, double>> loss_parts;   // its components, unweighted
+  std::vector<std::pair<std::string, double>> metrics;      // `phyir eval`'s, absolute radiance
 };
 
 struct TrainSummary {
@@ -74,6 +116,10 @@ struct TrainSummary {
   std::vector<double> epoch_losses;  // mean loss per epoch run in this call
   std::string checkpoint;
   std::string plot;            // loss-curve PNG, empty if not written
+  std::vector<ValidationRecord> validations;  // the passes run in this call
+  std::string best_checkpoint; // best.pt, empty when no validation ran
+  double best_value = 0.0;     // of options.validation.best_metric
+  int best_epoch = 0;
 };
 
 // Runs one stage. Throws phyir::Error on bad data, bad options, or a non-finite loss (the
@@ -82,16 +128,20 @@ TrainSummary train(const TrainOptions& options);
 
 struct InferOptions {
   std::string checkpoint;
-  std::string input;        // panorama .png (LDR, as input.png) or .exr (HDR: tone-mapped first)
+  std::string input;        // panorama .png (LDR, as input.png) or .exr/.hdr (HDR: exposed, then sRGB)
   std::string out_dir;
   int threads = 1;
   uint64_t seed = 1;        // the rendering layer's Monte-Carlo samples
-  double exposure = 0.0;    // stops, for an .exr input
+  // The input's exposure in stops (input = display(2^stops x radiance)). NaN: for an HDR
+  // input the dataset's auto exposure; for a .png its folder's view.json, else unknown.
+  double exposure = std::numeric_limits<double>::quiet_NaN();
+  bool absolute = true;     // probes and re-render in absolute radiance when the exposure is
+                            // known; false (or unknown exposure): in the input's relative units
 };
 
 // Writes depth.exr, normal.exr, basecolor.exr, roughness.exr, metalness.exr (input
 // resolution), probes.exr (mosaic), probe_mask.exr, rerender.exr (rendering resolution),
-// input.png and infer.json, in the renderer's conventions.
+// input.png and infer.json (with the radiance unit), in the renderer's conventions.
 void infer(const InferOptions& options);
 
 // The rendering layer on ground truth: a view folder's own maps and probes (probes.exr,
