@@ -20,7 +20,7 @@ void add_infer_command(CLI::App& app) {
       "infer", "Run a trained network on a panorama: depth, normal, base colour, roughness, metalness, "
                "probes and the re-rendered image, in the renderer's conventions");
   cmd->add_option("--model", o->checkpoint, "checkpoint.pt written by phyir train")->check(CLI::ExistingFile);
-  cmd->add_option("--input", o->input, "equirect panorama: .png (LDR) or .exr (HDR, tone-mapped with --exposure)")
+  cmd->add_option("--input", o->input, "equirect panorama: .png (LDR, as input.png) or .exr/.hdr (HDR: exposed, then sRGB-encoded)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", o->out_dir, "output folder")->required();
   cmd->add_option("--threads", o->threads, "torch threads")->capture_default_str();

@@ -75,7 +75,7 @@ struct LrScheduleOptions {
 struct TrainOptions {
   std::string data_dir;     // a dataset (manifest.json, docs/dataset.md) or a folder of view folders
   std::string split = "train";  // the manifest's split to train on (empty: every view)
-  std::string out_dir;      // checkpoint.pt, train_log.csv/json, loss_curve.png
+  std::string out_dir;      // checkpoint.pt, best.pt, train_log.csv/json, val_log.csv, loss_curve.png
   Stage stage = Stage::kGMNet;
   ModelConfig config;       // ignored when `init` or `resume` gives one (the checkpoint's wins)
   int epochs = 1;
