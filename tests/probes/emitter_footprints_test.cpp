@@ -89,5 +89,51 @@ TEST(EmitterFootprints, ADiagonalInsideAPanelIsNoOutlineACreaseIs) {
   }
 }
 
+// Fraction of texel (row, col) of an h x w probe at `origin` that the sphere (centre, radius)
+// covers (a 32 x 32 grid of directions).
+double sphere_coverage(const glm::vec3& origin, const glm::vec3& centre, float radius, int row, int col, int h, int w) {
+  constexpr int n = 32;
+  int hits = 0;
+  const glm::vec3 oc = centre - origin;
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) {
+      const glm::vec3 d = probe_texel_direction(row, col, h, w, glm::vec2((a + 0.5f) / n, (b + 0.5f) / n));
+      const float along = glm::dot(oc, d);
+      hits += along > 0.0f && glm::dot(oc, oc) - along * along <= radius * radius;
+    }
+  return double(hits) / (n * n);
+}
+
+TEST(EmitterFootprints, ManyTriangleLightsFarOrNearMarkEveryTexelTheyCover) {
+  // A lamp shade of real furniture has thousands of emissive triangles: far away they are
+  // marked as clusters (a cap per cluster), near as triangles. Either way no texel a light
+  // covers may be missed, towards the horizon, over a pole, or from inside the lamp's reach.
+  const int h = 16, w = 32;
+  const float radius = 0.2f;
+  for (const glm::vec3 centre : {glm::vec3(3.0f, 0.4f, -1.0f), glm::vec3(0.05f, 2.5f, 0.0f),
+                                 glm::vec3(-0.1f, -0.3f, 0.35f), glm::vec3(0.0f, 0.0f, 40.0f)}) {
+    scenes::Scene scene;
+    const int light = test::add_material(scene, test::make_emitter(glm::vec3(10.0f), true));
+    test::add_uv_sphere(scene, centre, radius, light, 64, 32, false, "lamp shade");  // ~4000 triangles
+    const EmitterFootprints footprints(scene);
+    std::vector<uint8_t> flags(size_t(h) * w, 0);
+    footprints.mark(glm::vec3(0.0f), h, w, &flags);
+    int covered = 0, marked = 0;
+    for (int r = 0; r < h; ++r)
+      for (int c = 0; c < w; ++c) {
+        // The tessellated sphere holds the sphere of radius cos(pi / 32) times its own.
+        const bool seen = sphere_coverage(glm::vec3(0.0f), centre, radius * 0.99f, r, c, h, w) > 0.0;
+        const uint8_t f = flags[size_t(r) * w + c];
+        covered += seen;
+        marked += f != 0;
+        if (seen) EXPECT_NE(f, 0) << "light at " << centre.x << "," << centre.y << "," << centre.z << " texel " << r
+                                  << "," << c;
+      }
+    EXPECT_GT(covered, 0);
+    // Far and small, a light is marked with a margin of a texel around it, not everywhere.
+    if (glm::length(centre) > 10.0f) EXPECT_LE(marked, 16) << "far light";
+  }
+}
+
 }  // namespace
 }  // namespace phyir::render

@@ -28,6 +28,7 @@ EmitterFootprints::EmitterFootprints(const scenes::Scene& scene) {
     }
     triangles_.push_back(tri);
   }
+  build_clusters();
 }
 
 namespace {
@@ -48,10 +49,14 @@ constexpr int kEdgeSamples = 16;  // points per edge for the box, at least, for 
 }  // namespace
 
 void EmitterFootprints::mark(const glm::vec3& origin, int h, int w, std::vector<uint8_t>* flags) const {
-  for (const Triangle& tri : triangles_) {
-    if (!tri.seen_from(origin)) continue;  // its back
-    mark_box(tri, origin, h, w, flags);
-    mark_outline(tri, origin, h, w, flags);
+  for (const Cluster& c : clusters_) {
+    if (!c.whole_light && mark_small_cluster(c, origin, h, w, flags)) continue;
+    for (uint32_t k = c.first; k < c.first + c.count; ++k) {
+      const Triangle& tri = triangles_[k];
+      if (!tri.seen_from(origin)) continue;  // its back
+      mark_box(tri, origin, h, w, flags);
+      mark_outline(tri, origin, h, w, flags);
+    }
   }
 }
 

@@ -26,19 +26,37 @@ class EmitterFootprints {
   // points sampled densely along its edges, grown by one texel, or the whole cap when the
   // triangle surrounds a pole. Texels that a point of the light's outline (the triangle
   // edges no other emissive triangle of its mesh shares, sampled at 1/8 of a texel) falls
-  // in are raised to kEdge: there coverage is partial.
+  // in are raised to kEdge: there coverage is partial. A cluster of nearby light triangles
+  // (a lamp shade of real furniture has thousands) that subtends less than a texel is marked
+  // as the cap of its bounding sphere, all kEdge: a per-probe cost in clusters, not triangles.
+  // A light of at most 32 triangles (a panel, a box) is marked triangle by triangle: as cheap,
+  // and tighter.
   void mark(const glm::vec3& origin, int h, int w, std::vector<uint8_t>* flags) const;
 
  private:
   struct Triangle : LightTriangle {
     bool outline[3];  // edge p[e] -> p[e+1] is on the light's outline (not shared in its mesh)
   };
-  // The two steps of mark(): the texel box (kCovered), the outline's texels (kEdge).
+  // Up to kClusterSize triangles of one mesh, close together: triangles_[first, first + count).
+  struct Cluster {
+    glm::vec3 center{0.0f};
+    float radius = 0.0f;  // of a sphere holding every vertex
+    uint32_t first = 0, count = 0;
+    bool whole_light = false;  // all the light triangles of its mesh (at most kClusterSize)
+  };
+  static constexpr uint32_t kClusterSize = 32;
+  // Sorts triangles_ into clusters (median splits along the longest axis, per mesh).
+  void build_clusters();
+  // Marks the cap of the cluster's bounding sphere (kEdge) when it is smaller than a texel
+  // seen from `origin`; false (nothing marked) when it is not.
+  bool mark_small_cluster(const Cluster& c, const glm::vec3& origin, int h, int w, std::vector<uint8_t>* flags) const;
+  // The two steps of marking a triangle: the texel box (kCovered), the outline's texels (kEdge).
   void mark_box(const Triangle& tri, const glm::vec3& origin, int h, int w, std::vector<uint8_t>* flags) const;
   void mark_outline(const Triangle& tri, const glm::vec3& origin, int h, int w, std::vector<uint8_t>* flags) const;
   // Whether the ray from `o` along `d` crosses the triangle (Moller-Trumbore).
   static bool surrounds(const Triangle& t, const glm::vec3& o, const glm::vec3& d);
   std::vector<Triangle> triangles_;
+  std::vector<Cluster> clusters_;
 };
 
 }  // namespace phyir::render
