@@ -115,7 +115,11 @@ ApartmentSummary generate_apartment(const fs::path& out_dir, int index, uint64_t
   RoomSummary& files = summary.files;
   files.file = stem + ".gltf";
   files.meshes = doc.meshes.size();
-  for (const GltfMesh& m : doc.meshes) files.triangles += m.indices.size() / 3;
+  for (const GltfMesh& m : doc.meshes) {
+    files.triangles += m.indices.size() / 3;
+    const bool glows = m.material >= 0 && glm::length(doc.materials[size_t(m.material)].emissive_factor) > 0.0f;
+    files.emissive_meshes += glows;
+  }
   files.materials = doc.materials.size();
   files.textures = doc.textures.size();
   files.cameras = doc.cameras.size();
