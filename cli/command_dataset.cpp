@@ -20,6 +20,8 @@
 
 namespace phyir::cli {
 
+void add_dataset_futurehouse_commands(CLI::App* dataset);  // command_dataset_futurehouse.cpp
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -345,13 +347,14 @@ void add_stats(CLI::App* dataset) {
 }  // namespace
 
 void add_dataset_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("dataset", "Datasets: generate (resumable, sharded), verify, merge, slurm, stats");
+  auto* cmd = app.add_subcommand("dataset", "Datasets: generate (resumable, sharded), verify, merge, slurm, stats, import-/export-futurehouse");
   cmd->require_subcommand(1);
   add_generate(cmd);
   add_verify(cmd);
   add_merge(cmd);
   add_slurm(cmd);
   add_stats(cmd);
+  add_dataset_futurehouse_commands(cmd);
 }
 
 }  // namespace phyir::cli
