@@ -9,6 +9,7 @@
 #include <memory>
 #include <sstream>
 
+#include "bench_suite_runner.h"
 #include "commands.h"
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
@@ -27,6 +28,8 @@ namespace {
 
 struct BenchFlags {
   std::string scene;
+  std::string suite;                 // suite.json: measure on every scene of it instead
+  std::optional<glm::vec3> camera;   // from the suite; else the scene's camera
   std::string out = "bench-out";
   int width = 256;
   int height = 128;
@@ -51,6 +54,7 @@ std::unique_ptr<Loaded> load(const BenchFlags& f) {
   render::RenderJob job;
   job.width = f.width;
   job.height = f.height;
+  job.camera_position = f.camera;
   l->camera = render::job_camera(job, l->scene, nullptr);
   return l;
 }
@@ -64,7 +68,9 @@ render::RenderSettings settings_of(const BenchFlags& f) {
 }
 
 void add_common(CLI::App* cmd, BenchFlags& f) {
-  cmd->add_option("scene", f.scene, "glTF scene to measure on")->required()->check(CLI::ExistingFile);
+  cmd->add_option("scene", f.scene, "glTF scene to measure on (or --suite)")->check(CLI::ExistingFile);
+  cmd->add_option("--suite", f.suite, "suite.json of 'phyir bench suite': measure on every scene, into OUT/<name>/")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--out", f.out, "folder for CSV, PNG and JSON results")->capture_default_str();
   cmd->add_option("--width", f.width, "panorama width")->capture_default_str();
   cmd->add_option("--height", f.height, "panorama height")->capture_default_str();
@@ -100,6 +106,11 @@ void run_convergence(const BenchFlags& f) {
   }
   const fs::path csv_path = fs::path(f.out) / "convergence.csv";
   write_file_atomic(csv_path, csv.str());
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& p : points)
+    rows.push_back({{"spp", p.spp}, {"seconds", p.seconds}, {"relative_rmse", p.relative_rmse}});
+  write_file_atomic(fs::path(f.out) / "convergence.json",
+                    nlohmann::json{{"scene", f.scene}, {"points", rows}, {"machine", machine_description()}}.dump(2) + "\n");
   write_file_atomic(fs::path(f.out) / "machine.txt", machine_description() + "\n");
   const fs::path script = fs::path(PHYIR_SOURCE_ROOT) / "scripts" / "plot_convergence.py";
   const std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + csv_path.string() + "' '" +
@@ -150,26 +161,34 @@ void add_bench_command(CLI::App& app) {
   auto* bench = app.add_subcommand("bench", "Measure what accuracy costs in time (long; not part of the tests)");
   bench->require_subcommand(1);
   auto f = std::make_shared<BenchFlags>();
-  auto with_threads = [f](void (*run)(const BenchFlags&)) {
-    return [f, run] {
+  auto with_threads = [f](void (*run)(const BenchFlags&), const char* result_file) {
+    return [f, run, result_file] {
       const int threads = f->threads > 0 ? f->threads : tbb::info::default_concurrency();
       tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-      run(*f);
+      if (f->suite.empty() == f->scene.empty()) fail("phyir bench: give either a SCENE or --suite FILE");
+      if (f->suite.empty()) return run(*f);
+      run_on_suite(f->suite, f->out, result_file,
+                   [&](const fs::path& scene, const std::optional<glm::vec3>& camera, const fs::path& dir) {
+                     BenchFlags one = *f;
+                     one.scene = scene.string(), one.camera = camera, one.out = dir.string();
+                     run(one);
+                   });
     };
   };
   auto* conv = bench->add_subcommand("convergence", "RMSE against a converged reference versus seconds, for increasing spp");
   add_common(conv, *f);
   conv->add_option("--spp-list", f->spp_list, "spp values to measure")->delimiter(',')->capture_default_str();
   conv->add_option("--reference-spp", f->reference_spp, "spp of the converged reference")->capture_default_str();
-  conv->callback(with_threads(&run_convergence));
+  conv->callback(with_threads(&run_convergence, "convergence.json"));
   auto* eff = bench->add_subcommand("effects", "time saved by the scene's specialised kernel versus every effect forced on");
   add_common(eff, *f);
   eff->add_option("--repeats", f->repeats, "best of this many runs")->capture_default_str();
-  eff->callback(with_threads(&run_effects));
+  eff->callback(with_threads(&run_effects, "effects.json"));
   auto* thr = bench->add_subcommand("throughput", "integrator rays/s as a fraction of raw Embree throughput");
   add_common(thr, *f);
-  thr->callback(with_threads(&run_throughput));
+  thr->callback(with_threads(&run_throughput, "throughput.json"));
   add_bench_probes_command(*bench);
+  add_bench_suite_command(*bench);
   add_bench_model_command(*bench);
 }
 

@@ -17,6 +17,7 @@
 #include <memory>
 #include <sstream>
 
+#include "bench_suite_runner.h"
 #include "commands.h"
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
@@ -38,6 +39,8 @@ namespace {
 
 struct BenchProbeFlags {
   std::string scene;
+  std::string suite;                 // suite.json: measure on every scene of it instead
+  std::optional<glm::vec3> camera;   // from the suite; else the scene's camera
   std::string out = "bench-probes";
   std::string grid = "128x256";
   std::vector<std::string> res_list = {"16x32"};
@@ -114,6 +117,7 @@ void run_bench_probes(const BenchProbeFlags& f) {
   render::RenderJob job;
   job.width = f.width;
   job.height = f.height;
+  job.camera_position = f.camera;
   const render::CameraModel camera = render::job_camera(job, scene, nullptr);
   const render::Effects effects = render::analyse_effects(scene, false);
   fs::create_directories(f.out);
@@ -260,7 +264,9 @@ void run_bench_probes(const BenchProbeFlags& f) {
 void add_bench_probes_command(CLI::App& bench) {
   auto f = std::make_shared<BenchProbeFlags>();
   auto* cmd = bench.add_subcommand("probes", "light probes: relative RMSE against a converged reference versus seconds, per mode and setting");
-  cmd->add_option("scene", f->scene, "glTF scene to measure on")->required()->check(CLI::ExistingFile);
+  cmd->add_option("scene", f->scene, "glTF scene to measure on (or --suite)")->check(CLI::ExistingFile);
+  cmd->add_option("--suite", f->suite, "suite.json of 'phyir bench suite': measure on every scene, into OUT/<name>/")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--out", f->out, "folder for probes.csv, probes.png, probes.json and the cached references")->capture_default_str();
   cmd->add_option("--grid", f->grid, "probe grid HxW the times are measured on")->capture_default_str();
   cmd->add_option("--res-list", f->res_list, "probe resolutions hxw")->delimiter(',')->capture_default_str();
@@ -277,7 +283,14 @@ void add_bench_probes_command(CLI::App& bench) {
   cmd->callback([f] {
     const int threads = f->threads > 0 ? f->threads : tbb::info::default_concurrency();
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    run_bench_probes(*f);
+    if (f->suite.empty() == f->scene.empty()) fail("phyir bench probes: give either a SCENE or --suite FILE");
+    if (f->suite.empty()) return run_bench_probes(*f);
+    run_on_suite(f->suite, f->out, "probes.json",
+                 [&](const fs::path& scene, const std::optional<glm::vec3>& camera, const fs::path& dir) {
+                   BenchProbeFlags one = *f;
+                   one.scene = scene.string(), one.camera = camera, one.out = dir.string();
+                   run_bench_probes(one);
+                 });
   });
 }
 

@@ -17,6 +17,7 @@ void add_eval_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_bench_probes_command(CLI::App& bench);      // command_bench_probes.cpp
 void add_bench_model_command(CLI::App& bench);       // command_bench_model.cpp
+void add_bench_suite_command(CLI::App& bench);       // command_bench_suite.cpp
 void add_assets_command(CLI::App& app);             // command_assets*.cpp
 
 // For commands whose issue has not landed: exits with status 3 and says so.
