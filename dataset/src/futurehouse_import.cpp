@@ -364,7 +364,9 @@ json import_settings(const ImportContext& ctx, const fs::path& split_file, const
               {"mosaic", {ctx.grid_height * ctx.probe_height, ctx.grid_width * ctx.probe_width}}};
   const char* probe_mode = o.probes == ImportProbes::kAuto ? "auto" : o.probes == ImportProbes::kNone ? "none" : "only";
   return tidy_floats({{"preset", "futurehouse"},
-                      {"render", {{"projection", "equirect"}, {"width", ctx.width}, {"height", ctx.height}, {"aovs", true}}},
+                      // spp 0: nothing was rendered here (readers such as `dataset stats` expect the key)
+                      {"render",
+                       {{"projection", "equirect"}, {"width", ctx.width}, {"height", ctx.height}, {"spp", 0}, {"aovs", true}}},
                       {"probes", probes},
                       {"input", s.to_json()["input"]},
                       {"views_per_scene", ctx.views_per_scene},
