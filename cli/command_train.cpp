@@ -49,6 +49,10 @@ void add_train_command(CLI::App& app) {
   cmd->add_option("--specular-samples", c.specular_samples, "rendering layer specular samples (paper 256)")->capture_default_str();
   cmd->add_option("--width-divisor", c.width_divisor, "divide every channel count by 2 or 4 (quick experiments; 1 = the paper)")->capture_default_str();
   cmd->add_option("--lnet-head", c.lnet_head, "LNet's last two layers: paper (A.2, 3x3 to h*w*3) or light (1x1; docs/model.md)")->capture_default_str();
+  cmd->add_option("--target-units", o->target_units,
+                  "study switch: LNet's probe and re-render targets in input units (x 2^exposure_stops, the "
+                  "default) or absolute (as before the exposure fix); overrides --init's")
+      ->check(CLI::IsMember({"input", "absolute"}));
   auto* wopt = cmd->add_option_group("loss weights", "override every weight of the stage (defaults: B.1)");
   auto* first = wopt->add_option("--w-basecolor", w->base_color, "beta_B");
   wopt->add_option("--w-roughness", w->roughness, "beta_R");

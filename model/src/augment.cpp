@@ -79,30 +79,31 @@ ViewTensors mirror_view(const ViewTensors& v) {
   return r;
 }
 
-ViewTensors expose_view(const ViewTensors& v, double stops) {
+ViewTensors expose_view(const ViewTensors& v, double stops, Radiance units) {
   if (stops == 0.0) return v;
   ViewTensors r = v;
   const double f = std::exp2(stops);
   r.image = reexpose_ldr(v.image, f, v.exposure.raw_view);
+  if (units == Radiance::kAbsolute) return r;
   r.color_lo = v.color_lo * f;
   if (v.probes.defined()) r.probes = v.probes * f;
   return r;
 }
 
-ViewTensors augment_view(const ViewTensors& v, const AugmentDraw& d, int divisions) {
+ViewTensors augment_view(const ViewTensors& v, const AugmentDraw& d, int divisions, Radiance units) {
   ViewTensors r = rotate_view(v, d.yaw_steps, divisions);
   if (d.mirror) r = mirror_view(r);
-  return expose_view(r, d.exposure_stops);
+  return expose_view(r, d.exposure_stops, units);
 }
 
 Batch augmented_batch(const std::vector<ViewTensors>& views, const std::vector<size_t>& indices,
-                      const AugmentOptions& options, int divisions, uint64_t seed, int epoch) {
+                      const AugmentOptions& options, int divisions, uint64_t seed, int epoch, Radiance units) {
   if (!options.enabled) return make_batch(views, indices);
   std::vector<ViewTensors> augmented;
   std::vector<size_t> all;
   for (size_t i : indices) {
     all.push_back(augmented.size());
-    augmented.push_back(augment_view(views[i], draw_augment(options, divisions, seed, epoch, i), divisions));
+    augmented.push_back(augment_view(views[i], draw_augment(options, divisions, seed, epoch, i), divisions, units));
   }
   return make_batch(augmented, all);
 }

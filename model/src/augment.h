@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "data.h"
+#include "exposure.h"
 #include "phyir/model/training.h"
 
 namespace phyir::model {
@@ -39,14 +40,17 @@ torch::Tensor rotate_about_y(const torch::Tensor& vectors, double turns);
 ViewTensors rotate_view(const ViewTensors& view, int steps, int divisions);
 // The view of the world mirrored in x (column j -> W-1-j, u -> 1-u).
 ViewTensors mirror_view(const ViewTensors& view);
-// The view written at 2^stops times its exposure (exposure.h's reexpose_ldr; targets scaled).
-ViewTensors expose_view(const ViewTensors& view, double stops);
+// The view written at 2^stops times its exposure (exposure.h's reexpose_ldr); targets in input
+// units scaled by the same factor, absolute ones unchanged (the scene's radiance is the same).
+ViewTensors expose_view(const ViewTensors& view, double stops, Radiance units = Radiance::kInputUnits);
 
-ViewTensors augment_view(const ViewTensors& view, const AugmentDraw& draw, int divisions);
+ViewTensors augment_view(const ViewTensors& view, const AugmentDraw& draw, int divisions,
+                         Radiance units = Radiance::kInputUnits);
 
 // The training batch of views[indices] in `epoch`, each view augmented by its own draw
-// (make_batch without augmentation when options.enabled is false).
+// (make_batch without augmentation when options.enabled is false); `units`: the targets' unit.
 Batch augmented_batch(const std::vector<ViewTensors>& views, const std::vector<size_t>& indices,
-                      const AugmentOptions& options, int divisions, uint64_t seed, int epoch);
+                      const AugmentOptions& options, int divisions, uint64_t seed, int epoch,
+                      Radiance units = Radiance::kInputUnits);
 
 }  // namespace phyir::model

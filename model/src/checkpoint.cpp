@@ -5,6 +5,7 @@
 
 #include <mutex>
 
+#include "exposure.h"
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
 
@@ -19,7 +20,7 @@ json config_to_json(const ModelConfig& c) {
           {"probe_height", c.probe_height},   {"probe_width", c.probe_width},
           {"diffuse_samples", c.diffuse_samples}, {"specular_samples", c.specular_samples},
           {"guided_radius", c.guided_radius}, {"width_divisor", c.width_divisor},
-          {"lnet_head", c.lnet_head}};
+          {"lnet_head", c.lnet_head}, {"target_units", c.target_units}};
 }
 
 ModelConfig config_from_json(const json& j) {
@@ -35,6 +36,7 @@ ModelConfig config_from_json(const json& j) {
   c.guided_radius = j.at("guided_radius");
   c.width_divisor = j.value("width_divisor", 1);
   c.lnet_head = j.value("lnet_head", std::string("paper"));
+  c.target_units = j.value("target_units", std::string("input"));  // checkpoints before the switch
   return c;
 }
 
@@ -63,6 +65,7 @@ void check_config(const ModelConfig& c) {
     fail("width divisor {}: 1 (the paper's network), 2 or 4", c.width_divisor);
   if (c.lnet_head != "paper" && c.lnet_head != "light")
     fail("LNet head '{}': paper (appendix A.2) or light (docs/model.md)", c.lnet_head);
+  target_radiance(c);  // an unknown unit fails here
 }
 
 Networks::Networks(const ModelConfig& c)

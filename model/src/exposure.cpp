@@ -22,6 +22,13 @@ double linear_slope() { return std::pow((kEncodedBreak + kOffset) / (1.0 + kOffs
 
 }  // namespace
 
+Radiance target_radiance(const ModelConfig& config) {
+  if (config.target_units == "input") return Radiance::kInputUnits;
+  if (config.target_units == "absolute") return Radiance::kAbsolute;
+  fail("target units '{}': input (x 2^exposure_stops of each view, the default) or absolute (the files' radiance)",
+       config.target_units);
+}
+
 InputExposure read_input_exposure(const fs::path& view_dir) {
   InputExposure e;
   const fs::path path = view_dir / "view.json";

@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <string>
 
+#include "phyir/model/training.h"
+
 namespace phyir::model {
 
 // The unit load_view returns radiance (probes, colour) in.
@@ -18,6 +20,11 @@ enum class Radiance {
   kAbsolute,    // as color.exr and probes.exr hold it
   kInputUnits,  // x 2^exposure_stops: input.png's linear scale
 };
+
+// The unit a run trains LNet's targets in: ModelConfig::target_units "input" (the default) or
+// "absolute" (targets as the files hold them: the behaviour before the exposure fix, kept as a
+// study switch for the with/without comparison). Anything else: phyir::Error naming the value.
+Radiance target_radiance(const ModelConfig& config);
 
 struct InputExposure {
   double stops = 0.0;

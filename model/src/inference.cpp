@@ -59,7 +59,11 @@ Panorama read_panorama(const InferOptions& o) {
   return p;
 }
 
-json radiance_record(const Panorama& p, bool absolute) {
+json radiance_record(const Panorama& p, bool absolute, bool trained_absolute) {
+  if (trained_absolute)
+    return {{"unit", "absolute"}, {"exposure_stops", std::isfinite(p.exposure_stops) ? json(p.exposure_stops) : json()},
+            {"meaning", "radiance as color.exr and probes.exr hold it: the network's output (trained with "
+                        "--target-units absolute)"}};
   if (absolute)
     return {{"unit", "absolute"}, {"exposure_stops", p.exposure_stops}, {"exposure_source", p.exposure_source},
             {"meaning", "radiance as color.exr and probes.exr hold it: the network's output / 2^exposure_stops"}};
@@ -90,12 +94,14 @@ void infer(const InferOptions& o) {
   const torch::Tensor x = resize(pano.image, cfg.input_height, cfg.input_width).clamp(0.0, 1.0);
   const bool use_gs = meta.at("trained").value("gsnet", false);
   const ModelOutput p = predict(nets, cfg, x, use_gs, true);
-  const bool absolute = o.absolute && std::isfinite(pano.exposure_stops);
+  // A model trained on absolute targets (--target-units absolute) predicts absolute radiance.
+  const bool trained_absolute = target_radiance(cfg) == Radiance::kAbsolute;
+  const bool absolute = trained_absolute || (o.absolute && std::isfinite(pano.exposure_stops));
   if (o.absolute && !absolute)
     spdlog::warn("{}: the input's exposure is unknown (no --exposure, no view.json beside it): probes.exr and "
                  "rerender.exr are in the input's relative units",
                  o.input);
-  const double to_output = absolute ? std::exp2(-pano.exposure_stops) : 1.0;
+  const double to_output = absolute && !trained_absolute ? std::exp2(-pano.exposure_stops) : 1.0;
 
   const fs::path out(o.out_dir);
   fs::create_directories(out);
@@ -117,7 +123,7 @@ void infer(const InferOptions& o) {
                {"maps_resolution", {Wp, Hp}}, {"network_input_resolution", {cfg.input_width, cfg.input_height}},
                {"probe_grid", {cfg.render_width, cfg.render_height}},
                {"trained", meta.at("trained")}, {"guided_filter_applied", use_gs},
-               {"radiance", radiance_record(pano, absolute)},
+               {"radiance", radiance_record(pano, absolute, trained_absolute)},
                {"conventions", {{"equirect", "row 0 = +Y, centre column = -Z, u = 0.5 + atan2(x,-z)/2pi, v = acos(y)/pi"},
                                 {"depth", "Euclidean distance, metres"}, {"normal", "world space, unit"},
                                 {"probes", "mosaic: probe (i,j) is the h x w world-oriented equirect block at row i*h, col j*w"}}},
@@ -128,7 +134,8 @@ void infer(const InferOptions& o) {
   spdlog::info("infer: wrote {}; probes and re-render in {} (GMNet {:.0f} ms, GSNet {:.0f} ms, LNet + rendering "
                "{:.0f} ms)",
                out.string(),
-               absolute ? fmt::format("absolute radiance (exposure {:+.3f} stops, {})", pano.exposure_stops,
+               trained_absolute ? std::string("absolute radiance (the model was trained on absolute targets)")
+               : absolute ? fmt::format("absolute radiance (exposure {:+.3f} stops, {})", pano.exposure_stops,
                                       pano.exposure_source)
                         : std::string("the input's relative units"),
                p.gmnet_ms, p.gsnet_ms, p.light_ms);

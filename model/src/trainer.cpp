@@ -97,6 +97,16 @@ void Trainer::settle_settings() {
   config_ = o_.config;
   if (o_.resume) config_ = config_from_json(resumed_.at("config"));
   else if (!o_.init.empty()) config_ = read_checkpoint_config(o_.init);
+  // The targets' unit may change at --init (GMNet's maps have none, so one GMNet stage can start
+  // both arms of the exposure study); a resume keeps its run's.
+  if (!o_.target_units.empty() && o_.target_units != config_.target_units) {
+    if (o_.resume)
+      fail("--resume: --target-units {} differs from the checkpoint's {} (a resumed run keeps its unit)",
+           o_.target_units, config_.target_units);
+    if (!o_.init.empty())
+      spdlog::info("--target-units {}: replaces {}'s {}", o_.target_units, o_.init, config_.target_units);
+  }
+  if (!o_.target_units.empty()) config_.target_units = o_.target_units;
   check_config(config_);
 }
 
@@ -144,7 +154,7 @@ void Trainer::build_networks() {
 void Trainer::load_data() {
   std::vector<fs::path> folders = find_view_folders(o_.data_dir, o_.split);
   if (o_.max_views > 0 && folders.size() > static_cast<size_t>(o_.max_views)) folders.resize(o_.max_views);
-  for (const auto& f : folders) views_.push_back(load_view(f, config_, Radiance::kInputUnits));
+  for (const auto& f : folders) views_.push_back(load_view(f, config_, target_radiance(config_)));
   if (stage_.lnet && !views_.front().probes.defined())
     fail("stage {}: {} has no probes.exr (render the dataset with probes)", stage_name_, folders.front().string());
   const int64_t n_views = static_cast<int64_t>(views_.size());
@@ -202,7 +212,7 @@ double Trainer::run_step(int epoch, int64_t bi, const std::vector<size_t>& order
   const auto t0 = Clock::now();
   const std::vector<size_t> idx(order.begin() + bi * batch_,
                                 order.begin() + std::min<int64_t>((bi + 1) * batch_, static_cast<int64_t>(order.size())));
-  const Batch b = augmented_batch(views_, idx, o_.augment, yaw_divisions_, o_.seed, epoch);
+  const Batch b = augmented_batch(views_, idx, o_.augment, yaw_divisions_, o_.seed, epoch, target_radiance(config_));
   const double lr = schedule_.at(global_step_);
   for (auto& group : opt_->param_groups()) static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
   const StepLoss L = stage_loss(*nets_, config_, weights_, stage_, b);

@@ -42,8 +42,9 @@ class GeneratorScope {
   torch::Tensor state_;
 };
 
-// The model's output as the eval library reads a prediction folder, radiance made absolute.
-eval::Prediction to_eval_prediction(const ModelOutput& p, const InputExposure& exposure) {
+// The model's output as the eval library reads a prediction folder, radiance made absolute
+// (a run trained on absolute targets, `units` kAbsolute, predicts it already).
+eval::Prediction to_eval_prediction(const ModelOutput& p, const InputExposure& exposure, Radiance units) {
   eval::Prediction e;
   e.depth = tensor_to_image(p.maps.depth[0]);
   e.normal = tensor_to_image(p.maps.normal[0]);
@@ -51,7 +52,7 @@ eval::Prediction to_eval_prediction(const ModelOutput& p, const InputExposure& e
   e.roughness = tensor_to_image(p.maps.roughness[0].clamp(0.0, 1.0));
   e.metalness = tensor_to_image(p.maps.metalness[0].clamp(0.0, 1.0));
   if (!p.probes.defined()) return e;
-  const double to_absolute = 1.0 / exposure.factor();
+  const double to_absolute = units == Radiance::kInputUnits ? 1.0 / exposure.factor() : 1.0;
   e.rerender = tensor_to_image(p.rerender[0] * to_absolute);
   eval::ProbeSet probes;
   probes.grid_h = static_cast<int>(p.probes.size(1));
@@ -95,7 +96,7 @@ Validator::Validator(const fs::path& root, const ValidationOptions& o, const Mod
   }
   if (o.max_views > 0 && records_.size() > static_cast<size_t>(o.max_views)) records_.resize(o.max_views);
   for (const nlohmann::json& r : records_)
-    views_.push_back(load_view(root / r.at("dir").get<std::string>(), config, Radiance::kInputUnits));
+    views_.push_back(load_view(root / r.at("dir").get<std::string>(), config, target_radiance(config)));
   higher_is_better(o.best_metric);  // an unknown metric fails before the first epoch
 }
 
@@ -146,7 +147,7 @@ ValidationRecord Validator::run(Networks& nets, const LossWeights& w, StageNetwo
     }
     const ModelOutput p = predict(nets, config_, b.image, trained.gsnet, trained.lnet);
     per_view.push_back(eval::evaluate_view(eval::load_ground_truth(root_, records_[k]),
-                                           to_eval_prediction(p, views_[k].exposure), settings));
+                                           to_eval_prediction(p, views_[k].exposure, target_radiance(config_)), settings));
   }
   const eval::Metrics mean = eval::mean_metrics(per_view);
   for (const std::string& m : metric_names()) {

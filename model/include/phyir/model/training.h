@@ -27,6 +27,9 @@ struct ModelConfig {
                                                // networks; 2 or 4 for quick experiments and tests
   std::string lnet_head = "paper";             // paper (A.2) or light: LNet's last two layers
                                                // i128-o128 k3, i128-o(h*w*3) k1 (docs/model.md)
+  std::string target_units = "input";          // the probe and re-render targets' unit: input
+                                               // (x 2^exposure_stops, the default) or absolute
+                                               // (the study's no-exposure-fix arm; docs/model.md)
 };
 
 // Loss weights (the betas of eqs. 5 and 12).
@@ -91,6 +94,8 @@ struct TrainOptions {
   int64_t max_steps = 0;       // stop after this many optimiser steps in total (0: run all epochs)
   int64_t checkpoint_every = 0;  // also checkpoint every N steps (0: at the end of each epoch only)
   int max_views = 0;           // use only the first N views (0: all)
+  std::string target_units;    // input | absolute: overrides the --init checkpoint's (a study switch,
+                               // docs/model.md "Exposure and units"); empty: the checkpoint's, else input
   bool progress = true;        // one line per step with live loss values
   std::string plot_script;     // scripts/plot_training.py; empty: no loss-curve PNG
   AugmentOptions augment;
