@@ -124,6 +124,38 @@ TEST_F(ExposureOnDataset, SameViewAtTwoExposuresGivesTheSameTargets) {
   EXPECT_TRUE(torch::allclose(a.probes, abs_a.probes * std::exp2(stops_of(view_)), 1e-6, 0));
 }
 
+// The study switch (--target-units): absolute targets are the files' radiance, input-unit
+// targets that times 2^exposure_stops of the view, and nothing else changes.
+TEST_F(ExposureOnDataset, TargetUnitsSwitchScalesTheTargetsByTheExposure) {
+  const double stops = stops_of(view_);
+  ASSERT_GT(std::abs(stops), 0.1) << "a view at 0 stops cannot tell the units apart";
+  pm::ModelConfig input = native(view_), absolute = native(view_);
+  absolute.target_units = "absolute";
+  ASSERT_EQ(pm::target_radiance(input), pm::Radiance::kInputUnits);
+  ASSERT_EQ(pm::target_radiance(absolute), pm::Radiance::kAbsolute);
+  const pm::ViewTensors a = pm::load_view(view_, input, pm::target_radiance(input));
+  const pm::ViewTensors b = pm::load_view(view_, absolute, pm::target_radiance(absolute));
+  const double factor = std::exp2(stops);
+  EXPECT_TRUE(torch::allclose(a.probes, b.probes * factor, 1e-6, 0));
+  EXPECT_TRUE(torch::allclose(a.color_lo, b.color_lo * factor, 1e-6, 0));
+  EXPECT_NEAR((a.probes.sum() / b.probes.sum()).item<double>(), factor, 1e-5 * factor);
+  EXPECT_NEAR((a.color_lo.sum() / b.color_lo.sum()).item<double>(), factor, 1e-5 * factor);
+  // The absolute targets are the files' values.
+  EXPECT_TRUE(torch::equal(b.probes, pm::load_view(view_, input, pm::Radiance::kAbsolute).probes));
+  // Input, maps and masks do not depend on the unit.
+  for (auto m : {&pm::ViewTensors::image, &pm::ViewTensors::depth, &pm::ViewTensors::normal,
+                 &pm::ViewTensors::base_color, &pm::ViewTensors::render_mask, &pm::ViewTensors::probe_mask})
+    EXPECT_TRUE(torch::equal(a.*m, b.*m));
+  pm::ModelConfig bad = input;
+  bad.target_units = "relative";
+  try {
+    pm::target_radiance(bad);
+    ADD_FAILURE() << "an unknown unit was accepted";
+  } catch (const phyir::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'relative'"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(ExposureOnDataset, RenderingLayerReproducesTheLinearInputInInputUnits) {
   const pm::ModelConfig c = native(view_);
   const double stops = stops_of(view_);

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "checkpoint.h"
 #include "data.h"
 #include "exposure.h"
 #include "nets.h"
@@ -476,6 +477,35 @@ TEST(ModelTrain, ResumeIsExactWithScheduleValidationAndBestCheckpoint) {
     const size_t last = line.rfind(','), before = line.rfind(',', last - 1);
     EXPECT_NEAR(std::stod(line.substr(before + 1, last - before - 1)), sched.at(k), 1e-12) << k;
   }
+}
+
+// --target-units: recorded in the checkpoint's configuration, inherited through --init unless
+// given again (one GMNet stage can start both arms of the exposure study), refused on a resume
+// that would change it; a checkpoint from before the switch reads as input units.
+TEST(ModelTrain, TargetUnitsAreRecordedInheritedAndFixedOnResume) {
+  const fs::path g = scratch("units_gm"), l_in = scratch("units_l_in"), l_abs = scratch("units_l_abs");
+  pm::TrainOptions o = options(g.string(), pm::Stage::kGMNet);
+  o.max_steps = 1;
+  o.target_units = "absolute";
+  pm::train(o);
+  EXPECT_EQ(pm::read_checkpoint_config((g / "checkpoint.pt").string()).target_units, "absolute");
+  pm::TrainOptions ol = options(l_in.string(), pm::Stage::kLNet);
+  ol.init = (g / "checkpoint.pt").string();
+  ol.max_steps = 1;
+  ol.target_units = "input";
+  pm::train(ol);
+  EXPECT_EQ(pm::read_checkpoint_config((l_in / "checkpoint.pt").string()).target_units, "input");
+  ol.out_dir = l_abs.string();
+  ol.target_units.clear();
+  pm::train(ol);
+  EXPECT_EQ(pm::read_checkpoint_config((l_abs / "checkpoint.pt").string()).target_units, "absolute");
+  ol.resume = true;
+  ol.max_steps = 2;
+  ol.target_units = "input";
+  EXPECT_THROW(pm::train(ol), phyir::Error);
+  nlohmann::json old = pm::config_to_json(pm::ModelConfig{});
+  old.erase("target_units");
+  EXPECT_EQ(pm::config_from_json(old).target_units, "input");
 }
 
 TEST(ModelTrain, LearningRateSchedules) {
