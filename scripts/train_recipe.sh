@@ -25,9 +25,10 @@ an interruption):
      curves/*.png (scripts/plot_training.py)
 
 Sizes (--pilot is the default):
-  --pilot                 8 apartments x 5 views, short stages: about 20-30 min on 2 cores
-  --full                  40 apartments x 8 views, longer stages: about 2-3 hours on 2 dedicated
-                          cores (estimated from the pilot's measured costs, docs/model.md)
+  --pilot                 8 apartments x 5 views, short stages: 1,190 CPU s measured (about
+                          10-12 min on 2 dedicated cores; 45 min at load 6-9 on the shared one)
+  --full                  40 apartments x 8 views, longer stages: about 4 CPU hours, 2-2.5 h on
+                          2 dedicated cores (estimated from the pilot's costs, docs/model.md)
   --count N               apartments                       [pilot 8, full 40]
   --views-per-scene K     views per apartment              [pilot 5, full 8]
   --epochs G,L,J,S        epochs of gmnet, lnet, joint, gsnet [pilot 12,6,2,6; full 30,15,3,10]
