@@ -86,8 +86,11 @@ TEST(ApartmentRealLibrary, EveryRoomFurnishedAndNoMeshesCross) {
             << f.items[b].entry->name << "), seed " << seed;
       }
     EXPECT_GT(overlapping, 0) << "no piece tucked or stacked: the mesh check was not exercised";
-    for (const scenes::PlacedAsset& p : f.items)
-      if (p.entry->is_light()) EXPECT_TRUE(p.lamp_on) << p.entry->name;
+    for (const scenes::PlacedAsset& p : f.items) {
+      if (p.entry->is_light()) {
+        EXPECT_TRUE(p.lamp_on) << p.entry->name;
+      }
+    }
   }
 }
 

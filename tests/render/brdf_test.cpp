@@ -688,7 +688,9 @@ TEST(BrdfSpecular, EvalIsTheBrdfLessItsLambertTerm) {
           const glm::vec3 fs = specular_eval(p, wo, wi);
           const glm::vec3 fd = Fd_Lambert(p.base_color, p.metalness);
           ASSERT_GE(std::min({fs.x, fs.y, fs.z}), 0.0f);
-          if (is_mirror(R)) EXPECT_EQ(fs, glm::vec3(0.0f));
+          if (is_mirror(R)) {
+            EXPECT_EQ(fs, glm::vec3(0.0f));
+          }
           const glm::vec3 f = brdf_eval(p, wo, wi);
           for (int c = 0; c < 3; ++c) EXPECT_NEAR(fd[c] + fs[c], f[c], 1e-6f * f[c]) << "R=" << R << " M=" << M;
         }

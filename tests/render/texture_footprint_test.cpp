@@ -134,7 +134,9 @@ TEST(TextureFootprint, NonCameraRaysAndGrazingHitsStayFinite) {
     const Ray ray = f.camera.generate_ray(glm::vec2(10.5f, y));
     ASSERT_GT(ray.spread, 0.0f);
     const float c = base_colour(rs, ray, true);
-    if (c >= 0.0f) EXPECT_TRUE(std::isfinite(c) && c <= 1.0f) << y;
+    if (c >= 0.0f) {
+      EXPECT_TRUE(std::isfinite(c) && c <= 1.0f) << y;
+    }
   }
   const Ray sharp{glm::vec3(0.0f, 1.5f, 0.0f), glm::normalize(glm::vec3(0.1f, -1.0f, 0.0f))};
   const float c = base_colour(rs, sharp, true);

@@ -95,8 +95,12 @@ TEST(ApartmentPlan, LivingRoomsBedroomsAndKitchensHaveWindows) {
     }
     for (size_t r = 0; r < plan.rooms.size(); ++r) {
       const RoomType t = plan.rooms[r].type;
-      if (t != RoomType::Corridor && t != RoomType::Bathroom) EXPECT_GE(windows[r], 1) << plan.rooms[r].name;
-      if (t == RoomType::Corridor) EXPECT_EQ(windows[r], 0);
+      if (t != RoomType::Corridor && t != RoomType::Bathroom) {
+        EXPECT_GE(windows[r], 1) << plan.rooms[r].name;
+      }
+      if (t == RoomType::Corridor) {
+        EXPECT_EQ(windows[r], 0);
+      }
     }
   }
 }

@@ -144,7 +144,9 @@ TEST(TextureStorage, EightBitMipLevelsStayWithinACodeOfTheFloatPyramid) {
         for (int c = 0; c < 4; ++c) EXPECT_NEAR(got[t][c], want[t][c], 0.0047f) << "level " << level << " texel " << t;
       }
       for (int c = 0; c < 4; ++c) EXPECT_NEAR(got_mean[c], want_mean[c], 1.0 / 255.0) << "level " << level;
-      if (stored->encoding == TextureEncoding::LinearData) EXPECT_NEAR(got_mean.x, 0.5, 0.03) << "level " << level;
+      if (stored->encoding == TextureEncoding::LinearData) {
+        EXPECT_NEAR(got_mean.x, 0.5, 0.03) << "level " << level;
+      }
     }
   }
 }
