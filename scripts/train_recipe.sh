@@ -48,7 +48,8 @@ Training:
   --width-divisor D       GMNet/LNet channel divisor [2]   --lnet-head paper|light [light]
   --arms "A B"            arms to run [input absolute]     --threads T  torch threads [2]
   --val-views N           validation views per pass [8]
-  --gmnet-lr LR [1e-3]  --lnet-lr LR [1e-4]  --joint-lr LR [1e-5]  --gsnet-lr LR [5e-4]
+  --gmnet-lr LR [1e-3]  --lnet-lr LR [pilot 1e-4 (B.1), full 1e-3: the pilot's LNet barely
+                          moved at 1e-4, docs/model.md]  --joint-lr LR [1e-5]  --gsnet-lr LR [5e-4]
   --lr-schedule KIND      constant|step|cosine [cosine]
   --gmnet-w-normal X      GMNet's normal weight [1; B.1: 0.1]
 
@@ -67,7 +68,7 @@ out="" size=pilot phyir="$repo/build/cli/phyir"
 count="" views="" epochs="" seed=1 dataset_seed=1 split=0.7,0.15,0.15
 width=256 height=128 spp=32 probe_grid=32x64 probe_res=8x16 probe_spp=2 probe_cache_spp=16 probe_cache_cell=0.15
 width_divisor=2 lnet_head=light arms="input absolute" threads=2 val_views=8 dataset_threads=2
-gmnet_lr=1e-3 lnet_lr=1e-4 joint_lr=1e-5 gsnet_lr=5e-4 lr_schedule=cosine gmnet_w_normal=1 relight=1
+gmnet_lr=1e-3 lnet_lr="" joint_lr=1e-5 gsnet_lr=5e-4 lr_schedule=cosine gmnet_w_normal=1 relight=1
 
 while [[ $# -gt 0 ]]; do
   case "$1" in
@@ -111,9 +112,9 @@ done
 [[ -n "$out" ]] || { echo "train_recipe.sh: --out DIR is required (see --help)" >&2; exit 2; }
 [[ -x "$phyir" ]] || { echo "train_recipe.sh: $phyir is not an executable phyir (build it, or pass --phyir)" >&2; exit 2; }
 if [[ $size == pilot ]]; then
-  : "${count:=8}" "${views:=5}" "${epochs:=12,6,2,6}"
+  : "${count:=8}" "${views:=5}" "${epochs:=12,6,2,6}" "${lnet_lr:=1e-4}"
 else
-  : "${count:=40}" "${views:=8}" "${epochs:=30,15,3,10}"
+  : "${count:=40}" "${views:=8}" "${epochs:=30,15,3,10}" "${lnet_lr:=1e-3}"
 fi
 IFS=, read -r ep_gm ep_l ep_j ep_gs <<<"$epochs"
 [[ -n "$ep_gs" ]] || { echo "train_recipe.sh: --epochs wants four numbers G,L,J,S, got '$epochs'" >&2; exit 2; }
@@ -121,9 +122,9 @@ for arm in $arms; do
   [[ $arm == input || $arm == absolute ]] || { echo "train_recipe.sh: arm '$arm': input or absolute" >&2; exit 2; }
 done
 
-mkdir -p "$out"
-out=$(cd "$out" && pwd)
+out=$(realpath -m "$out")
 case "$out/" in "$repo"/*) echo "train_recipe.sh: --out $out is inside the repository; use a scratch folder" >&2; exit 2 ;; esac
+mkdir -p "$out"
 mkdir -p "$out/stamps" "$out/costs" "$out/logs" "$out/curves"
 export OMP_WAIT_POLICY=passive  # spinning OpenMP threads are 5-8x slower on a shared machine (docs/model.md)
 log() { echo "[$(date -u +%H:%M:%S)] train_recipe: $*"; }
