@@ -86,17 +86,19 @@ std::vector<nlohmann::json> split_records(const fs::path& root, const std::strin
 }  // namespace
 
 Validator::Validator(const fs::path& root, const ValidationOptions& o, const ModelConfig& config)
-    : options_(o), config_(config), root_(root) {
+    : options_(o), config_(config) {
   if (o.every <= 0) return;
   std::string why;
-  records_ = split_records(root, o.split, &why);
-  if (records_.empty()) {
+  std::vector<nlohmann::json> records = split_records(root, o.split, &why);
+  if (records.empty()) {
     spdlog::info("validation: off ({})", why);
     return;
   }
-  if (o.max_views > 0 && records_.size() > static_cast<size_t>(o.max_views)) records_.resize(o.max_views);
-  for (const nlohmann::json& r : records_)
+  if (o.max_views > 0 && records.size() > static_cast<size_t>(o.max_views)) records.resize(o.max_views);
+  for (const nlohmann::json& r : records) {
     views_.push_back(load_view(root / r.at("dir").get<std::string>(), config, target_radiance(config)));
+    truths_.push_back(std::make_shared<const eval::GroundTruthView>(eval::load_ground_truth(root, r)));
+  }
   higher_is_better(o.best_metric);  // an unknown metric fails before the first epoch
 }
 
@@ -146,7 +148,7 @@ ValidationRecord Validator::run(Networks& nets, const LossWeights& w, StageNetwo
       rec.loss_parts[i].second += L.parts[i].second.item<double>() / views_.size();
     }
     const ModelOutput p = predict(nets, config_, b.image, trained.gsnet, trained.lnet);
-    per_view.push_back(eval::evaluate_view(eval::load_ground_truth(root_, records_[k]),
+    per_view.push_back(eval::evaluate_view(*truths_[k],
                                            to_eval_prediction(p, views_[k].exposure, target_radiance(config_)), settings));
   }
   const eval::Metrics mean = eval::mean_metrics(per_view);

@@ -6,6 +6,7 @@
 // generator is saved, seeded for the pass and restored, so a pass changes nothing in training
 // and its Monte-Carlo samples are the same every time. Private header (torch types).
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -14,6 +15,10 @@
 #include "data.h"
 #include "phyir/model/training.h"
 #include "stage_loss.h"
+
+namespace phyir::eval {
+struct GroundTruthView;
+}
 
 namespace phyir::model {
 
@@ -42,9 +47,10 @@ class Validator {
  private:
   ValidationOptions options_;
   ModelConfig config_;
-  std::filesystem::path root_;
-  std::vector<nlohmann::json> records_;  // manifest entries
   std::vector<ViewTensors> views_;       // at the network's resolutions, input units
+  // Each view's ground truth as phyir eval reads it, read once (eval's type stays out of
+  // this header: the model's tests do not see eval's headers).
+  std::vector<std::shared_ptr<const eval::GroundTruthView>> truths_;
 };
 
 // The value of `metric` in a record (val_loss: its loss).
