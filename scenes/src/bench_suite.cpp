@@ -79,9 +79,9 @@ SuiteScene blender_room(const fs::path& out_dir, const fs::path& source) {
     fail("{}: no lit_room.gltf (the Blender-exported room of tests/data/gltf/blender_lit_room)", source.string());
   const fs::path dir = out_dir / "blender_lit_room";
   fs::create_directories(dir);
-  for (const char* file : {"lit_room.gltf", "lit_room.bin", "floor_basecolor.png", "floor_normal.png",
-                           "floor_roughness.png"})
-    fs::copy_file(source / file, dir / file, fs::copy_options::overwrite_existing);
+  // The glTF and the files beside it (buffer, images); not the folders (its variants).
+  for (const fs::directory_entry& e : fs::directory_iterator(source))
+    if (e.is_regular_file()) fs::copy_file(e.path(), dir / e.path().filename(), fs::copy_options::overwrite_existing);
   return {"blender_lit_room", fs::path("blender_lit_room") / "lit_room.gltf", std::nullopt,
           "room exported by Blender (point, spot, sun, textures)"};
 }

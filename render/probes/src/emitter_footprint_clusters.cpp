@@ -1,7 +1,6 @@
 // EmitterFootprints' clusters: nearby light triangles marked together when they are far.
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include "emitter_footprints.h"
 #include "phyir/core/safe_math.h"
