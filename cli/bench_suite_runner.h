@@ -9,6 +9,8 @@
 #include <optional>
 #include <string>
 
+#include "phyir/core/error.h"
+
 namespace phyir::cli {
 
 // Calls measure(scene, camera, out_dir) per scene, then collects out_dir/<result_file> of each
@@ -18,5 +20,21 @@ void run_on_suite(const std::filesystem::path& suite_json, const std::filesystem
                   const std::string& result_file,
                   const std::function<void(const std::filesystem::path& scene, const std::optional<glm::vec3>& camera,
                                            const std::filesystem::path& out_dir)>& measure);
+
+// One bench command's flags on their SCENE, or (with --suite) on every scene of the suite:
+// Flags has scene, suite, camera and out; run measures one scene.
+template <class Flags>
+void run_scene_or_suite(const Flags& flags, void (*run)(const Flags&), const std::string& result_file,
+                        const std::string& command) {
+  if (flags.suite.empty() == flags.scene.empty()) fail("{}: give either a SCENE or --suite FILE", command);
+  if (flags.suite.empty()) return run(flags);
+  run_on_suite(flags.suite, flags.out, result_file,
+               [&](const std::filesystem::path& scene, const std::optional<glm::vec3>& camera,
+                   const std::filesystem::path& dir) {
+                 Flags one = flags;
+                 one.scene = scene.string(), one.camera = camera, one.out = dir.string();
+                 run(one);
+               });
+}
 
 }  // namespace phyir::cli

@@ -165,14 +165,7 @@ void add_bench_command(CLI::App& app) {
     return [f, run, result_file] {
       const int threads = f->threads > 0 ? f->threads : tbb::info::default_concurrency();
       tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-      if (f->suite.empty() == f->scene.empty()) fail("phyir bench: give either a SCENE or --suite FILE");
-      if (f->suite.empty()) return run(*f);
-      run_on_suite(f->suite, f->out, result_file,
-                   [&](const fs::path& scene, const std::optional<glm::vec3>& camera, const fs::path& dir) {
-                     BenchFlags one = *f;
-                     one.scene = scene.string(), one.camera = camera, one.out = dir.string();
-                     run(one);
-                   });
+      run_scene_or_suite(*f, run, result_file, "phyir bench");
     };
   };
   auto* conv = bench->add_subcommand("convergence", "RMSE against a converged reference versus seconds, for increasing spp");

@@ -283,14 +283,7 @@ void add_bench_probes_command(CLI::App& bench) {
   cmd->callback([f] {
     const int threads = f->threads > 0 ? f->threads : tbb::info::default_concurrency();
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    if (f->suite.empty() == f->scene.empty()) fail("phyir bench probes: give either a SCENE or --suite FILE");
-    if (f->suite.empty()) return run_bench_probes(*f);
-    run_on_suite(f->suite, f->out, "probes.json",
-                 [&](const fs::path& scene, const std::optional<glm::vec3>& camera, const fs::path& dir) {
-                   BenchProbeFlags one = *f;
-                   one.scene = scene.string(), one.camera = camera, one.out = dir.string();
-                   run_bench_probes(one);
-                 });
+    run_scene_or_suite(*f, &run_bench_probes, "probes.json", "phyir bench probes");
   });
 }
 
