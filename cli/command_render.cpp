@@ -19,6 +19,7 @@ struct RenderFlags {
   std::string environment;
   bool no_aovs = false;
   bool quiet = false;
+  bool no_probe_punctual = false;
   std::string probe_grid = "128x256";
   std::string probe_res = "16x32";
   std::string probe_mode = "cache";
@@ -83,8 +84,11 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--probe-share-parallax", job.probe.sharing.parallax_texels,
                   "cache mode: largest parallax between shared probes, in texel heights")
       ->capture_default_str();
+  cmd->add_flag("--no-probe-punctual-lights", flags->no_probe_punctual,
+                "leave the punctual lights out of the probes (to measure what they add; docs/probes.md)");
   cmd->callback([flags] {
     render::RenderJob& job = flags->job;
+    job.probe.punctual_lights = !flags->no_probe_punctual;
     job.scene_path = flags->scene;
     job.out_dir = flags->out;
     job.projection = render::parse_projection(flags->projection);

@@ -39,7 +39,8 @@ nlohmann::json ProbeSettings::to_json() const {
                       {"mode", probe_mode_name(mode)},
                       {"origin_offset_m", offset},
                       {"seed", seed},
-                      {"max_bounces", path.max_bounces}};
+                      {"max_bounces", path.max_bounces},
+                      {"punctual_lights", punctual_lights}};
   if (mode == ProbeMode::kCache) {
     j["cache_cell_m"] = cache.cell_size;
     j["cache_spp"] = cache.samples_per_cell;

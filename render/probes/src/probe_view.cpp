@@ -11,6 +11,7 @@
 #include "phyir/core/safe_math.h"
 #include "phyir/render/equirect.h"
 #include "phyir/render/streams.h"
+#include "punctual_deposit.h"
 #include "visible_emission.h"
 
 namespace phyir::render {
@@ -130,6 +131,8 @@ ProbeOutput ProbeView::run() {
   if (cache_) stats.cache_fallbacks = cache_->fallbacks();
   stats.shade_seconds = seconds_since(shade_start);
   if (share_) share_between_neighbours();
+  if (effects_.punctual_lights && settings_.punctual_lights)
+    stats.counters.rays += deposit_punctual_lights(scene_, layout_, out_.sites, todo_, &out_.mosaic);
   stats.total_seconds = seconds_since(start);
   return std::move(out_);
 }
