@@ -23,6 +23,7 @@ struct EvalFlags {
   eval::EvalOptions options;
   std::string gt, pred, out, model;
   std::string depth_protocol = "toolkit";
+  std::string radiance_units = "absolute";
   int threads = 0;
   int model_threads = 1;
   uint64_t model_seed = 1;
@@ -83,6 +84,10 @@ void add_eval_command(CLI::App& app) {
                   "rules of the depth metrics: toolkit (the maps' mask, RMSE log in ln), unifuse (UniFuse's "
                   "evaluation exactly: ground truth in (0, 10] m, its clamps at 0.1 and 10 m, RMSE log in log10), "
                   "unifuse-median (the same with its median alignment); docs/eval.md")->capture_default_str();
+  cmd->add_option("--radiance", f->radiance_units,
+                  "unit of the radiance metrics (re-render, probes, relighting): absolute (color.exr's) or input "
+                  "(both sides times the view's 2^exposure_stops, the network's training unit); docs/eval.md")
+      ->capture_default_str();
   cmd->add_flag("--no-relight", f->no_relight, "skip the relighting spheres (Table 5)");
   cmd->add_flag("--no-baselines", f->no_baselines, "skip the baseline rows");
   cmd->add_option("--baseline-max-views", f->options.baseline_max_views,
@@ -105,6 +110,11 @@ void add_eval_command(CLI::App& app) {
       o.settings.depth_protocol = eval::parse_depth_protocol(f->depth_protocol);
     } catch (const Error& e) {
       fail("phyir eval --depth-protocol: {}", e.what());
+    }
+    try {
+      o.settings.radiance_units = eval::parse_radiance_units(f->radiance_units);
+    } catch (const Error& e) {
+      fail("phyir eval --radiance: {}", e.what());
     }
     o.gt_dir = f->gt;
     o.out_dir = f->out;

@@ -4,6 +4,7 @@
 
 #include "phyir/core/colour.h"
 #include "phyir/core/error.h"
+#include "phyir/eval/radiance_units.h"
 #include "phyir/eval/resample.h"
 
 namespace phyir::eval {
@@ -13,10 +14,12 @@ BaselineStats compute_baseline_stats(const std::filesystem::path& root, const st
   BaselineStats s;
   s.source = source;
   double sums[14] = {0};  // basecolor 3, roughness, metalness, depth, normal 3, color 3, count, depth count
-  Image probe_sum;
+  double input_color[3] = {0, 0, 0};  // the colour sums in each view's input units
+  Image probe_sum, input_probe_sum;
   long probes = 0;
   for (const nlohmann::json& record : records) {
     const GroundTruthView v = load_ground_truth(root, record);
+    const double to_input = radiance_scale(RadianceUnits::kInput, v.exposure_stops);
     for (int y = 0; y < v.color.height; ++y)
       for (int x = 0; x < v.color.width; ++x) {
         if (v.valid.at(x, y) < 0.5f) continue;
@@ -24,6 +27,7 @@ BaselineStats compute_baseline_stats(const std::filesystem::path& root, const st
           sums[c] += v.basecolor.at(x, y, c);
           sums[6 + c] += v.normal.at(x, y, c);
           sums[9 + c] += v.color.at(x, y, c);
+          input_color[c] += v.color.at(x, y, c) * to_input;
         }
         sums[3] += v.roughness.at(x, y);
         sums[4] += v.metalness.at(x, y);
@@ -34,12 +38,15 @@ BaselineStats compute_baseline_stats(const std::filesystem::path& root, const st
         sums[12] += 1.0;
       }
     if (v.probes) {
-      if (probe_sum.empty()) probe_sum = Image(v.probes->w, v.probes->h, 3);
+      if (probe_sum.empty()) probe_sum = input_probe_sum = Image(v.probes->w, v.probes->h, 3);
       for (int i = 0; i < v.probes->grid_h; ++i)
         for (int j = 0; j < v.probes->grid_w; ++j) {
           if (!v.probes->valid(i, j)) continue;
           const Image p = at_size(v.probes->probe(i, j), {probe_sum.width, probe_sum.height});
-          for (size_t k = 0; k < p.pixels.size(); ++k) probe_sum.pixels[k] += p.pixels[k];
+          for (size_t k = 0; k < p.pixels.size(); ++k) {
+            probe_sum.pixels[k] += p.pixels[k];
+            input_probe_sum.pixels[k] += float(p.pixels[k] * to_input);
+          }
           ++probes;
         }
     }
@@ -49,6 +56,7 @@ BaselineStats compute_baseline_stats(const std::filesystem::path& root, const st
   for (int c = 0; c < 3; ++c) {
     s.basecolor[c] = sums[c] / n;
     s.color[c] = sums[9 + c] / n;
+    s.input_color[c] = input_color[c] / n;
   }
   s.roughness = sums[3] / n;
   s.metalness = sums[4] / n;
@@ -57,13 +65,15 @@ BaselineStats compute_baseline_stats(const std::filesystem::path& root, const st
   if (len > 1e-9)
     for (int c = 0; c < 3; ++c) s.normal[c] = sums[6 + c] / len;
   if (probes > 0) {
-    for (float& v : probe_sum.pixels) v = float(v / double(probes));
+    for (Image* sum : {&probe_sum, &input_probe_sum})
+      for (float& v : sum->pixels) v = float(v / double(probes));
     s.probe = probe_sum;
+    s.input_probe = input_probe_sum;
   }
   return s;
 }
 
-Prediction constant_mean_prediction(const BaselineStats& s, const GroundTruthView& gt) {
+Prediction constant_mean_prediction(const BaselineStats& s, const GroundTruthView& gt, RadianceUnits units) {
   const int w = gt.color.width, h = gt.color.height;
   auto constant = [&](int channels, const double* values) {
     Image im(w, h, channels);
@@ -76,8 +86,16 @@ Prediction constant_mean_prediction(const BaselineStats& s, const GroundTruthVie
   p.metalness = constant(1, &s.metalness);
   p.depth = constant(1, &s.depth);
   p.normal = constant(3, s.normal);
-  p.rerender = constant(3, s.color);
-  if (s.probe && gt.probes) p.probes = constant_probe_set(*s.probe, gt.probes->grid_h, gt.probes->grid_w);
+  // In input units the constant is the mean of the input-unit targets, handed over in this
+  // view's absolute unit (evaluate_view scales it back by the view's exposure).
+  const bool input = units == RadianceUnits::kInput;
+  const double to_absolute = 1.0 / radiance_scale(units, gt.exposure_stops);
+  double color[3];
+  for (int c = 0; c < 3; ++c) color[c] = (input ? s.input_color[c] : s.color[c]) * to_absolute;
+  p.rerender = constant(3, color);
+  const std::optional<Image>& probe = input ? s.input_probe : s.probe;
+  if (probe && gt.probes)
+    p.probes = scaled_probe_set(constant_probe_set(*probe, gt.probes->grid_h, gt.probes->grid_w), to_absolute);
   return p;
 }
 

@@ -13,6 +13,17 @@ namespace {
 using nlohmann::json;
 
 // The protocol of the depth metrics; files written before there was a choice used `toolkit`.
+// Which unit the radiance metrics (re-render, probes, relighting) were scored in.
+std::string radiance_units_sentence(const json& j) {
+  const json& s = j["settings"];
+  const std::string units = s.contains("radiance_units") ? s["radiance_units"].get<std::string>() : "absolute";
+  if (units == "input")
+    return "Radiance metrics (re-render, probes, relighting) in each view's input units: both sides times "
+           "2^exposure_stops of its input image (`--radiance input`).\n\n";
+  return "Radiance metrics (re-render, probes, relighting) in absolute radiance, color.exr's unit "
+         "(`--radiance absolute`).\n\n";
+}
+
 DepthProtocol depth_protocol_of(const json& j) {
   const json& s = j.at("settings");
   return s.contains("depth_protocol") ? parse_depth_protocol(s["depth_protocol"].get<std::string>())
@@ -102,6 +113,7 @@ std::string report_markdown(const json& j) {
   r += "\n## Lighting (layout of Table 6)\n\n";
   r += "SSIM of log(1 + L) probes (eq. 7: 5x5 Gaussian window, sigma 1.5, C1 = 1e-4, C2 = 9e-4, circular padding "
        "in u), averaged over the probes valid on both sides; re-render MSE as in Table 2.\n\n";
+  r += radiance_units_sentence(j);
   r += table(j, {{"SSIM ↑", "probe_ssim", "{:.4f}"}, {"Re-render error (MSE) ↓", "rerender_mse", "{:.4f}"}});
 
   const DepthProtocol depth = depth_protocol_of(j);

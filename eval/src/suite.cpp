@@ -143,7 +143,7 @@ nlohmann::json run_eval(const EvalOptions& o) {
     ViewImages images;
     pred.views.push_back(evaluate_view(gt, p, o.settings, figure ? &images : nullptr));
     if (o.baselines) {
-      constant.views.push_back(evaluate_view(gt, constant_mean_prediction(stats, gt), o.settings));
+      constant.views.push_back(evaluate_view(gt, constant_mean_prediction(stats, gt, o.settings.radiance_units), o.settings));
       input_bc.views.push_back(evaluate_view(gt, input_as_basecolor_prediction(gt), o.settings));
     }
     if (figure) {
@@ -178,7 +178,8 @@ nlohmann::json run_eval(const EvalOptions& o) {
                    {"sphere_spp", o.settings.sphere.spp},
                    {"sphere_max_bounces", o.settings.sphere.max_bounces},
                    {"seed", o.settings.sphere.seed},
-                   {"depth_protocol", depth_protocol_name(o.settings.depth_protocol)}};
+                   {"depth_protocol", depth_protocol_name(o.settings.depth_protocol)},
+                   {"radiance_units", radiance_units_name(o.settings.radiance_units)}};
   j["baseline_source"] = o.baselines ? nlohmann::json(stats.source) : nlohmann::json(nullptr);
   j["missing_optional_files"] = missing;
   j["figures"] = figure_files;

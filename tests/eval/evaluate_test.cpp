@@ -13,6 +13,7 @@
 #include "phyir/core/image_io.h"
 #include "phyir/core/pcg32.h"
 #include "phyir/core/progress.h"
+#include "phyir/eval/baselines.h"
 #include "phyir/eval/evaluate_view.h"
 #include "phyir/eval/pixel_metrics.h"
 #include "phyir/eval/resample.h"
@@ -134,6 +135,53 @@ TEST(EvaluateView, MetricsSeeADifference) {
   EXPECT_NEAR(m.at("depth_abs_rel"), 0.3, 1e-6);
   EXPECT_EQ(m.at("depth_delta1"), 0.0);
   EXPECT_EQ(m.at("depth_delta2"), 1.0);
+}
+
+// --radiance input: every radiance metric is that of both sides times 2^exposure_stops
+// (MSE by its square, relighting errors linearly, probe SSIM on the scaled probes); the maps
+// do not move.
+TEST(EvaluateView, InputUnitsScaleTheRadianceMetricsByTheExposure) {
+  GroundTruthView v = synthetic_view();
+  v.exposure_stops = 2.0f;
+  Prediction p = perfect(v);
+  for (float& x : p.rerender->pixels) x += 0.1f;
+  for (float& x : p.probes->mosaic.pixels) x *= 1.5f;
+  for (float& x : p.basecolor->pixels) x += 0.1f;
+  EvalSettings absolute = cheap(), input = cheap();
+  input.radiance_units = RadianceUnits::kInput;
+  const Metrics a = evaluate_view(v, p, absolute), b = evaluate_view(v, p, input);
+  EXPECT_NEAR(b.at("rerender_mse"), 16.0 * a.at("rerender_mse"), 1e-9 * b.at("rerender_mse"));
+  EXPECT_NEAR(b.at("basecolor_mse"), a.at("basecolor_mse"), 1e-12);
+  for (const char* k : {"relight_diffuse_mae", "relight_matte_silver_rmse", "relight_mirror_silver_mae"})
+    EXPECT_NEAR(b.at(k), 4.0 * a.at(k), 1e-5 * b.at(k)) << k;
+  const double ssim = probe_ssim(scaled_probe_set(*p.probes, 4.0), scaled_probe_set(*v.probes, 4.0)).ssim;
+  EXPECT_NEAR(b.at("probe_ssim"), ssim, 1e-12);
+  EXPECT_GT(std::abs(b.at("probe_ssim") - a.at("probe_ssim")), 1e-4);  // log(1 + L) is not scale-free
+}
+
+// The constant baseline in input units is the mean of the input-unit targets: handed over in
+// the view's absolute unit, it scores as that mean against the view's input-unit target.
+TEST(Baselines, ConstantMeanInInputUnitsIsTheMeanOfInputUnitTargets) {
+  GroundTruthView v = synthetic_view();
+  v.exposure_stops = 3.0f;
+  BaselineStats stats;
+  for (int c = 0; c < 3; ++c) stats.color[c] = 100.0, stats.input_color[c] = 0.5;
+  stats.probe = Image(8, 4, 3, 100.0f);
+  stats.input_probe = Image(8, 4, 3, 0.5f);
+  const Prediction p = constant_mean_prediction(stats, v, RadianceUnits::kInput);
+  EXPECT_FLOAT_EQ(p.rerender->at(0, 0, 0), 0.5f / 8.0f);
+  EXPECT_FLOAT_EQ(p.probes->mosaic.at(5, 3, 2), 0.5f / 8.0f);
+  EvalSettings input = cheap();
+  input.radiance_units = RadianceUnits::kInput;
+  input.relight = false;
+  Prediction expected = perfect(v);
+  for (float& x : expected.rerender->pixels) x = 0.5f;
+  GroundTruthView scaled = v;
+  for (float& x : scaled.color.pixels) x *= 8.0f;
+  scaled.exposure_stops = 0.0f;
+  EXPECT_NEAR(evaluate_view(v, p, input).at("rerender_mse"), evaluate_view(scaled, expected, input).at("rerender_mse"),
+              1e-9);
+  EXPECT_FLOAT_EQ(constant_mean_prediction(stats, v).rerender->at(0, 0, 1), 100.0f);  // absolute: unchanged
 }
 
 TEST(Relight, ErrorIsLinearInTheLight) {

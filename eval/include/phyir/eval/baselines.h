@@ -3,7 +3,8 @@
 //  - constant mean: every map is the mean of the ground truth over the valid pixels of the
 //    reference views (the training split; the test split itself when there is no training
 //    view, which the report says), normals the normalised mean normal, the re-render the mean
-//    colour, every probe the per-texel mean of the reference views' valid probes;
+//    colour, every probe the per-texel mean of the reference views' valid probes (colour and
+//    probes averaged in the unit the radiance metrics are scored in);
 //  - input as base colour: input.png decoded to linear (OpenColorIO) taken as the base colour
 //    (the "no intrinsic decomposition" answer); it predicts nothing else.
 #include <filesystem>
@@ -12,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "phyir/eval/radiance_units.h"
 #include "phyir/eval/views.h"
 
 namespace phyir::eval {
@@ -22,13 +24,19 @@ struct BaselineStats {
   double basecolor[3] = {0, 0, 0}, roughness = 0, metalness = 0, depth = 0, color[3] = {0, 0, 0};
   double normal[3] = {0, 1, 0};  // normalised mean
   std::optional<Image> probe;    // per-texel mean probe (the reference's texel resolution)
+  // The same means of colour and probes taken in each view's input units (radiance_units.h).
+  double input_color[3] = {0, 0, 0};
+  std::optional<Image> input_probe;
 };
 
 // Means over `records` (manifest entries) of the dataset at `root`; `source` describes them.
 BaselineStats compute_baseline_stats(const std::filesystem::path& root, const std::vector<nlohmann::json>& records,
                                      const std::string& source);
 
-Prediction constant_mean_prediction(const BaselineStats& stats, const GroundTruthView& gt);
+// The constant re-render and probes are the means in `units` (absolute, or each view's input
+// units, then returned in `gt`'s absolute unit for evaluate_view to score in input units).
+Prediction constant_mean_prediction(const BaselineStats& stats, const GroundTruthView& gt,
+                                    RadianceUnits units = RadianceUnits::kAbsolute);
 Prediction input_as_basecolor_prediction(const GroundTruthView& gt);
 
 }  // namespace phyir::eval
