@@ -20,7 +20,9 @@ an interruption):
      (input: the exposure fix; absolute: targets in absolute radiance) lnet, joint, gsnet,
      each stage --init from the previous one                                DIR/runs/<arm>/<stage>
   4. phyir eval --model on the test split with the baselines              DIR/eval/<arm>
-  5. DIR/results.md, results.csv (every metric: both arms, both baselines, margins),
+     and the same predictions scored in input units (--radiance input)     DIR/eval/<arm>_input
+  5. DIR/results.md, results.csv (every metric: both arms, both baselines, margins; radiance
+     metrics in both units, over all test views and per lighting, day and night),
      costs.csv (wall and CPU seconds of each step, per view and per training step),
      curves/*.png (scripts/plot_training.py)
 
@@ -216,9 +218,13 @@ done
 # 4. Evaluation on the test split, the baselines included (identical in both arms).
 relight_args=()
 [[ $relight == 1 ]] || relight_args=(--no-relight)
+# Radiance metrics in absolute units (eval/<arm>) and in each view's input units
+# (eval/<arm>_input, the same predictions): absolute errors weigh the sunlit views most.
 for arm in $arms; do
   run_step "eval_$arm" "$phyir" eval --gt "$out/data" --split test --model "$out/runs/$arm/gsnet/checkpoint.pt" \
     --out "$out/eval/$arm" --model-threads "$threads" --threads "$threads" --quiet "${relight_args[@]}"
+  run_step "eval_${arm}_input" "$phyir" eval --gt "$out/data" --split test --pred "$out/eval/$arm/pred" \
+    --radiance input --out "$out/eval/${arm}_input" --threads "$threads" --quiet "${relight_args[@]}"
 done
 
 # 5. Results, costs.
@@ -264,43 +270,57 @@ with open(os.path.join(out, "costs.csv"), "w", newline="") as f:
     w.writeheader()
     w.writerows(cost_rows)
 
-# Results: every metric of the prediction of each arm and of the two baselines.
+# Results: every metric of the prediction of each arm and of the two baselines, with the
+# radiance metrics in absolute and in input units, over all test views and per lighting.
 METRICS = [("basecolor_mse", False), ("normal_deg", False), ("roughness_mse", False), ("metalness_mse", False),
            ("depth_abs_rel", False), ("depth_rmse", False), ("depth_delta1", True), ("rerender_mse", False),
            ("probe_ssim", True), ("relight_diffuse_mae", False), ("relight_matte_silver_mae", False),
            ("relight_mirror_silver_mae", False)]
-results = {}
-for arm in arms:
-    path = os.path.join(out, "eval", arm, "metrics.json")
-    if os.path.exists(path):
-        results[arm] = json.load(open(path))["methods"]
-def value(arm, method, key):
+RADIANCE = {"rerender_mse", "probe_ssim", "relight_diffuse_mae", "relight_matte_silver_mae", "relight_mirror_silver_mae"}
+rooms = json.load(open(os.path.join(out, "scenes", "rooms.json")))["rooms"]
+lighting = {os.path.splitext(r["file"])[0]: r.get("lighting", "?") for r in rooms}
+def load(arm, units):
+    path = os.path.join(out, "eval", arm if units == "absolute" else f"{arm}_{units}", "metrics.json")
+    return json.load(open(path))["methods"] if os.path.exists(path) else None
+def mean_of(methods, method, key, light):
     try:
-        v = results[arm][method]["mean"].get(key)
-    except KeyError:
+        m = methods[method]
+    except (KeyError, TypeError):
         return None
-    return None if v is None or (isinstance(v, float) and math.isnan(v)) else float(v)
-ref = arms[0] if arms[0] in results else (next(iter(results)) if results else None)
+    if light == "all":
+        v = m["mean"].get(key)
+        return None if v is None or (isinstance(v, float) and math.isnan(v)) else float(v)
+    vals = [pv[key] for vid, pv in m["per_view"].items()
+            if lighting.get(vid.split("/")[0]) == light and pv.get(key) is not None and not math.isnan(pv[key])]
+    return sum(vals) / len(vals) if vals else None
+test_lights = sorted({lighting.get(v["id"].split("/")[0], "?") for v in manifest["views"] if v["split"] == "test"})
 rows = []
-for key, higher in METRICS:
-    row = {"metric": key, "better": "higher" if higher else "lower"}
-    for arm in arms:
-        row[f"phyir_{arm}"] = value(arm, "prediction", key)
-    row["constant_mean"] = value(ref, "constant_mean", key) if ref else None
-    row["image_as_basecolor"] = value(ref, "input_as_basecolor", key) if ref else None
-    baselines = [b for b in (row["constant_mean"], row["image_as_basecolor"]) if b is not None]
-    best = (max if higher else min)(baselines) if baselines else None
-    row["best_baseline"] = best
-    for arm in arms:
-        p = row[f"phyir_{arm}"]
-        # Margin: how much better than the best baseline, relative to it (positive = better).
-        if p is None or best is None or best == 0:
-            row[f"margin_{arm}"] = None
-        else:
-            row[f"margin_{arm}"] = (p - best) / abs(best) if higher else (best - p) / abs(best)
-    if all(row.get(f"phyir_{a}") is None for a in arms) and best is None:
-        continue
-    rows.append(row)
+for units in ("absolute", "input"):
+    results = {arm: load(arm, units) for arm in arms}
+    ref = next((a for a in arms if results[a]), None)
+    for light in ["all"] + test_lights:
+        for key, higher in METRICS:
+            if (units == "input" or light != "all") and key not in RADIANCE:
+                continue  # the maps have no radiance unit and are reported once
+            row = {"metric": key, "units": units if key in RADIANCE else "-", "lighting": light,
+                   "better": "higher" if higher else "lower"}
+            for arm in arms:
+                row[f"phyir_{arm}"] = mean_of(results[arm], "prediction", key, light)
+            row["constant_mean"] = mean_of(results[ref], "constant_mean", key, light) if ref else None
+            row["image_as_basecolor"] = mean_of(results[ref], "input_as_basecolor", key, light) if ref else None
+            baselines = [b for b in (row["constant_mean"], row["image_as_basecolor"]) if b is not None]
+            best = (max if higher else min)(baselines) if baselines else None
+            row["best_baseline"] = best
+            for arm in arms:
+                p = row[f"phyir_{arm}"]
+                # Margin: how much better than the best baseline, relative to it (positive = better).
+                if p is None or best is None or best == 0:
+                    row[f"margin_{arm}"] = None
+                else:
+                    row[f"margin_{arm}"] = (p - best) / abs(best) if higher else (best - p) / abs(best)
+            if all(row.get(f"phyir_{a}") is None for a in arms) and best is None:
+                continue
+            rows.append(row)
 fields = list(rows[0].keys()) if rows else ["metric"]
 with open(os.path.join(out, "results.csv"), "w", newline="") as f:
     w = csv.DictWriter(f, fieldnames=fields)
@@ -312,16 +332,21 @@ def fmt(v, pct=False):
     if v is None:
         return "-"
     return f"{100 * v:+.0f}%" if pct else f"{v:.4g}"
-settings = manifest.get("settings", {})
+test_views = {l: sum(1 for v in manifest["views"] if v["split"] == "test" and lighting.get(v["id"].split("/")[0]) == l)
+              for l in test_lights}
 lines = [f"# Training recipe results ({out})", "",
          f"Views: {len(manifest['views'])} ({', '.join(f'{k} {v}' for k, v in sorted(per_split.items()))}); "
-         f"scenes {manifest.get('counts', {}).get('scenes', '?')} apartments. Test-split means of `phyir eval` "
-         f"(toolkit depth protocol); margin = improvement over the better baseline, relative to it.", "",
-         "| metric | better | " + " | ".join(f"PhyIR, {a} units" for a in arms) + " | constant mean | image as base colour | "
-         + " | ".join(f"margin ({a})" for a in arms) + " |",
-         "| --- | --- | " + " | ".join("---" for _ in arms) + " | --- | --- | " + " | ".join("---" for _ in arms) + " |"]
+         f"scenes {manifest.get('counts', {}).get('scenes', '?')} apartments; test views by lighting: "
+         + ", ".join(f"{l} {n}" for l, n in test_views.items()) + ". Test-split means of `phyir eval` "
+         f"(toolkit depth protocol); radiance metrics in absolute units (`--radiance absolute`) and in each "
+         f"view's input units (`--radiance input`); margin = improvement over the better baseline, relative to it.", "",
+         "| metric | units | lighting | better | " + " | ".join(f"PhyIR, {a} arm" for a in arms)
+         + " | constant mean | image as base colour | " + " | ".join(f"margin ({a})" for a in arms) + " |",
+         "| --- | --- | --- | --- | " + " | ".join("---" for _ in arms) + " | --- | --- | "
+         + " | ".join("---" for _ in arms) + " |"]
 for r in rows:
-    lines.append(f"| {r['metric']} | {r['better']} | " + " | ".join(fmt(r[f'phyir_{a}']) for a in arms)
+    lines.append(f"| {r['metric']} | {r['units']} | {r['lighting']} | {r['better']} | "
+                 + " | ".join(fmt(r[f'phyir_{a}']) for a in arms)
                  + f" | {fmt(r['constant_mean'])} | {fmt(r['image_as_basecolor'])} | "
                  + " | ".join(fmt(r[f'margin_{a}'], True) for a in arms) + " |")
 lines += ["", "## Costs", "", "| step | wall s | CPU s | per | wall s each | CPU s each |", "| --- | --- | --- | --- | --- | --- |"]
