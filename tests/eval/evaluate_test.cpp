@@ -159,6 +159,21 @@ TEST(EvaluateView, InputUnitsScaleTheRadianceMetricsByTheExposure) {
   EXPECT_GT(std::abs(b.at("probe_ssim") - a.at("probe_ssim")), 1e-4);  // log(1 + L) is not scale-free
 }
 
+TEST(RadianceUnits, NamesParseAndBadNamesAreNamed) {
+  for (const std::string& name : radiance_units_names())
+    EXPECT_EQ(radiance_units_name(parse_radiance_units(name)), name);
+  EXPECT_EQ(radiance_scale(RadianceUnits::kAbsolute, 5.0f), 1.0);
+  EXPECT_EQ(radiance_scale(RadianceUnits::kInput, -2.0f), 0.25);
+  try {
+    parse_radiance_units("relative");
+    ADD_FAILURE() << "no error for an unknown unit";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("'relative'"), std::string::npos) << message;
+    EXPECT_NE(message.find("absolute or input"), std::string::npos) << message;
+  }
+}
+
 // The constant baseline in input units is the mean of the input-unit targets: handed over in
 // the view's absolute unit, it scores as that mean against the view's input-unit target.
 TEST(Baselines, ConstantMeanInInputUnitsIsTheMeanOfInputUnitTargets) {
