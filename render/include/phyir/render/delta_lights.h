@@ -2,7 +2,8 @@
 // The scene's punctual lights (KHR_lights_punctual: point, spot, directional) as the
 // renderer uses them. They are infinitely small (or infinitely far), so no ray ever hits
 // one: they are reached by next-event estimation only, without a multiple-importance
-// weight, and a camera ray or a probe texel never sees one. The EmitterSampler chooses
+// weight, and a camera ray never sees one (probes add each visible one to the texel of its
+// direction: render/probes/src/punctual_deposit.h). The EmitterSampler chooses
 // between them and the emissive triangles (emitter_sampler.h).
 #include <glm/glm.hpp>
 
