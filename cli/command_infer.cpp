@@ -24,6 +24,8 @@ void add_infer_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", o->out_dir, "output folder")->required();
   cmd->add_option("--threads", o->threads, "torch threads")->capture_default_str();
+  cmd->add_option("--device", o->device, "cpu, cuda or cuda:N (CUDA needs a CUDA LibTorch: docs/model.md \"Build\")")
+      ->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed of the rendering layer's samples")->capture_default_str();
   cmd->add_option("--exposure", o->exposure,
                   "the input's exposure in stops: an .exr is exposed by it (default: the dataset's auto exposure); "

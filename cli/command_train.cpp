@@ -35,6 +35,16 @@ void add_train_command(CLI::App& app) {
   cmd->add_option("--batch", o->batch_size, "batch size (default: 8 / 4 / 4 / 16 by stage)");
   cmd->add_option("--seed", o->seed, "random seed (initialisation, shuffling, Monte-Carlo samples)")->capture_default_str();
   cmd->add_option("--threads", o->threads, "torch threads (1 = bit-reproducible runs)")->capture_default_str();
+  cmd->add_option("--workers", o->workers,
+                  "threads reading and augmenting the next batches while a step runs (0 = read each batch when "
+                  "due); results do not depend on it")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
+  cmd->add_option("--prefetch", o->prefetch,
+                  "batches read ahead with --workers: at most batch x (prefetch + 1) views in memory, whatever "
+                  "the dataset's size")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--device", o->device, "cpu, cuda or cuda:N (CUDA needs a CUDA LibTorch: docs/model.md \"Build\")")
+      ->capture_default_str();
   cmd->add_option("--max-steps", o->max_steps, "stop after this many steps in total (0 = all epochs)");
   cmd->add_option("--checkpoint-every", o->checkpoint_every, "also checkpoint every N steps (0 = per epoch)");
   cmd->add_option("--max-views", o->max_views, "use only the first N views (0 = all)");

@@ -57,8 +57,9 @@ ViewTensors rotate_view(const ViewTensors& v, int steps, int divisions) {
   ViewTensors r = v;
   for (torch::Tensor ViewTensors::*m : {&ViewTensors::image, &ViewTensors::depth, &ViewTensors::normal,
                                         &ViewTensors::base_color, &ViewTensors::roughness, &ViewTensors::metalness,
-                                        &ViewTensors::mask, &ViewTensors::color_lo, &ViewTensors::render_mask,
-                                        &ViewTensors::probe_mask})
+                                        &ViewTensors::mask, &ViewTensors::mask_emissive,
+                                        &ViewTensors::mask_transparent, &ViewTensors::color_lo,
+                                        &ViewTensors::render_mask, &ViewTensors::probe_mask})
     r.*m = roll_columns(v.*m, steps, divisions, -1);
   r.normal = rotate_about_y(r.normal, static_cast<double>(steps) / divisions);
   // Probes [Hr, Wr, h, w, 3]: each moves with its pixel, and its texels (a world-aligned
@@ -71,10 +72,11 @@ ViewTensors mirror_view(const ViewTensors& v) {
   ViewTensors r = v;
   for (torch::Tensor ViewTensors::*m : {&ViewTensors::image, &ViewTensors::depth, &ViewTensors::normal,
                                         &ViewTensors::base_color, &ViewTensors::roughness, &ViewTensors::metalness,
-                                        &ViewTensors::mask, &ViewTensors::color_lo, &ViewTensors::render_mask,
-                                        &ViewTensors::probe_mask})
+                                        &ViewTensors::mask, &ViewTensors::mask_emissive,
+                                        &ViewTensors::mask_transparent, &ViewTensors::color_lo,
+                                        &ViewTensors::render_mask, &ViewTensors::probe_mask})
     r.*m = flip_if_defined(v.*m, {-1});
-  r.normal = r.normal * torch::tensor({-1.0f, 1.0f, 1.0f}).view({3, 1, 1});
+  r.normal = r.normal * torch::tensor({-1.0f, 1.0f, 1.0f}, r.normal.options()).view({3, 1, 1});
   r.probes = flip_if_defined(v.probes, {1, 3});
   return r;
 }
@@ -96,16 +98,17 @@ ViewTensors augment_view(const ViewTensors& v, const AugmentDraw& d, int divisio
   return expose_view(r, d.exposure_stops, units);
 }
 
+ViewTensors augment_for_epoch(const ViewTensors& view, size_t index, const AugmentOptions& options, int divisions,
+                              uint64_t seed, int epoch, Radiance units) {
+  if (!options.enabled) return view;
+  return augment_view(view, draw_augment(options, divisions, seed, epoch, index), divisions, units);
+}
+
 Batch augmented_batch(const std::vector<ViewTensors>& views, const std::vector<size_t>& indices,
                       const AugmentOptions& options, int divisions, uint64_t seed, int epoch, Radiance units) {
-  if (!options.enabled) return make_batch(views, indices);
   std::vector<ViewTensors> augmented;
-  std::vector<size_t> all;
-  for (size_t i : indices) {
-    all.push_back(augmented.size());
-    augmented.push_back(augment_view(views[i], draw_augment(options, divisions, seed, epoch, i), divisions, units));
-  }
-  return make_batch(augmented, all);
+  for (size_t i : indices) augmented.push_back(augment_for_epoch(views[i], i, options, divisions, seed, epoch, units));
+  return collate(augmented);
 }
 
 }  // namespace phyir::model

@@ -47,8 +47,14 @@ ViewTensors expose_view(const ViewTensors& view, double stops, Radiance units = 
 ViewTensors augment_view(const ViewTensors& view, const AugmentDraw& draw, int divisions,
                          Radiance units = Radiance::kInputUnits);
 
-// The training batch of views[indices] in `epoch`, each view augmented by its own draw
-// (make_batch without augmentation when options.enabled is false); `units`: the targets' unit.
+// View number `index` of the dataset as training sees it in `epoch`: augmented by its draw
+// (as loaded when options.enabled is false); `units`: the targets' unit. The streaming reader
+// (view_stream.h) calls it on each view it decodes.
+ViewTensors augment_for_epoch(const ViewTensors& view, size_t index, const AugmentOptions& options, int divisions,
+                              uint64_t seed, int epoch, Radiance units = Radiance::kInputUnits);
+
+// The batch of views[indices] in `epoch`, each view through augment_for_epoch, then collate
+// (views held in memory: the reference the stream is tested against, and tests).
 Batch augmented_batch(const std::vector<ViewTensors>& views, const std::vector<size_t>& indices,
                       const AugmentOptions& options, int divisions, uint64_t seed, int epoch,
                       Radiance units = Radiance::kInputUnits);

@@ -73,6 +73,12 @@ Networks::Networks(const ModelConfig& c)
       lnet(c.probe_height, c.probe_width, c.width_divisor, c.lnet_head == "light"),
       gsnet(c.guided_radius) {}
 
+void Networks::to(const torch::Device& device) {
+  gmnet->to(device);
+  lnet->to(device);
+  gsnet->to(device);
+}
+
 void save_checkpoint(const fs::path& path, const json& meta, Networks& nets, torch::optim::Optimizer* opt) {
   torch::serialize::OutputArchive archive;
   archive.write("meta", c10::IValue(meta.dump()));
@@ -107,11 +113,12 @@ std::string first_line(const std::string& text) { return text.substr(0, text.fin
 }  // namespace
 
 
-json load_checkpoint(const std::string& path, Networks* nets, torch::optim::Optimizer* opt, bool rng) {
+json load_checkpoint(const std::string& path, Networks* nets, torch::optim::Optimizer* opt, bool rng,
+                     const torch::Device& device) {
   if (!fs::is_regular_file(path)) fail("{}: checkpoint not found", path);
   torch::serialize::InputArchive archive;
   try {
-    archive.load_from(path);
+    archive.load_from(path, device);
   } catch (const std::exception& e) {
     fail("{}: cannot read the checkpoint ({})", path, e.what());
   }
@@ -142,7 +149,7 @@ json load_checkpoint(const std::string& path, Networks* nets, torch::optim::Opti
     if (!archive.try_read("rng", state)) fail("{}: no random-generator state to resume from", path);
     at::Generator gen = at::detail::getDefaultCPUGenerator();  // a handle on the shared generator
     std::lock_guard<std::mutex> lock(gen.mutex());
-    gen.set_state(state);
+    gen.set_state(state.cpu());
   }
   return meta;
 }

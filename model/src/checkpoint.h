@@ -16,6 +16,7 @@ namespace phyir::model {
 // Every network, whatever the stage, so one checkpoint carries the whole model.
 struct Networks {
   explicit Networks(const ModelConfig& c);
+  void to(const torch::Device& device);  // every parameter and buffer
   GMNet gmnet;
   LNet lnet;
   GSNet gsnet;
@@ -35,8 +36,10 @@ void save_checkpoint(const std::filesystem::path& path, const nlohmann::json& me
                      torch::optim::Optimizer* opt);
 
 // Reads the metadata, and whichever of the networks, optimiser state and generator state is
-// asked for. Errors name the file and what does not fit.
-nlohmann::json load_checkpoint(const std::string& path, Networks* nets, torch::optim::Optimizer* opt, bool rng);
+// asked for; tensors land on `device` whatever device wrote them (the generator state stays
+// the CPU generator's). Errors name the file and what does not fit.
+nlohmann::json load_checkpoint(const std::string& path, Networks* nets, torch::optim::Optimizer* opt, bool rng,
+                               const torch::Device& device = torch::kCPU);
 
 ModelConfig read_checkpoint_config(const std::string& path);
 

@@ -58,13 +58,15 @@ torch::Tensor read_mask(const fs::path& path, int height, int width) {
 }
 
 torch::Tensor image_to_tensor(const phyir::Image& image) {
+  // Decoded images live in host memory: the tensor starts on the CPU (Batch::to moves it).
   torch::Tensor t = torch::from_blob(const_cast<float*>(image.pixels.data()),
-                                     {image.height, image.width, image.channels}, torch::kFloat);
+                                     {image.height, image.width, image.channels},
+                                     torch::TensorOptions().dtype(torch::kFloat).device(torch::kCPU));
   return t.permute({2, 0, 1}).clone();
 }
 
 phyir::Image tensor_to_image(const torch::Tensor& chw_in) {
-  const torch::Tensor chw = chw_in.detach().to(torch::kFloat).contiguous();
+  const torch::Tensor chw = chw_in.detach().to(torch::kCPU, torch::kFloat).contiguous();
   const int C = static_cast<int>(chw.size(0)), H = static_cast<int>(chw.size(1)), W = static_cast<int>(chw.size(2));
   phyir::Image image(W, H, C);
   const torch::Tensor hwc = chw.permute({1, 2, 0}).contiguous();
@@ -96,8 +98,8 @@ torch::Tensor resample_probes(const torch::Tensor& mosaic, int grid_h, int grid_
   }
   if (grid_h != Hr || grid_w != Wr) {
     // The probe of the grid cell containing each target pixel centre.
-    const torch::Tensor rows = ((torch::arange(Hr, torch::kDouble) + 0.5) * grid_h / Hr).floor().to(torch::kLong);
-    const torch::Tensor cols = ((torch::arange(Wr, torch::kDouble) + 0.5) * grid_w / Wr).floor().to(torch::kLong);
+    const torch::Tensor rows = ((torch::arange(Hr, probes.options().dtype(torch::kDouble)) + 0.5) * grid_h / Hr).floor().to(torch::kLong);
+    const torch::Tensor cols = ((torch::arange(Wr, probes.options().dtype(torch::kDouble)) + 0.5) * grid_w / Wr).floor().to(torch::kLong);
     probes = probes.index_select(0, rows).index_select(1, cols);
   }
   return probes.contiguous();
@@ -158,21 +160,27 @@ torch::Tensor load_input(const fs::path& dir, const torch::Tensor& color, const 
   return to_size(channels(input, 3, dir / "input.png"), h, w).clamp(0.0, 1.0);
 }
 
-// Surface, not emissive, not transparent, at the rendering resolution.
-torch::Tensor load_render_mask(const fs::path& dir, const torch::Tensor& geometry, int Hr, int Wr) {
+// Surface, not emissive, not transparent, at the rendering resolution. `emissive` and
+// `transparent`: the mask files as read (undefined when absent).
+torch::Tensor load_render_mask(const torch::Tensor& geometry, const torch::Tensor& emissive,
+                               const torch::Tensor& transparent, int Hr, int Wr) {
   torch::Tensor render_mask = mask_to_size(geometry, Hr, Wr);
-  for (const char* name : {"mask_emissive.exr", "mask_transparent.exr"}) {
-    const torch::Tensor m = read_chw(dir / name, false);
-    if (!m.defined()) continue;
-    torch::Tensor excluded = (to_size(m.narrow(0, 0, 1), Hr, Wr) > 0.0).to(torch::kFloat);
+  for (const torch::Tensor* m : {&emissive, &transparent}) {
+    if (!m->defined()) continue;
+    torch::Tensor excluded = (to_size(m->narrow(0, 0, 1), Hr, Wr) > 0.0).to(torch::kFloat);
     // color.exr is box-filtered over each pixel, the AOVs come from the pixel centre: a pixel
     // next to a light can hold part of the light's radiance while its AOVs describe the
     // surface beside it. Leave those out too (3x3 dilation, wrapping in u).
-    if (std::string(name) == "mask_emissive.exr")
+    if (m == &emissive)
       excluded = F::max_pool2d(cirpad(excluded.unsqueeze(0), 1, 1), F::MaxPool2dFuncOptions(3).stride(1)).squeeze(0);
     render_mask = render_mask * (1.0 - excluded);
   }
   return render_mask;
+}
+
+// A mask file at the input resolution, zeros when the view has none.
+torch::Tensor mask_or_zeros(const torch::Tensor& m, int h, int w) {
+  return m.defined() ? mask_to_size(m, h, w) : torch::zeros({1, h, w});
 }
 
 // probes.exr on the rendering grid and its validity (probe_mask.exr and the render mask).
@@ -188,7 +196,7 @@ void load_probes(const fs::path& dir, const torch::Tensor& color, const ModelCon
     fail("{}: {}x{} is not a grid of {}x{} probes", (dir / "probes.exr").string(), mosaic.size(2), mosaic.size(1), gw,
          gh);
   v.probes = resample_probes(channels(mosaic, 3, dir / "probes.exr"), gh, gw, Hr, Wr, c.probe_height, c.probe_width);
-  if (!pmask.defined()) pmask = torch::ones({1, gh, gw});
+  if (!pmask.defined()) pmask = torch::ones({1, gh, gw}, mosaic.options());
   v.probe_mask = (resample_probes(channels(pmask.narrow(0, 0, 1), 3, dir / "probe_mask.exr"), gh, gw, Hr, Wr, 1, 1)
                       .select(4, 0)
                       .reshape({1, Hr, Wr}) > 0.5)
@@ -198,7 +206,7 @@ void load_probes(const fs::path& dir, const torch::Tensor& color, const ModelCon
 
 }  // namespace
 
-ViewTensors load_view(const fs::path& dir, const ModelConfig& c, Radiance radiance) {
+ViewTensors load_view(const fs::path& dir, const ModelConfig& c, Radiance radiance, bool with_probes) {
   ViewTensors v;
   v.name = dir.filename().string();
   v.exposure = read_input_exposure(dir);
@@ -216,8 +224,12 @@ ViewTensors load_view(const fs::path& dir, const ModelConfig& c, Radiance radian
   torch::Tensor geometry = read_chw(dir / "mask_geometry.exr", false);
   if (!geometry.defined()) geometry = (read_chw(dir / "depth.exr", true).narrow(0, 0, 1) > 0).to(torch::kFloat);
   v.mask = mask_to_size(geometry, Hi, Wi);
-  v.render_mask = load_render_mask(dir, geometry, Hr, Wr);
-  load_probes(dir, color, c, v);
+  const torch::Tensor emissive = read_chw(dir / "mask_emissive.exr", false);
+  const torch::Tensor transparent = read_chw(dir / "mask_transparent.exr", false);
+  v.mask_emissive = mask_or_zeros(emissive, Hi, Wi);
+  v.mask_transparent = mask_or_zeros(transparent, Hi, Wi);
+  v.render_mask = load_render_mask(geometry, emissive, transparent, Hr, Wr);
+  if (with_probes) load_probes(dir, color, c, v);
   for (const torch::Tensor* t : {&v.image, &v.depth, &v.normal, &v.base_color, &v.roughness, &v.metalness, &v.color_lo})
     if (!torch::isfinite(*t).all().item<bool>()) fail("{}: non-finite values in the maps", dir.string());
   if (radiance == Radiance::kInputUnits) {
@@ -228,17 +240,24 @@ ViewTensors load_view(const fs::path& dir, const ModelConfig& c, Radiance radian
   return v;
 }
 
-Batch make_batch(const std::vector<ViewTensors>& views, const std::vector<size_t>& idx) {
+Batch collate(const std::vector<ViewTensors>& views) {
+  if (views.empty()) fail("collate: no views");
   auto stack = [&](torch::Tensor ViewTensors::*member) {
     std::vector<torch::Tensor> parts;
-    for (size_t i : idx) {
-      const torch::Tensor& t = views[i].*member;
-      if (!t.defined()) return torch::Tensor();
-      parts.push_back(t);
+    for (const ViewTensors& v : views) {
+      if (!(v.*member).defined()) return torch::Tensor();
+      parts.push_back(v.*member);
     }
     return torch::stack(parts, 0);
   };
   Batch b;
+  std::vector<int64_t> index;
+  for (const ViewTensors& v : views) {
+    b.ids.push_back(v.id.empty() ? v.name : v.id);
+    index.push_back(v.index);
+    if (v.census) b.census.push_back(v.census);
+  }
+  b.index = torch::tensor(index, torch::TensorOptions().dtype(torch::kLong));
   b.image = stack(&ViewTensors::image);
   b.depth = stack(&ViewTensors::depth);
   b.normal = stack(&ViewTensors::normal);
@@ -246,10 +265,24 @@ Batch make_batch(const std::vector<ViewTensors>& views, const std::vector<size_t
   b.roughness = stack(&ViewTensors::roughness);
   b.metalness = stack(&ViewTensors::metalness);
   b.mask = stack(&ViewTensors::mask);
+  b.mask_emissive = stack(&ViewTensors::mask_emissive);
+  b.mask_transparent = stack(&ViewTensors::mask_transparent);
   b.color_lo = stack(&ViewTensors::color_lo);
   b.render_mask = stack(&ViewTensors::render_mask);
   b.probes = stack(&ViewTensors::probes);
   b.probe_mask = stack(&ViewTensors::probe_mask);
+  return b;
+}
+
+Batch Batch::to(const torch::Device& device) const {
+  if (device.is_cpu()) return *this;
+  const auto move = [&](const torch::Tensor& t) { return t.defined() ? t.to(device) : t; };
+  Batch b = *this;
+  for (torch::Tensor Batch::*m : {&Batch::index, &Batch::image, &Batch::depth, &Batch::normal, &Batch::base_color,
+                                  &Batch::roughness, &Batch::metalness, &Batch::mask, &Batch::mask_emissive,
+                                  &Batch::mask_transparent, &Batch::color_lo, &Batch::render_mask, &Batch::probes,
+                                  &Batch::probe_mask})
+    b.*m = move(this->*m);
   return b;
 }
 

@@ -1,9 +1,13 @@
 #pragma once
-// Training data: a folder of view folders as written by the dataset generator (issue 5) and
-// `phyir render`, loaded into memory at the network's resolutions. Private header.
+// Training data: one view folder as written by the dataset generator (issue 5) and
+// `phyir render`, read at the network's resolutions (load_view: the one reader, under the
+// torch::data dataset of torch_dataset.h), and views stacked into a batch (collate: the one
+// batching). Private header.
 #include <torch/torch.h>
 
+#include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -17,20 +21,33 @@ namespace phyir::model {
 // resolution ones [C, Hr, Wr]; probes [Hr, Wr, h, w, 3] linear radiance (in the unit load_view
 // was asked for: exposure.h).
 struct ViewTensors {
-  std::string name;
+  std::string name;          // the folder's name
+  std::string id;            // its path in the dataset ("room_0/v003"); set by the dataset
+  int64_t index = 0;         // its position in the dataset (the sampler's index); set by the dataset
   InputExposure exposure;    // input.png's, from view.json
   torch::Tensor image;       // LDR input (input.png, sRGB-encoded, [0,1])
   torch::Tensor depth, normal, base_color, roughness, metalness;
   torch::Tensor mask;        // 1 where a surface is seen (mask_geometry)
+  torch::Tensor mask_emissive, mask_transparent;  // input resolution; zeros without the file
   torch::Tensor color_lo;    // HDR colour (color.exr) at the rendering resolution
   torch::Tensor render_mask; // surface, not emissive, not transparent, at the rendering resolution
   torch::Tensor probes;      // undefined when the view has no probes.exr
   torch::Tensor probe_mask;  // [1, Hr, Wr]
+  // Held while the view's tensors live when a ViewCensus counts decoded views (view_census.h).
+  std::shared_ptr<const void> census;
 };
 
+// Views stacked along a new first dimension, in the order given.
 struct Batch {
+  std::vector<std::string> ids;
+  torch::Tensor index;  // [N] int64: the views' dataset indices
   torch::Tensor image, depth, normal, base_color, roughness, metalness, mask;
+  torch::Tensor mask_emissive, mask_transparent;
   torch::Tensor color_lo, render_mask, probes, probe_mask;  // probes undefined if any view lacks them
+  std::vector<std::shared_ptr<const void>> census;          // the views' census tokens
+
+  // Every tensor on `device` (a no-op on the CPU).
+  Batch to(const torch::Device& device) const;
 };
 
 // The view folders of a dataset. With root/manifest.json (docs/dataset.md): the manifest's
@@ -40,11 +57,15 @@ std::vector<std::filesystem::path> find_view_folders(const std::filesystem::path
                                                      const std::string& split = "");
 
 // Radiance (color_lo, probes) as the files hold it, or in input units (x 2^exposure_stops,
-// exposure.h): training asks for input units.
+// exposure.h): training asks for input units. `with_probes` false leaves probes.exr unread
+// (probes and probe_mask undefined): the stages that train neither LNet nor the joint model
+// never look at them, and at the paper's sizes they are 96% of a view (201 of 210 MB).
 ViewTensors load_view(const std::filesystem::path& folder, const ModelConfig& config,
-                      Radiance radiance = Radiance::kAbsolute);
+                      Radiance radiance = Radiance::kAbsolute, bool with_probes = true);
 
-Batch make_batch(const std::vector<ViewTensors>& views, const std::vector<size_t>& indices);
+// The one batching of views (training, validation, the torch::data loader): each tensor stacked;
+// probes and probe_mask stay undefined unless every view has them. Throws on no views.
+Batch collate(const std::vector<ViewTensors>& views);
 
 // A mask file (mask_*.exr, first channel) as [1, height, width] of 0/1: 1 where every source
 // pixel covered is 1 (as load_view's geometry mask). Undefined when the file does not exist.

@@ -6,6 +6,7 @@
 
 #include "checkpoint.h"
 #include "data.h"
+#include "device.h"
 #include "exposure.h"
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/colour.h"
@@ -81,9 +82,11 @@ void infer(const InferOptions& o) {
   init_logging();
   set_threads(o.threads);
   torch::manual_seed(o.seed);
+  const torch::Device device = parse_device(o.device);
   const ModelConfig cfg = read_checkpoint_config(o.checkpoint);
   Networks nets(cfg);
-  const json meta = load_checkpoint(o.checkpoint, &nets, nullptr, false);
+  const json meta = load_checkpoint(o.checkpoint, &nets, nullptr, false, device);
+  nets.to(device);
   nets.gmnet->eval();
   nets.lnet->eval();
   nets.gsnet->eval();
@@ -91,7 +94,7 @@ void infer(const InferOptions& o) {
 
   const Panorama pano = read_panorama(o);
   const int Hp = static_cast<int>(pano.image.size(2)), Wp = static_cast<int>(pano.image.size(3));
-  const torch::Tensor x = resize(pano.image, cfg.input_height, cfg.input_width).clamp(0.0, 1.0);
+  const torch::Tensor x = resize(pano.image.to(device), cfg.input_height, cfg.input_width).clamp(0.0, 1.0);
   const bool use_gs = meta.at("trained").value("gsnet", false);
   const ModelOutput p = predict(nets, cfg, x, use_gs, true);
   // A model trained on absolute targets (--target-units absolute) predicts absolute radiance.
@@ -117,9 +120,11 @@ void infer(const InferOptions& o) {
   write_tensor_image(out / "roughness.exr", full(p.maps.roughness).clamp(0.0, 1.0)[0], {"Y"});
   write_tensor_image(out / "metalness.exr", full(p.maps.metalness).clamp(0.0, 1.0)[0], {"Y"});
   write_tensor_image(out / "probes.exr", probes_to_mosaic(p.probes * to_output)[0], {"R", "G", "B"});
-  write_tensor_image(out / "probe_mask.exr", torch::ones({1, cfg.render_height, cfg.render_width}), {"Y"});
+  write_tensor_image(out / "probe_mask.exr", torch::ones({1, cfg.render_height, cfg.render_width}, float_options(device)),
+                     {"Y"});
   write_tensor_image(out / "rerender.exr", (p.rerender * to_output)[0], {"R", "G", "B"});
-  json info = {{"checkpoint", o.checkpoint}, {"input", o.input}, {"config", config_to_json(cfg)},
+  json info = {{"checkpoint", o.checkpoint}, {"input", o.input}, {"device", device.str()},
+               {"config", config_to_json(cfg)},
                {"maps_resolution", {Wp, Hp}}, {"network_input_resolution", {cfg.input_width, cfg.input_height}},
                {"probe_grid", {cfg.render_width, cfg.render_height}},
                {"trained", meta.at("trained")}, {"guided_filter_applied", use_gs},

@@ -271,9 +271,19 @@ RenderOutput render_layer(const torch::Tensor& normal, const torch::Tensor& base
   const FlatPixels f = flatten(normal, base_color, roughness, metalness, probes);
   // One draw from torch's generator seeds every pixel's stream: torch::manual_seed reproduces
   // a run, and the generator state saved in a checkpoint resumes it.
+  // The draw is on the CPU whatever the device, so a seed gives the same samples everywhere.
   const uint64_t seed = static_cast<uint64_t>(
-      torch::randint(std::numeric_limits<int64_t>::max(), {1}, torch::TensorOptions().dtype(torch::kLong))
+      torch::randint(std::numeric_limits<int64_t>::max(), {1},
+                     torch::TensorOptions().dtype(torch::kLong).device(torch::kCPU))
           .item<int64_t>());
+  if (!f.n.device().is_cpu()) {
+    // The fused kernel is CPU code: elsewhere the torch-composed estimator runs, on the same
+    // uniforms (render_uniforms: pixel p's own stream), so it agrees with the kernel (tested).
+    auto [ud, us] = render_uniforms(f.n.size(0), settings.diffuse_samples, settings.specular_samples, seed,
+                                    f.n.scalar_type());
+    auto [d, s] = render_pixels(f.n, f.v, f.base, f.R, f.M, f.probes, ud.to(f.n.device()), us.to(f.n.device()));
+    return to_images(f, d, s);
+  }
   const FusedRenderOutput r = render_pixels_fused(f.n, f.v, f.base, f.R, f.M, f.probes, settings.diffuse_samples,
                                                   settings.specular_samples, seed);
   return to_images(f, r.diffuse, r.specular);

@@ -67,7 +67,9 @@ struct RenderOutput {
 // R < kMirrorRoughness the specular lobe is the delta reflection with F(NoV) G1(NoV)^2.
 // Random numbers: one seed drawn from torch's default generator (seed it for determinism),
 // then pixel p's own stream (render_kernel.h), so the thread count does not change the result.
-// Runs the fused kernel (render_kernel.cpp): memory O(pixels) in forward and backward.
+// On the CPU it runs the fused kernel (render_kernel.cpp): memory O(pixels) in forward and
+// backward. On another device (--device cuda) render_layer_reference's estimator on the same
+// uniforms (the kernel is CPU code).
 RenderOutput render_layer(const torch::Tensor& normal, const torch::Tensor& base_color,
                           const torch::Tensor& roughness, const torch::Tensor& metalness,
                           const torch::Tensor& probes, const RenderSettings& settings);

@@ -1,13 +1,23 @@
-// The dataset's manifest as a torch::data dataset: views listed by find_view_folders (the
-// manifest's split, in manifest order), each loaded by load_view when the sampler asks.
+// A dataset's views as a torch::data dataset: views listed by find_view_folders, each loaded
+// by load_view when the sampler asks.
 #include "torch_dataset.h"
 
-#include "data.h"
 #include "phyir/core/error.h"
 
 namespace fs = std::filesystem;
 
 namespace phyir::model {
+
+namespace {
+
+// The view's path below the dataset's views/ folder (below root without one).
+std::string view_id(const fs::path& root, const fs::path& folder) {
+  const fs::path views = root / "views";
+  const fs::path rel = fs::relative(folder, fs::is_directory(views) ? views : root);
+  return rel.empty() || rel == "." ? folder.filename().generic_string() : rel.generic_string();
+}
+
+}  // namespace
 
 ExampleSize ExampleSize::of(const ModelConfig& c) {
   return {c.input_height, c.input_width, c.render_height, c.render_width, c.probe_height, c.probe_width};
@@ -24,7 +34,13 @@ ModelConfig ExampleSize::model_config() const {
   return c;
 }
 
-ManifestDataset::ManifestDataset(const fs::path& root, const std::string& split, ExampleSize size) : size_(size) {
+ManifestDataset::ManifestDataset(const fs::path& root, std::vector<fs::path> folders, const ModelConfig& config,
+                                 Radiance units)
+    : folders_(std::move(folders)), config_(config), units_(units) {
+  for (const fs::path& f : folders_) ids_.push_back(view_id(root, f));
+}
+
+ManifestDataset::ManifestDataset(const fs::path& root, const std::string& split, ExampleSize size) {
   for (int v : {size.height, size.width, size.probe_grid_height, size.probe_grid_width, size.probe_height,
                 size.probe_width})
     if (v <= 0) fail("dataset {}: every example size must be positive", root.string());
@@ -34,69 +50,24 @@ ManifestDataset::ManifestDataset(const fs::path& root, const std::string& split,
     fail("{}: no manifest.json (the dataset is not finished: run the same 'phyir dataset generate' command "
          "again, or 'phyir dataset merge' for shards)",
          (root / "manifest.json").string());
-  folders_ = find_view_folders(root, split);
-  for (const fs::path& f : folders_) ids_.push_back(fs::relative(f, root / "views").generic_string());
+  *this = ManifestDataset(root, find_view_folders(root, split), size.model_config(), Radiance::kAbsolute);
 }
 
-DatasetExample ManifestDataset::get(size_t index) {
-  const fs::path& dir = folders_.at(index);
-  const ModelConfig config = size_.model_config();
-  ViewTensors v = load_view(dir, config);
-  const auto mask_or_zeros = [&](const char* name) {
-    torch::Tensor m = read_mask(dir / name, size_.height, size_.width);
-    return m.defined() ? m : torch::zeros({1, size_.height, size_.width});
-  };
-  DatasetExample e;
-  e.id = ids_[index];
-  e.index = static_cast<int64_t>(index);
-  e.exposure_stops = v.exposure.stops;
-  e.image = std::move(v.image);
-  e.depth = std::move(v.depth);
-  e.normal = std::move(v.normal);
-  e.base_color = std::move(v.base_color);
-  e.roughness = std::move(v.roughness);
-  e.metalness = std::move(v.metalness);
-  e.mask_geometry = std::move(v.mask);
-  e.mask_emissive = mask_or_zeros("mask_emissive.exr");
-  e.mask_transparent = mask_or_zeros("mask_transparent.exr");
-  e.color = std::move(v.color_lo);
-  e.render_mask = std::move(v.render_mask);
-  e.probes = std::move(v.probes);
-  e.probe_mask = std::move(v.probe_mask);
-  return e;
+ManifestDataset ManifestDataset::for_training(const fs::path& root, const std::string& split, int max_views,
+                                              const ModelConfig& config, Radiance units, bool with_probes) {
+  std::vector<fs::path> folders = find_view_folders(root, split);
+  if (max_views > 0 && folders.size() > static_cast<size_t>(max_views)) folders.resize(max_views);
+  ManifestDataset d(root, std::move(folders), config, units);
+  d.with_probes_ = with_probes;
+  return d;
 }
 
-ExampleBatch collate(const std::vector<DatasetExample>& examples) {
-  if (examples.empty()) fail("collate: no examples");
-  const auto stack = [&](torch::Tensor DatasetExample::*member) {
-    std::vector<torch::Tensor> parts;
-    for (const DatasetExample& e : examples) {
-      if (!(e.*member).defined()) return torch::Tensor();
-      parts.push_back(e.*member);
-    }
-    return torch::stack(parts, 0);
-  };
-  ExampleBatch b;
-  std::vector<int64_t> index;
-  for (const DatasetExample& e : examples) {
-    b.ids.push_back(e.id);
-    index.push_back(e.index);
-  }
-  b.index = torch::tensor(index, torch::kLong);
-  b.image = stack(&DatasetExample::image);
-  b.depth = stack(&DatasetExample::depth);
-  b.normal = stack(&DatasetExample::normal);
-  b.base_color = stack(&DatasetExample::base_color);
-  b.roughness = stack(&DatasetExample::roughness);
-  b.metalness = stack(&DatasetExample::metalness);
-  b.mask_geometry = stack(&DatasetExample::mask_geometry);
-  b.mask_emissive = stack(&DatasetExample::mask_emissive);
-  b.mask_transparent = stack(&DatasetExample::mask_transparent);
-  b.color = stack(&DatasetExample::color);
-  b.render_mask = stack(&DatasetExample::render_mask);
-  b.probes = stack(&DatasetExample::probes);
-  b.probe_mask = stack(&DatasetExample::probe_mask);
-  return b;
+ViewTensors ManifestDataset::get(size_t index) {
+  ViewTensors v = load_view(folders_.at(index), config_, units_, with_probes_);
+  v.id = ids_[index];
+  v.index = static_cast<int64_t>(index);
+  if (census_) v.census = census_->enrol();
+  return v;
 }
 
 }  // namespace phyir::model

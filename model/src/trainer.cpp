@@ -3,9 +3,9 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <random>
 
 #include "augment.h"
+#include "device.h"
 #include "phyir/core/error.h"
 #include "phyir/core/log.h"
 
@@ -74,6 +74,7 @@ void Trainer::settle_settings() {
     fail("--exposure-jitter {},{}: the first bound is above the second", o_.augment.exposure_min_stops,
          o_.augment.exposure_max_stops);
   Validator::higher_is_better(o_.validation.best_metric);  // an unknown metric fails now
+  device_ = parse_device(o_.device);
   out_ = o_.out_dir;
   fs::create_directories(out_);
   checkpoint_path_ = out_ / "checkpoint.pt";
@@ -116,6 +117,8 @@ void Trainer::build_networks() {
   trained_ = json::object({{"gmnet", false}, {"lnet", false}, {"gsnet", false}});
   if (!o_.init.empty() && !o_.resume) trained_ = load_checkpoint(o_.init, nets_.get(), nullptr, false).value("trained", trained_);
   if (!o_.encoder_weights.empty() && !o_.resume && o_.init.empty()) nets_->gmnet->load_encoder(o_.encoder_weights);
+  // Before the optimiser exists, so its state is made (or loaded: load_checkpoint) on the device.
+  nets_->to(device_);
   if ((o_.stage == Stage::kLNet || o_.stage == Stage::kGSNet) && !trained_.value("gmnet", false))
     spdlog::warn("stage {}: GMNet is frozen but untrained (pass --init with a gmnet checkpoint)", stage_name_);
   // The stage's networks train; the others are frozen (eval mode, no gradients).
@@ -132,7 +135,7 @@ void Trainer::build_networks() {
   opt_ = std::make_unique<torch::optim::Adam>(params, torch::optim::AdamOptions(lr_));
   best_.metric = o_.validation.best_metric;
   if (!o_.resume) return;
-  const json m = load_checkpoint(checkpoint_path_.string(), nets_.get(), opt_.get(), true);
+  const json m = load_checkpoint(checkpoint_path_.string(), nets_.get(), opt_.get(), true, device_);
   start_epoch_ = m.at("epoch");
   start_batch_ = m.at("batch");
   global_step_ = m.at("global_step");
@@ -152,21 +155,27 @@ void Trainer::build_networks() {
 }
 
 void Trainer::load_data() {
-  std::vector<fs::path> folders = find_view_folders(o_.data_dir, o_.split);
-  if (o_.max_views > 0 && folders.size() > static_cast<size_t>(o_.max_views)) folders.resize(o_.max_views);
-  for (const auto& f : folders) views_.push_back(load_view(f, config_, target_radiance(config_)));
-  if (stage_.lnet && !views_.front().probes.defined())
-    fail("stage {}: {} has no probes.exr (render the dataset with probes)", stage_name_, folders.front().string());
-  const int64_t n_views = static_cast<int64_t>(views_.size());
-  batch_ = std::min<int64_t>(batch_size_, n_views);
-  batches_per_epoch_ = (n_views + batch_ - 1) / batch_;
+  const Radiance units = target_radiance(config_);
+  // Only LNet's stages read the probes (the gmnet and gsnet losses never look at them).
+  ManifestDataset views =
+      ManifestDataset::for_training(o_.data_dir, o_.split, o_.max_views, config_, units, stage_.lnet);
+  // One view read now: a stage that needs probes fails before the first step, not in a worker.
+  if (stage_.lnet && !views.get(0).probes.defined())
+    fail("stage {}: {} has no probes.exr (render the dataset with probes)", stage_name_, views.folder(0).string());
+  views_ = static_cast<int64_t>(views.size().value());
+  batch_ = std::min<int64_t>(batch_size_, views_);
+  batches_per_epoch_ = (views_ + batch_ - 1) / batch_;
   yaw_divisions_ = yaw_divisions(config_);
+  stream_ = std::make_unique<BatchStream>(
+      TrainingBatches(std::move(views), o_.augment, yaw_divisions_, o_.seed, units),
+      StreamOptions{o_.workers, o_.prefetch});
   const json saved_schedule = o_.resume ? resumed_.value("schedule", json()) : json();
   schedule_ = make_schedule(o_.schedule, saved_schedule, lr_, o_.epochs, batches_per_epoch_);
-  validator_ = std::make_unique<Validator>(o_.data_dir, o_.validation, config_);
-  spdlog::info("train {}: {} views, batch {}, {} steps/epoch, lr {} ({}), {} threads, input {}x{}, render {}x{}, "
-               "probes {}x{}, augmentation {}, validation {}",
-               stage_name_, n_views, batch_, batches_per_epoch_, lr_, schedule_.kind, o_.threads, config_.input_width,
+  validator_ = std::make_unique<Validator>(o_.data_dir, o_.validation, config_, device_);
+  spdlog::info("train {}: {} views (streamed: {} workers, {} batches ahead), batch {}, {} steps/epoch, lr {} ({}), "
+               "{} threads, device {}, input {}x{}, render {}x{}, probes {}x{}, augmentation {}, validation {}",
+               stage_name_, views_, o_.workers, o_.workers > 0 ? o_.prefetch : 0, batch_, batches_per_epoch_, lr_,
+               schedule_.kind, o_.threads, device_.str(), config_.input_width,
                config_.input_height, config_.render_width, config_.render_height, config_.probe_width,
                config_.probe_height, o_.augment.enabled ? "on" : "off",
                validator_->enabled() ? fmt::format("{} views every {} epochs", validator_->size(), o_.validation.every)
@@ -178,41 +187,39 @@ void Trainer::load_data() {
 // --- Epochs and steps ---------------------------------------------------------------------------
 
 bool Trainer::run_epoch(int epoch) {
-  // The epoch's order depends only on (seed, epoch), so a resumed run sees the same batches.
-  std::vector<size_t> order(views_.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::mt19937_64 shuffle_rng(o_.seed * 1000003ULL + static_cast<uint64_t>(epoch));
-  std::shuffle(order.begin(), order.end(), shuffle_rng);
   if (epoch != start_epoch_ || start_batch_ == 0) {
     epoch_loss_sum_ = 0.0;
     epoch_steps_ = 0;
   }
   set_modes(true);
-  bool at_limit = false;
-  for (int64_t bi = (epoch == start_epoch_ ? start_batch_ : 0); bi < batches_per_epoch_; ++bi) {
-    run_step(epoch, bi, order);
-    at_limit = o_.max_steps > 0 && global_step_ >= o_.max_steps;
-    if (bi + 1 == batches_per_epoch_) break;  // the epoch's end: below
+  bool stopped = false;  // --max-steps reached inside the epoch
+  int64_t bi = epoch == start_epoch_ ? start_batch_ : 0;
+  // The epoch's order depends only on (seed, epoch), so a resumed run sees the same batches.
+  const std::vector<size_t> order = epoch_order(static_cast<size_t>(views_), o_.seed, epoch);
+  stream_->run_epoch(epoch, order, bi, batch_, [&](Batch b) {
+    run_step(epoch, bi, b.to(device_));
+    const bool at_limit = o_.max_steps > 0 && global_step_ >= o_.max_steps;
+    if (bi + 1 == batches_per_epoch_) return false;  // the epoch's end: below
     // Resume point: the next batch of this epoch.
     if (at_limit || (o_.checkpoint_every > 0 && global_step_ % o_.checkpoint_every == 0))
       save_checkpoint(checkpoint_path_, meta(epoch, bi + 1), *nets_, opt_.get());
-    if (at_limit) {
-      summary_.epoch_losses.push_back(epoch_loss_sum_ / static_cast<double>(epoch_steps_));
-      return false;
-    }
+    ++bi;
+    stopped = at_limit;
+    return !at_limit;
+  });
+  if (stopped) {
+    summary_.epoch_losses.push_back(epoch_loss_sum_ / static_cast<double>(epoch_steps_));
+    return false;
   }
   if (epoch_steps_ > 0) summary_.epoch_losses.push_back(epoch_loss_sum_ / static_cast<double>(epoch_steps_));
   if (validator_->due(epoch + 1, o_.epochs)) validate(epoch + 1);
   save_checkpoint(checkpoint_path_, meta(epoch + 1, 0), *nets_, opt_.get());
   summary_.epochs_done = epoch + 1;
-  return !at_limit;
+  return !(o_.max_steps > 0 && global_step_ >= o_.max_steps);
 }
 
-double Trainer::run_step(int epoch, int64_t bi, const std::vector<size_t>& order) {
+double Trainer::run_step(int epoch, int64_t bi, const Batch& b) {
   const auto t0 = Clock::now();
-  const std::vector<size_t> idx(order.begin() + bi * batch_,
-                                order.begin() + std::min<int64_t>((bi + 1) * batch_, static_cast<int64_t>(order.size())));
-  const Batch b = augmented_batch(views_, idx, o_.augment, yaw_divisions_, o_.seed, epoch, target_radiance(config_));
   const double lr = schedule_.at(global_step_);
   for (auto& group : opt_->param_groups()) static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
   const StepLoss L = stage_loss(*nets_, config_, weights_, stage_, b);
@@ -315,7 +322,10 @@ void Trainer::write_summary() {
   log["epochs"] = o_.epochs;
   log["paper_epochs"] = defaults_.paper_epochs;
   log["threads"] = o_.threads;
-  log["views"] = views_.size();
+  log["views"] = views_;
+  log["workers"] = o_.workers;
+  log["prefetch"] = o_.prefetch;
+  log["device"] = device_.str();
   log["validation_views"] = validator_->size();
   log["epoch_mean_loss"] = summary_.epoch_losses;
   json passes = json::array();

@@ -1,7 +1,8 @@
 #pragma once
 // One stage's training run (appendix B.1) as named steps: settle the settings (from the
 // options, or the checkpoint being resumed), build the networks and the optimiser, load the
-// data, then epochs of steps with validation passes, checkpoints and logs. train() in
+// data (streamed: view_stream.h), then epochs of steps with validation passes, checkpoints and
+// logs. train() in
 // training.h is Trainer(options).run(). Private header (torch types).
 #include <torch/torch.h>
 
@@ -20,6 +21,7 @@
 #include "stage_loss.h"
 #include "train_log.h"
 #include "validation.h"
+#include "view_stream.h"
 
 namespace phyir::model {
 
@@ -43,8 +45,7 @@ class Trainer {
   void build_networks();      // networks, which of them train, optimiser, resumed state
   void load_data();           // training views, validator, schedule, logs
   bool run_epoch(int epoch);  // false when --max-steps stopped the run inside it
-  double run_step(int epoch, int64_t batch_index, const std::vector<size_t>& order);
-  Batch make_training_batch(int epoch, const std::vector<size_t>& indices) const;
+  double run_step(int epoch, int64_t batch_index, const Batch& batch);
   void log_step(int epoch, int64_t batch_index, double loss, const StepLoss& parts, double lr, double step_seconds);
   void validate(int epoch_done);
   nlohmann::json meta(int epoch, int64_t batch) const;
@@ -69,7 +70,9 @@ class Trainer {
   int start_epoch_ = 0;
   int64_t start_batch_ = 0, global_step_ = 0;
 
-  std::vector<ViewTensors> views_;
+  torch::Device device_ = torch::kCPU;
+  std::unique_ptr<BatchStream> stream_;  // the training views, read as batches are due
+  int64_t views_ = 0;
   int64_t batch_ = 1, batches_per_epoch_ = 1;
   int yaw_divisions_ = 1;
   std::unique_ptr<Validator> validator_;

@@ -85,8 +85,9 @@ std::vector<nlohmann::json> split_records(const fs::path& root, const std::strin
 
 }  // namespace
 
-Validator::Validator(const fs::path& root, const ValidationOptions& o, const ModelConfig& config)
-    : options_(o), config_(config) {
+Validator::Validator(const fs::path& root, const ValidationOptions& o, const ModelConfig& config,
+                     const torch::Device& device)
+    : options_(o), config_(config), device_(device) {
   if (o.every <= 0) return;
   std::string why;
   std::vector<nlohmann::json> records = split_records(root, o.split, &why);
@@ -96,6 +97,7 @@ Validator::Validator(const fs::path& root, const ValidationOptions& o, const Mod
   }
   if (o.max_views > 0 && records.size() > static_cast<size_t>(o.max_views)) records.resize(o.max_views);
   for (const nlohmann::json& r : records) {
+    // The same reader as training's (torch_dataset.h's ManifestDataset::get is load_view).
     views_.push_back(load_view(root / r.at("dir").get<std::string>(), config, target_radiance(config)));
     truths_.push_back(std::make_shared<const eval::GroundTruthView>(eval::load_ground_truth(root, r)));
   }
@@ -140,7 +142,7 @@ ValidationRecord Validator::run(Networks& nets, const LossWeights& w, StageNetwo
   settings.relight = false;
   std::vector<eval::Metrics> per_view;
   for (size_t k = 0; k < views_.size(); ++k) {
-    const Batch b = make_batch(views_, {k});
+    const Batch b = collate({views_[k]}).to(device_);
     const StepLoss L = stage_loss(nets, config_, w, stage, b);
     rec.loss += L.total.item<double>() / views_.size();
     for (size_t i = 0; i < L.parts.size(); ++i) {

@@ -24,9 +24,12 @@ namespace phyir::model {
 
 class Validator {
  public:
-  // Loads the views. Off (enabled() false, with a log line saying why) when options.every is 0,
-  // the split is empty, or `root` has no manifest or no view in the split.
-  Validator(const std::filesystem::path& root, const ValidationOptions& options, const ModelConfig& config);
+  // Loads the views (at most options.max_views: the in-memory subset validation keeps, in host
+  // memory; each is moved to `device` for its pass). Off (enabled() false, with a log line
+  // saying why) when options.every is 0, the split is empty, or `root` has no manifest or no
+  // view in the split.
+  Validator(const std::filesystem::path& root, const ValidationOptions& options, const ModelConfig& config,
+            const torch::Device& device = torch::kCPU);
 
   bool enabled() const { return !views_.empty(); }
   size_t size() const { return views_.size(); }
@@ -47,6 +50,7 @@ class Validator {
  private:
   ValidationOptions options_;
   ModelConfig config_;
+  torch::Device device_;
   std::vector<ViewTensors> views_;       // at the network's resolutions, input units
   // Each view's ground truth as phyir eval reads it, read once (eval's type stays out of
   // this header: the model's tests do not see eval's headers).

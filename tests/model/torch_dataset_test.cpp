@@ -87,9 +87,9 @@ TEST_F(TorchDataset, ShapesAndValueRanges) {
   EXPECT_EQ(e.base_color.sizes().vec(), (S{3, kH, kW}));
   EXPECT_EQ(e.roughness.sizes().vec(), (S{1, kH, kW}));
   EXPECT_EQ(e.metalness.sizes().vec(), (S{1, kH, kW}));
-  for (const auto* m : {&e.mask_geometry, &e.mask_emissive, &e.mask_transparent})
+  for (const auto* m : {&e.mask, &e.mask_emissive, &e.mask_transparent})
     EXPECT_EQ(m->sizes().vec(), (S{1, kH, kW}));
-  EXPECT_EQ(e.color.sizes().vec(), (S{3, kGh, kGw}));
+  EXPECT_EQ(e.color_lo.sizes().vec(), (S{3, kGh, kGw}));
   EXPECT_EQ(e.render_mask.sizes().vec(), (S{1, kGh, kGw}));
   ASSERT_TRUE(e.probes.defined());
   EXPECT_EQ(e.probes.sizes().vec(), (S{kGh, kGw, kPh, kPw, 3}));
@@ -102,18 +102,18 @@ TEST_F(TorchDataset, ShapesAndValueRanges) {
       EXPECT_LE(t->max().item<float>(), 1.0f) << x.id;
     }
     EXPECT_GE(x.depth.min().item<float>(), 0.0f);
-    EXPECT_GE(x.color.min().item<float>(), 0.0f);
+    EXPECT_GE(x.color_lo.min().item<float>(), 0.0f);
     EXPECT_GE(x.probes.min().item<float>(), 0.0f);
     EXPECT_TRUE(torch::isfinite(x.probes).all().item<bool>());
-    expect_binary(x.mask_geometry, "mask_geometry");
+    expect_binary(x.mask, "mask_geometry");
     expect_binary(x.mask_emissive, "mask_emissive");
     expect_binary(x.mask_transparent, "mask_transparent");
     expect_binary(x.render_mask, "render_mask");
     expect_binary(x.probe_mask, "probe_mask");
     // A room seen from inside: surfaces almost everywhere, unit normals there.
-    EXPECT_GT(x.mask_geometry.mean().item<float>(), 0.9f) << x.id;
+    EXPECT_GT(x.mask.mean().item<float>(), 0.9f) << x.id;
     const torch::Tensor len = x.normal.norm(2, 0, true);
-    EXPECT_LT(((len - 1.0).abs() * x.mask_geometry).max().item<float>(), 1e-4f) << x.id;
+    EXPECT_LT(((len - 1.0).abs() * x.mask).max().item<float>(), 1e-4f) << x.id;
   }
 }
 
@@ -127,7 +127,7 @@ TEST_F(TorchDataset, ExamplesEqualTheFilesAtTheirOwnResolution) {
     EXPECT_TRUE(torch::equal(e.base_color, file_chw(dir / "basecolor.exr"))) << e.id;
     EXPECT_TRUE(torch::equal(e.roughness, file_chw(dir / "roughness.exr"))) << e.id;
     EXPECT_TRUE(torch::equal(e.metalness, file_chw(dir / "metalness.exr"))) << e.id;
-    EXPECT_TRUE(torch::equal(e.mask_geometry, file_chw(dir / "mask_geometry.exr"))) << e.id;
+    EXPECT_TRUE(torch::equal(e.mask, file_chw(dir / "mask_geometry.exr"))) << e.id;
     EXPECT_TRUE(torch::equal(e.mask_emissive, file_chw(dir / "mask_emissive.exr"))) << e.id;
     EXPECT_TRUE(torch::equal(e.mask_transparent, file_chw(dir / "mask_transparent.exr"))) << e.id;
     // Normals are re-normalised by the loader; the renderer's are unit already.
@@ -135,7 +135,7 @@ TEST_F(TorchDataset, ExamplesEqualTheFilesAtTheirOwnResolution) {
 
     // Colour at the probe grid (8 x 16): the mean of each 4 x 4 block of color.exr.
     const phyir::Image color = phyir::read_image(dir / "color.exr");
-    auto c = e.color.accessor<float, 3>();
+    auto c = e.color_lo.accessor<float, 3>();
     for (int y = 0; y < kGh; ++y)
       for (int x = 0; x < kGw; ++x)
         for (int ch = 0; ch < 3; ++ch) {

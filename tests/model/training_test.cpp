@@ -15,6 +15,7 @@
 #include "lr_schedule.h"
 #include "validation.h"
 #include "render_layer.h"
+#include "synthetic_view.h"
 #include "tiny_dataset.h"
 
 namespace pm = phyir::model;
@@ -22,34 +23,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A view folder as the dataset writes it, 64 x 32, probes on a 32 x 16 grid of 4 x 8 texels.
-void write_view(const fs::path& dir, int seed) {
-  fs::create_directories(dir);
-  const int H = 32, W = 64, gh = 16, gw = 32, h = 4, w = 8;
-  torch::manual_seed(seed);
-  const auto dirs = pm::pixel_directions(H, W, torch::TensorOptions());  // [H,W,3]
-  const auto d = dirs.permute({2, 0, 1});
-  const auto depth = (2.0 + 0.5 * d[1] + 0.2 * seed).unsqueeze(0);
-  const auto normal = -d;
-  const auto base = torch::stack({0.5 + 0.3 * d[0], 0.4 + 0.1 * torch::rand({H, W}), torch::full({H, W}, 0.3 + 0.1 * seed)});
-  const auto rough = (0.3 + 0.4 * (d[1] > 0).to(torch::kFloat)).unsqueeze(0);
-  const auto metal = (d[0] > 0.5).to(torch::kFloat).unsqueeze(0);
-  const auto color = base * (1.2 + 0.5 * d[1]);
-  const auto tdirs = pm::pixel_directions(h, w, torch::TensorOptions());
-  const auto probe = (1.0 + 0.5 * tdirs.select(-1, 1) + 0.1 * seed).view({1, 1, 1, h, w, 1}).expand({1, gh, gw, h, w, 3});
-  pm::write_tensor_image(dir / "color.exr", color);
-  pm::write_tensor_image(dir / "input.png", color.clamp(0.0, 1.0).pow(1.0 / 2.2));
-  pm::write_tensor_image(dir / "depth.exr", depth, {"Y"});
-  pm::write_tensor_image(dir / "normal.exr", normal, {"X", "Y", "Z"});
-  pm::write_tensor_image(dir / "basecolor.exr", base);
-  pm::write_tensor_image(dir / "roughness.exr", rough, {"Y"});
-  pm::write_tensor_image(dir / "metalness.exr", metal, {"Y"});
-  pm::write_tensor_image(dir / "mask_geometry.exr", torch::ones({1, H, W}), {"Y"});
-  pm::write_tensor_image(dir / "mask_emissive.exr", torch::zeros({1, H, W}), {"Y"});
-  pm::write_tensor_image(dir / "mask_transparent.exr", torch::zeros({1, H, W}), {"Y"});
-  pm::write_tensor_image(dir / "probes.exr", pm::probes_to_mosaic(probe.contiguous())[0]);
-  pm::write_tensor_image(dir / "probe_mask.exr", torch::ones({1, gh, gw}), {"Y"});
-}
+using synthetic::write_view;
 
 fs::path dataset() {
   static const fs::path root = [] {
@@ -319,6 +293,69 @@ TEST(ModelTrain, NonFiniteLossStopsWithAClearMessage) {
     EXPECT_NE(msg.find("the loss is"), std::string::npos) << msg;
     EXPECT_NE(msg.find("last good checkpoint"), std::string::npos) << msg;
   }
+}
+
+TEST(ModelTrain, StreamedTrainingIsIdenticalWithZeroOneAndTwoWorkers) {
+  // The same seed gives the same weights whatever the read-ahead: batches are made in the
+  // sampler's order and handed over in it (view_stream.h), augmentation included.
+  std::vector<std::vector<torch::Tensor>> weights;
+  std::vector<std::vector<std::string>> logs;
+  for (auto [workers, prefetch] : std::vector<std::pair<int, int>>{{0, 1}, {1, 1}, {2, 3}}) {
+    const fs::path out = scratch(fmt::format("workers_{}_{}", workers, prefetch));
+    pm::TrainOptions o = options(out.string(), pm::Stage::kGMNet);
+    o.epochs = 2;
+    o.batch_size = 2;  // 3 views: batches of 2 and 1
+    o.learning_rate = 1e-3;
+    o.workers = workers;
+    o.prefetch = prefetch;
+    const pm::TrainSummary s = pm::train(o);
+    EXPECT_EQ(s.steps, 4);
+    weights.push_back(checkpoint_tensors((out / "checkpoint.pt").string()));
+    logs.push_back(csv_rows_without_time(out / "train_log.csv"));
+  }
+  EXPECT_TRUE(same_tensors(weights[0], weights[1])) << "0 and 1 workers";
+  EXPECT_TRUE(same_tensors(weights[0], weights[2])) << "0 and 2 workers";
+  EXPECT_EQ(logs[0], logs[1]);
+  EXPECT_EQ(logs[0], logs[2]);
+  pm::TrainOptions bad = options(scratch("workers_bad").string(), pm::Stage::kGMNet);
+  bad.workers = 2;
+  bad.prefetch = 0;
+  EXPECT_THROW(pm::train(bad), phyir::Error);
+}
+
+TEST(ModelTrainCli, DeviceCpuEqualsTheDefaultAndAnUnavailableDeviceIsNamed) {
+  const fs::path bin = PHYIR_BINARY;
+  if (!fs::is_regular_file(bin)) GTEST_SKIP() << bin << " not built";
+  const fs::path work = scratch("device");
+  fs::create_directories(work);
+  const std::string log = " >> " + (work / "log.txt").string() + " 2>&1";
+  const std::string train = bin.string() + " --log-level warn train --data " + dataset().string() +
+                            " --stage gmnet --epochs 1 --batch 2 --seed 3 --input-height 32 --input-width 64"
+                            " --render-height 16 --render-width 32 --probe-height 4 --probe-width 8"
+                            " --width-divisor 4 --threads 1 --quiet --out ";
+  ASSERT_EQ(std::system((train + (work / "default").string() + log).c_str()), 0) << work / "log.txt";
+  ASSERT_EQ(std::system((train + (work / "cpu").string() + " --device cpu --workers 1" + log).c_str()), 0)
+      << work / "log.txt";
+  EXPECT_TRUE(same_tensors(checkpoint_tensors((work / "default" / "checkpoint.pt").string()),
+                           checkpoint_tensors((work / "cpu" / "checkpoint.pt").string())));
+  std::ifstream in(work / "cpu" / "train_log.json");
+  EXPECT_EQ(nlohmann::json::parse(in)["device"], "cpu");
+  // An unknown device, and CUDA on this CPU-only LibTorch: a non-zero exit naming the flag.
+  const auto fails_naming = [&](const std::string& command, const std::string& expected) {
+    const fs::path err = work / "err.txt";
+    EXPECT_NE(std::system((command + " > " + err.string() + " 2>&1").c_str()), 0) << command;
+    std::ifstream e(err);
+    const std::string text((std::istreambuf_iterator<char>(e)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find(expected), std::string::npos) << command << ":\n" << text;
+  };
+  fails_naming(train + (work / "tpu").string() + " --device tpu", "--device 'tpu'");
+  if (torch::cuda::is_available()) return;
+  fails_naming(train + (work / "cuda").string() + " --device cuda", "--device 'cuda': CUDA is not available");
+  fails_naming(bin.string() + " infer --model " + (work / "cpu" / "checkpoint.pt").string() + " --input " +
+                   (fs::path(pm::find_view_folders(dataset())[0]) / "input.png").string() + " --out " +
+                   (work / "infer").string() + " --device cuda",
+               "--device 'cuda': CUDA is not available");
+  EXPECT_FALSE(fs::exists(work / "cuda" / "checkpoint.pt"));
 }
 
 TEST(ModelTrain, BadOptionsAreReported) {

@@ -88,6 +88,11 @@ struct TrainOptions {
   LossWeights weights;
   uint64_t seed = 1;
   int threads = 1;             // torch intra-op threads (set explicitly; torch's default is 1 here)
+  int workers = 2;             // threads reading and augmenting batches ahead (0: on the training thread)
+  int prefetch = 2;            // batches read ahead with workers: at most batch x (prefetch + 1) views
+                               // in memory (docs/model.md "Training at scale"); results do not
+                               // depend on either
+  std::string device = "cpu";  // cpu, cuda or cuda:N (torch::Device; CUDA needs a CUDA LibTorch)
   std::string init;            // checkpoint whose networks this stage starts from (earlier stage)
   std::string encoder_weights; // optional ResNet-18 encoder weights (torch::save of the encoder)
   bool resume = false;         // continue out_dir/checkpoint.pt exactly where it stopped
@@ -136,6 +141,7 @@ struct InferOptions {
   std::string input;        // panorama .png (LDR, as input.png) or .exr/.hdr (HDR: exposed, then sRGB)
   std::string out_dir;
   int threads = 1;
+  std::string device = "cpu";  // cpu, cuda or cuda:N (as TrainOptions::device)
   uint64_t seed = 1;        // the rendering layer's Monte-Carlo samples
   // The input's exposure in stops (input = display(2^stops x radiance)). NaN: for an HDR
   // input the dataset's auto exposure; for a .png its folder's view.json, else unknown.
