@@ -14,7 +14,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <cmath>
+#include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "bench_suite_runner.h"
@@ -26,6 +29,8 @@
 #include "phyir/core/image_io.h"
 #include "phyir/core/log.h"
 #include "phyir/render/effects.h"
+#include "phyir/render/environment_light.h"
+#include "phyir/render/probe_grid.h"
 #include "phyir/render/probe_renderer.h"
 #include "phyir/render/render_job.h"
 #include "phyir/render/rng.h"
@@ -99,6 +104,13 @@ Config parse_config(const std::string& text, const render::ProbeSettings& defaul
   return c;
 }
 
+// Two configurations that differ in their seed alone.
+bool same_setting(const Config& a, const Config& b) {
+  return a.mode == b.mode && a.spp == b.spp && a.cache_spp == b.cache_spp && a.cache_cell == b.cache_cell &&
+         a.direct_cells == b.direct_cells && a.spread == b.spread && a.share_radius == b.share_radius &&
+         a.share_parallax == b.share_parallax && a.seed_offset != b.seed_offset;
+}
+
 // The subset's probes side by side: probe k at columns [k w, (k+1) w).
 Image strip(const Image& mosaic, const render::ProbeLayout& layout, const std::vector<int>& subset) {
   Image out(layout.res_width * int(subset.size()), layout.res_height, 3);
@@ -111,15 +123,161 @@ Image strip(const Image& mosaic, const render::ProbeLayout& layout, const std::v
   return out;
 }
 
+// ---- Where the error is: by texel class, by probe, bias against variance ------------------
+
+// What a measured texel's centre direction sees from its probe's origin; the first class
+// that applies (a texel looking back at the probe's own surface is `behind`, near its foot).
+enum TexelClass { kSky, kEmitter, kGlass, kGlossy, kBehind, kNear, kFar, kClassCount };
+constexpr const char* kClassNames[kClassCount] = {"sky/environment", "emitter", "glass", "glossy (rough < 0.3)",
+                                                  "behind (own surface)", "diffuse < 0.5 m", "diffuse >= 0.5 m"};
+// Diffuse surfaces nearer than this see the probe's surroundings at large parallax.
+constexpr float kNearDistance = 0.5f;
+
+std::vector<int> classify_texels(const render::RenderScene& scene, const std::vector<render::ProbeSite>& sites,
+                                 const std::vector<int>& subset, const render::ProbeLayout& layout, float glossy) {
+  const int h = layout.res_height, w = layout.res_width;
+  std::vector<int> classes(subset.size() * size_t(h * w));
+  for (size_t k = 0; k < subset.size(); ++k) {
+    const render::ProbeSite& site = sites[size_t(subset[k])];
+    for (int r = 0; r < h; ++r) {
+      for (int c = 0; c < w; ++c) {
+        const glm::vec3 d = render::probe_texel_direction(r, c, h, w, glm::vec2(0.5f));
+        render::SurfaceInteraction si;
+        int cls = kFar;
+        if (!scene.trace(render::Ray{site.origin, d}, &si)) cls = kSky;
+        else if (si.emits) cls = kEmitter;
+        else if (si.transmission > 0.0f) cls = kGlass;
+        else if (si.brdf.roughness < glossy) cls = kGlossy;
+        else if (glm::dot(d, site.normal) < 0.0f) cls = kBehind;
+        else if (si.distance < kNearDistance) cls = kNear;
+        classes[k * size_t(h * w) + size_t(r * w + c)] = cls;
+      }
+    }
+  }
+  return classes;
+}
+
+// Squared errors of a strip against the reference, summed per texel over channels.
+struct TexelErrors {
+  std::vector<double> squared;  // per texel (strip pixel)
+  double mean_reference = 0.0;  // mean |reference| over texels and channels
+};
+
+TexelErrors texel_errors(const Image& a, const Image& reference) {
+  TexelErrors e;
+  e.squared.assign(size_t(a.width) * size_t(a.height), 0.0);
+  double sum_ref = 0.0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x)
+      for (int ch = 0; ch < 3; ++ch) {
+        const double d = double(a.at(x, y, ch)) - double(reference.at(x, y, ch));
+        e.squared[size_t(y) * size_t(a.width) + size_t(x)] += d * d;
+        sum_ref += std::abs(double(reference.at(x, y, ch)));
+      }
+  e.mean_reference = sum_ref / (3.0 * double(e.squared.size()));
+  return e;
+}
+
+// The strip pixel of texel t of subset probe k, as an index into TexelErrors::squared.
+size_t strip_index(const render::ProbeLayout& layout, size_t subset_count, size_t k, int t) {
+  const int r = t / layout.res_width, c = t % layout.res_width;
+  return size_t(r) * size_t(layout.res_width) * subset_count + k * size_t(layout.res_width) + size_t(c);
+}
+
+// Error by texel class and by probe: each one's share of the squared error and its RMSE
+// relative to the whole subset's mean |reference| (so the classes' squared values add up to
+// the total's). With `other` (the same setting, another seed) and the reference's halves, the
+// error splits into what does not average away between seeds (bias) and noise.
+nlohmann::json error_breakdown(const Image& measured, const Image* other, const Image& reference, const Image halves[2],
+                               const std::vector<int>& classes, const std::vector<int>& subset,
+                               const std::vector<render::ProbeSite>& sites, const render::ProbeLayout& layout,
+                               const render::RenderScene& scene) {
+  const TexelErrors e = texel_errors(measured, reference);
+  const TexelErrors half = texel_errors(halves[0], halves[1]);
+  std::optional<TexelErrors> pair;
+  if (other) pair = texel_errors(measured, *other);
+  const int texels = layout.texels_per_probe();
+  const double n_all = double(e.squared.size()) * 3.0, scale = e.mean_reference;
+  double total = 0.0;
+  for (double s : e.squared) total += s;
+  struct Sum { double err = 0, noise = 0, ref_noise = 0, signed_err = 0, ref = 0; size_t count = 0; };
+  std::vector<Sum> per_class(kClassCount), per_probe(subset.size());
+  for (size_t k = 0; k < subset.size(); ++k) {
+    for (int t = 0; t < texels; ++t) {
+      const size_t i = strip_index(layout, subset.size(), k, t);
+      const int x = int(i % size_t(measured.width)), y = int(i / size_t(measured.width));
+      for (Sum* s : {&per_class[size_t(classes[k * size_t(texels) + size_t(t)])], &per_probe[k]}) {
+        s->err += e.squared[i];
+        s->ref_noise += half.squared[i] / 4.0;  // the mean of two halves: (h0 - h1)^2 / 4
+        if (pair) s->noise += pair->squared[i] / 2.0;  // one run's variance
+        for (int ch = 0; ch < 3; ++ch) {
+          s->signed_err += double(measured.at(x, y, ch)) - double(reference.at(x, y, ch));
+          s->ref += double(reference.at(x, y, ch));
+        }
+        ++s->count;
+      }
+    }
+  }
+  auto describe = [&](const Sum& s) {
+    nlohmann::json j = {{"texels", s.count}, {"share_of_squared_error", total > 0 ? s.err / total : 0.0},
+                        {"relative_rmse", std::sqrt(s.err / n_all) / scale},
+                        {"reference_noise", std::sqrt(s.ref_noise / n_all) / scale},
+                        {"mean_error_of_own_mean", s.ref > 0 ? s.signed_err / s.ref : 0.0}};
+    if (pair) {
+      j["noise"] = std::sqrt(s.noise / n_all) / scale;
+      j["bias"] = std::sqrt(std::max(s.err - s.noise - s.ref_noise, 0.0) / n_all) / scale;
+    }
+    return j;
+  };
+  nlohmann::json out = {{"classes", nlohmann::json::object()}, {"probes", nlohmann::json::array()}};
+  for (int c = 0; c < kClassCount; ++c) out["classes"][kClassNames[c]] = describe(per_class[size_t(c)]);
+  for (size_t k = 0; k < subset.size(); ++k) {
+    const render::ProbeSite& site = sites[size_t(subset[k])];
+    nlohmann::json j = describe(per_probe[k]);
+    j["index"] = subset[k];
+    j["normal"] = {site.normal.x, site.normal.y, site.normal.z};
+    j["nearest_light_m"] = scene.emitters().distance_bound(site.origin);
+    out["probes"].push_back(j);
+  }
+  out["total"] = describe([&] { Sum s; for (const Sum& c : per_class) { s.err += c.err; s.noise += c.noise; s.ref_noise += c.ref_noise; s.signed_err += c.signed_err; s.ref += c.ref; s.count += c.count; } return s; }());
+  return out;
+}
+
+void log_breakdown(const std::string& config, const nlohmann::json& b) {
+  spdlog::info("{}: where the squared error is (share, relative RMSE, bias, noise, mean error):", config);
+  auto line = [](const std::string& name, const nlohmann::json& j) {
+    spdlog::info("  {:<24} {:>6} texels  {:5.1f}%  rmse {:.4f}  bias {:.4f}  noise {:.4f}  mean {:+.4f}", name,
+                 j["texels"].get<size_t>(), 100.0 * j["share_of_squared_error"].get<double>(),
+                 j["relative_rmse"].get<double>(), j.value("bias", -1.0), j.value("noise", -1.0),
+                 j["mean_error_of_own_mean"].get<double>());
+  };
+  for (const auto& [name, j] : b["classes"].items()) line(name, j);
+  for (const auto& j : b["probes"])
+    line("probe " + std::to_string(j["index"].get<int>()) + " (light " +
+             std::to_string(int(100 * j["nearest_light_m"].get<float>())) + " cm)",
+         j);
+}
+
+// The scene's own environment (extras.phyir.environment), as `phyir render` loads it: the
+// day apartments' sky lights the rooms through their windows.
+std::unique_ptr<render::EnvironmentLight> scene_environment(const scenes::Scene& scene) {
+  if (!scene.environment) return nullptr;
+  const Image image = read_image(scene.environment->path);
+  if (image.channels < 3) fail("{}: environment map needs RGB, found {} channel(s)", scene.environment->path.string(), image.channels);
+  return std::make_unique<render::EnvironmentLight>(image, scene.environment->scale);
+}
+
 void run_bench_probes(const BenchProbeFlags& f) {
   const scenes::Scene scene = scenes::load_gltf(f.scene);
-  const render::RenderScene render_scene(scene);
+  std::unique_ptr<render::EnvironmentLight> environment = scene_environment(scene);
+  const bool has_environment = environment != nullptr;
+  const render::RenderScene render_scene(scene, std::move(environment));
   render::RenderJob job;
   job.width = f.width;
   job.height = f.height;
   job.camera_position = f.camera;
   const render::CameraModel camera = render::job_camera(job, scene, nullptr);
-  const render::Effects effects = render::analyse_effects(scene, false);
+  const render::Effects effects = render::analyse_effects(scene, has_environment);
   fs::create_directories(f.out);
 
   render::ProbeSettings base;
@@ -205,6 +363,8 @@ void run_bench_probes(const BenchProbeFlags& f) {
     const ImageError split = image_error(halves[0], halves[1]);
     const double reference_noise = split.relative_rmse / 2.0;
     spdlog::info("reference noise (relative RMSE of the mean of two halves): {:.4f}", reference_noise);
+    const std::vector<int> classes = classify_texels(render_scene, sites, subset, s.layout, s.glossy_roughness);
+    std::vector<std::pair<Config, Image>> measured_strips;
 
     for (const std::string& text : f.configs) {
       const Config c = parse_config(text, s);
@@ -233,6 +393,7 @@ void run_bench_probes(const BenchProbeFlags& f) {
         rays *= scale;
       }
       const Image measured = strip(out.mosaic, s.layout, subset);
+      measured_strips.emplace_back(c, measured);
       const ImageError e = image_error(measured, reference);
       std::string name = text;
       std::replace(name.begin(), name.end(), ':', '-');
@@ -249,6 +410,17 @@ void run_bench_probes(const BenchProbeFlags& f) {
                                  {"reference_noise", reference_noise}, {"stats", out.stats.to_json()}});
       // Keep what was measured so far, in case the run is interrupted.
       write_file_atomic(fs::path(f.out) / "probes.csv", csv.str());
+    }
+    // Where the error is, per configuration; paired with a run of the same setting under
+    // another seed where the configurations hold one.
+    for (size_t a = 0; a < measured_strips.size(); ++a) {
+      const Image* other = nullptr;
+      for (size_t b = 0; b < measured_strips.size() && !other; ++b)
+        if (b != a && same_setting(measured_strips[a].first, measured_strips[b].first)) other = &measured_strips[b].second;
+      const nlohmann::json breakdown = error_breakdown(measured_strips[a].second, other, reference, halves, classes,
+                                                       subset, sites, s.layout, render_scene);
+      log_breakdown(measured_strips[a].first.text, breakdown);
+      summary["breakdown"][res][measured_strips[a].first.text] = breakdown;
     }
   }
   const fs::path csv_path = fs::path(f.out) / "probes.csv";
