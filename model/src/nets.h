@@ -12,6 +12,10 @@
 
 namespace phyir::model {
 
+// Whether CirConv calls oneDNN itself: without a gradient, for float on the CPU (inference and
+// validation; docs/performance.md, "Inference"). Training keeps ATen's choice of backend.
+bool convolve_with_onednn(const torch::Tensor& x);
+
 // CirP (circular padding, Wang et al. / UniFuse): wrap along the panorama's width,
 // replicate along its height (the poles have no neighbour beyond them).
 torch::Tensor cirpad(const torch::Tensor& x, int pad_h, int pad_w);

@@ -105,3 +105,64 @@ TEST(ModelNets, GSNetRefinesAtFullResolution) {
   // Box mean with CirP: the mean of a constant is the constant.
   EXPECT_LT((pm::box_mean(torch::full({1, 1, 8, 16}, 3.0), 2) - 3.0).abs().max().item<float>(), 1e-6);
 }
+
+// CirP before it was written into one tensor: a concatenation along the width, then a
+// replicate pad along the height.
+torch::Tensor cirpad_by_cat(const torch::Tensor& x, int pad_h, int pad_w) {
+  torch::Tensor wide = x;
+  while (wide.size(3) < pad_w) wide = torch::cat({wide, x}, 3);
+  const torch::Tensor y = torch::cat({wide.narrow(3, wide.size(3) - pad_w, pad_w), x, wide.narrow(3, 0, pad_w)}, 3);
+  return torch::nn::functional::pad(y, torch::nn::functional::PadFuncOptions({0, 0, pad_h, pad_h}).mode(torch::kReplicate));
+}
+
+TEST(ModelNets, CirPadEqualsConcatenationAndReplicatePadInValuesAndGradients) {
+  torch::manual_seed(5);
+  for (const auto& [pad_h, pad_w, width] : std::vector<std::tuple<int, int, int>>{{1, 1, 8}, {3, 3, 16}, {2, 5, 3}}) {
+    const auto x = torch::rand({2, 3, 5, width}, torch::kDouble).requires_grad_(true);
+    const auto w = torch::rand({2, 3, 5 + 2 * pad_h, width + 2 * pad_w}, torch::kDouble);
+    const auto y = pm::cirpad(x, pad_h, pad_w);
+    const auto r = cirpad_by_cat(x, pad_h, pad_w);
+    EXPECT_TRUE(torch::equal(y, r)) << pad_h << " " << pad_w << " " << width;
+    const auto gy = torch::autograd::grad({(y * w).sum()}, {x})[0];
+    const auto gr = torch::autograd::grad({(r * w).sum()}, {x})[0];
+    EXPECT_LT((gy - gr).abs().max().item<double>(), 1e-12);
+    // Channels-last input: same values, layout kept.
+    const auto xl = x.detach().contiguous(torch::MemoryFormat::ChannelsLast);
+    const auto yl = pm::cirpad(xl, pad_h, pad_w);
+    EXPECT_TRUE(yl.is_contiguous(torch::MemoryFormat::ChannelsLast));
+    EXPECT_TRUE(torch::equal(yl, r.detach()));
+  }
+}
+
+// Inference (no gradient: CirConv calls oneDNN itself) against the path training takes
+// (gradient on: ATen chooses, im2col for the smallest inputs), on random weights.
+TEST(ModelNets, InferencePathEqualsTrainingPathOnRandomWeights) {
+  torch::manual_seed(6);
+  const auto max_rel = [](const torch::Tensor& a, const torch::Tensor& b) {
+    return ((a - b).abs().max() / b.abs().max().clamp_min(1e-12)).item<float>();
+  };
+  pm::GMNet gm(4);
+  gm->eval();
+  const auto image = torch::rand({1, 3, 64, 128});
+  const pm::GMOutput slow = gm->forward(image);
+  pm::GMOutput fast;
+  {
+    torch::NoGradGuard ng;
+    fast = gm->forward(image);
+  }
+  EXPECT_LT(max_rel(fast.depth, slow.depth.detach()), 1e-4);
+  EXPECT_LT(max_rel(fast.normal, slow.normal.detach()), 1e-4);
+  EXPECT_LT(max_rel(fast.base_color, slow.base_color.detach()), 1e-4);
+  EXPECT_LT(max_rel(fast.roughness, slow.roughness.detach()), 1e-4);
+  EXPECT_LT(max_rel(fast.metalness, slow.metalness.detach()), 1e-4);
+  // LNet with both heads, at a size whose 1/16 bottleneck ATen would send to im2col.
+  for (const bool light : {false, true}) {
+    pm::LNet ln(4, 8, 4, light);
+    ln->eval();
+    const auto in = torch::rand({1, 12, 32, 64});
+    const auto slow_probes = ln->forward(in).detach();
+    torch::NoGradGuard ng;
+    const auto fast_probes = ln->forward(in);
+    EXPECT_LT(max_rel(fast_probes, slow_probes), 1e-4) << (light ? "light" : "paper");
+  }
+}
