@@ -194,8 +194,8 @@ TEST(ModelStream, StopsEarlyAndRethrowsAWorkersErrorAsThrown) {
 //   /usr/bin/time -v model_test --gtest_also_run_disabled_tests --gtest_filter='*MeasureReaderMemory'
 // reads DIR's views at the paper's sizes (input 256x512, render 128x256, probes 16x32) with
 // probes, as the lnet stage does: streamed in batches of 4 (2 workers, 2 ahead) through a
-// consumer that only sums each batch (the first K batches of the epoch: the read-ahead is full
-// after prefetch + 1), or all held in memory as training did before streaming.
+// consumer that sums each batch and waits for the read-ahead to fill (the first K batches of the
+// epoch), or all held in memory as training did before streaming.
 TEST(ModelStream, DISABLED_MeasureReaderMemory) {
   const char* data = std::getenv("PHYIR_MEASURE_DATA");
   const char* mode = std::getenv("PHYIR_MEASURE_MODE");
@@ -231,9 +231,12 @@ TEST(ModelStream, DISABLED_MeasureReaderMemory) {
   } else {
     pm::BatchStream stream(pm::TrainingBatches(d, {}, pm::yaw_divisions(paper), kSeed, pm::Radiance::kInputUnits),
                            {2, 2});
+    // Each step waits until the read-ahead is full, as a training step slower than reading does.
     int64_t k = 0;
     stream.run_epoch(0, pm::epoch_order(n, kSeed, 0), 0, 4, [&](pm::Batch b) {
       checksum += b.probes.sum().item<double>();
+      while (census->decoded() < std::min<int64_t>(n, (k + 3) * 4))
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
       return max_batches <= 0 || ++k < max_batches;
     });
   }
