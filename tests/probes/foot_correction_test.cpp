@@ -163,16 +163,19 @@ double floor_texels_mean(const Image& mosaic, int k) {
   return sum / (7 * 32 * 3);
 }
 
-TEST(ProbeFootCorrection, WithANoisyCacheTheProbesOwnFloorIsFarCloserToAConvergedCache) {
-  // A small closed room lit by a ceiling panel, and 9 x 9 probes 1 cm above its floor, 15 cm
-  // apart. A cache of 4 estimates per cell puts each probe's own floor off by several
-  // percent; the reference is the same renderer with 256 estimates per cell.
+// A small closed room lit by a ceiling panel, and 9 x 9 probes 1 cm above its floor, 15 cm
+// apart.
+scenes::Scene small_lit_room() {
   scenes::Scene scene =
       test::make_box_room(glm::vec3(-0.8f, 0.0f, -0.8f), glm::vec3(0.8f, 1.5f, 0.8f), test::make_material(glm::vec3(0.6f), 0.8f, 0.0f));
   test::add_quad(scene, glm::vec3(-0.2f, 1.45f, -0.2f), glm::vec3(0.4f, 0, 0), glm::vec3(0, 0, 0.4f),
                  test::add_material(scene, test::make_emitter(glm::vec3(8.0f))), "light");
-  const RenderScene rs(scene);
-  constexpr int kProbes = 81;
+  return scene;
+}
+
+constexpr int kProbes = 81;
+
+std::vector<ProbeSite> floor_sites() {
   std::vector<ProbeSite> sites;
   for (int k = 0; k < kProbes; ++k) {
     ProbeSite site;
@@ -183,25 +186,39 @@ TEST(ProbeFootCorrection, WithANoisyCacheTheProbesOwnFloorIsFarCloserToAConverge
     site.status = ProbeStatus::kValid;
     sites.push_back(site);
   }
-  auto settings = [](int spp, int cache_spp, uint64_t seed, bool correct) {
-    ProbeSettings s;
-    s.spp = spp;
-    s.layout.grid_height = 1;
-    s.layout.grid_width = kProbes;
-    s.layout.res_height = 16;
-    s.layout.res_width = 32;
-    s.seed = seed;
-    s.progress = false;
-    s.cache.samples_per_cell = cache_spp;
-    s.sharing.radius = 0;
-    s.correct_foot = correct;
-    return s;
-  };
+  return sites;
+}
+
+ProbeSettings floor_settings(int spp, int cache_spp, uint64_t seed, bool correct) {
+  ProbeSettings s;
+  s.spp = spp;
+  s.layout.grid_height = 1;
+  s.layout.grid_width = kProbes;
+  s.layout.res_height = 16;
+  s.layout.res_width = 32;
+  s.seed = seed;
+  s.progress = false;
+  s.cache.samples_per_cell = cache_spp;
+  s.sharing.radius = 0;
+  s.correct_foot = correct;
+  s.punctual_lights = false;  // the probes' own floor is compared; their lights' texels are exact
+  return s;
+}
+
+// The RMS over the probes of their own floor's error, with and without the correction, on a
+// cache of 4 estimates per cell; the reference is the same renderer with 256 estimates.
+struct OwnFloorError {
+  double with = 0.0, without = 0.0;
+  uint64_t corrected = 0;
+};
+
+OwnFloorError own_floor_error(const scenes::Scene& scene) {
+  const RenderScene rs(scene);
+  const std::vector<ProbeSite> sites = floor_sites();
   const Effects effects = analyse_effects(scene, false);
-  const Image reference = ProbeRenderer(rs, effects, settings(16, 256, 1, false)).render_at(sites).mosaic;
-  const ProbeOutput with = ProbeRenderer(rs, effects, settings(8, 4, 2, true)).render_at(sites);
-  const ProbeOutput without = ProbeRenderer(rs, effects, settings(8, 4, 2, false)).render_at(sites);
-  EXPECT_EQ(with.stats.foot_corrections, uint64_t(kProbes));
+  const Image reference = ProbeRenderer(rs, effects, floor_settings(16, 256, 1, false)).render_at(sites).mosaic;
+  const ProbeOutput with = ProbeRenderer(rs, effects, floor_settings(8, 4, 2, true)).render_at(sites);
+  const ProbeOutput without = ProbeRenderer(rs, effects, floor_settings(8, 4, 2, false)).render_at(sites);
   EXPECT_EQ(without.stats.foot_corrections, 0u);
   double square_with = 0.0, square_without = 0.0;
   for (int k = 0; k < kProbes; ++k) {
@@ -209,17 +226,47 @@ TEST(ProbeFootCorrection, WithANoisyCacheTheProbesOwnFloorIsFarCloserToAConverge
     square_with += std::pow(floor_texels_mean(with.mosaic, k) / ref - 1.0, 2);
     square_without += std::pow(floor_texels_mean(without.mosaic, k) / ref - 1.0, 2);
   }
-  const double rms_with = std::sqrt(square_with / kProbes), rms_without = std::sqrt(square_without / kProbes);
+  return {std::sqrt(square_with / kProbes), std::sqrt(square_without / kProbes), with.stats.foot_corrections};
+}
+
+TEST(ProbeFootCorrection, WithANoisyCacheTheProbesOwnFloorIsFarCloserToAConvergedCache) {
+  const scenes::Scene scene = small_lit_room();
+  const OwnFloorError e = own_floor_error(scene);
+  EXPECT_EQ(e.corrected, uint64_t(kProbes));
   std::printf("own floor against a converged cache over %d probes: RMS %.2f%% with the correction, %.2f%% without\n",
-              kProbes, 100 * rms_with, 100 * rms_without);
-  EXPECT_LT(rms_with, 0.5 * rms_without);
-  EXPECT_LT(rms_with, 0.02);
+              kProbes, 100 * e.with, 100 * e.without);
+  EXPECT_LT(e.with, 0.5 * e.without);
+  EXPECT_LT(e.with, 0.02);
 
   // With fewer probes than the common difference needs, none is corrected.
+  std::vector<ProbeSite> sites = floor_sites();
   sites.resize(9);
-  ProbeSettings few = settings(4, 4, 2, true);
+  ProbeSettings few = floor_settings(4, 4, 2, true);
   few.layout.grid_width = 9;
-  EXPECT_EQ(ProbeRenderer(rs, effects, few).render_at(sites).stats.foot_corrections, 0u);
+  EXPECT_EQ(ProbeRenderer(RenderScene(scene), analyse_effects(scene, false), few).render_at(sites).stats.foot_corrections,
+            0u);
+}
+
+// The same room with a spot light on part of the floor: no texel holds a punctual light, so
+// the probe's measurement must be compared with the cache's light without it. (Compared with
+// a cache whose direct light held the spot, the lit probes measured far less than their cache
+// and the rest, through the common difference, far more.)
+TEST(ProbeFootCorrection, APunctualLightOnPartOfTheFloorDoesNotSkewTheCorrection) {
+  scenes::Scene scene = small_lit_room();
+  scenes::PunctualLight spot;
+  spot.type = scenes::PunctualLight::Type::Spot;
+  spot.intensity = 1.0f * scenes::PunctualLight::kLumensPerWatt;
+  spot.position = glm::vec3(-0.5f, 1.3f, -0.5f);
+  spot.direction = glm::vec3(0, -1, 0);
+  spot.inner_cone_angle = 0.2f;
+  spot.outer_cone_angle = 0.3f;
+  scene.lights = {spot};
+  const OwnFloorError e = own_floor_error(scene);
+  std::printf("own floor under a spot over %d probes: RMS %.2f%% with the correction, %.2f%% without\n", kProbes,
+              100 * e.with, 100 * e.without);
+  EXPECT_GT(e.corrected, uint64_t(kProbes / 2));
+  EXPECT_LT(e.with, 0.5 * e.without);
+  EXPECT_LT(e.with, 0.02);
 }
 
 }  // namespace

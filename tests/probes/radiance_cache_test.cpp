@@ -115,6 +115,54 @@ TEST(RadianceCacheDirect, CellsNearALightKeepNoDirectLightAndZeroDisablesIt) {
   EXPECT_FALSE(cache.lookup(floor_point(0.0f, 0.0f), 3, &counters).has_direct);
 }
 
+// A point light beside the square one: the cache keeps punctual light apart, exact at its
+// cells' points (no sampling noise; a shadow edge is only blurred by the interpolation
+// between cells), and its sampled direct light is the square light's alone. The square light
+// casts the point light's hard shadow on the floor's far corner; points 10 cm or more from
+// that shadow are checked.
+TEST(RadianceCachePunctual, APointLightIsExactAtTheCellsAndLeftOutOfTheSampledDirectLight) {
+  scenes::Scene scene = floor_under_light();
+  scenes::PunctualLight point;
+  point.type = scenes::PunctualLight::Type::Point;
+  point.intensity = 2.0f * scenes::PunctualLight::kLumensPerWatt;  // 2 W/sr
+  point.position = glm::vec3(0.4f, 1.2f, 0.4f);
+  scene.lights = {point};
+  const RenderScene render_scene(scene);
+  RadianceCacheSettings settings;
+  settings.samples_per_cell = 1024;
+  settings.seed = 5;
+  RadianceCache cache(render_scene, analyse_effects(scene, false), PathSettings{1, 3}, settings);
+  RadianceCache::Collector collector;
+  uint64_t priority = 0;
+  for (float x = -0.6f; x <= 0.6f; x += 0.01f)
+    for (float z = -0.6f; z <= 0.6f; z += 0.01f) collector.offer(cache, floor_point(x, z), mix64(++priority));
+  PathCounters counters;
+  cache.build({&collector}, &counters);
+  Rng rng(23, 0);
+  double worst_punctual = 0.0, worst_direct = 0.0, sum_direct = 0.0, sum_exact_direct = 0.0;
+  for (int k = 0; k < 300; ++k) {
+    const glm::vec2 u = rng.next_2d();
+    const CachePoint p = floor_point(-0.25f + 0.75f * u.x, -0.25f + 0.75f * u.y);
+    const CachedIrradiance e = cache.lookup(p, uint64_t(k), &counters);
+    ASSERT_TRUE(e.has_direct);
+    const glm::vec3 d = point.position - p.position;
+    const double exact_punctual = 2.0 * d.y / std::pow(double(glm::length(d)), 3.0);
+    const double exact_direct = exact_irradiance(p.position);
+    worst_punctual = std::max(worst_punctual, std::abs(e.punctual.x - exact_punctual) / exact_punctual);
+    worst_direct = std::max(worst_direct, std::abs(e.direct.x - exact_direct) / exact_direct);
+    EXPECT_NEAR(e.punctual.x, exact_punctual, 0.01 * exact_punctual) << "at " << p.position.x << ", " << p.position.z;
+    sum_direct += e.direct.x, sum_exact_direct += exact_direct;
+  }
+  // The sampled part is the square light's alone (with the point light in it, it would be
+  // three times as bright), within its fill noise: the samples that chose the point light
+  // are dropped, so fewer are left than the cell's 1024.
+  const double mean_error = sum_direct / sum_exact_direct - 1.0;
+  std::printf("[ punctual kept apart ] largest relative error: punctual %.4f, sampled direct %.4f (mean %+.4f)\n",
+              worst_punctual, worst_direct, mean_error);
+  EXPECT_NEAR(mean_error, 0.0, 0.02);
+  EXPECT_LT(worst_direct, 0.25);
+}
+
 // Smoothing the indirect light over a cell's neighbourhood: a floor lit only indirectly,
 // by a wall a light shines on. Two caches of different seeds differ by far less with it
 // than without, and the mean over the floor stays the same (the light changes slowly).

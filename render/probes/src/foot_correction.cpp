@@ -54,6 +54,8 @@ FootCorrection FootCorrection::measure(const RadianceCache& cache, const ProbeSi
   FootCorrection out;
   CachedIrradiance E;
   if (!cache.interpolate(CachePoint{site.surface, site.normal, site.normal}, &E)) return out;
+  // Both sides leave the punctual lights out: no texel can hold them, and the cache keeps them
+  // apart from its direct light (CachedIrradiance::punctual).
   const glm::vec3 cached = E.has_direct ? E.indirect + E.direct : E.indirect;
   const glm::vec3 probe = E.has_direct ? measured.indirect() + measured.direct() : measured.indirect();
   const float cached_y = luminance(cached), probe_y = luminance(probe);

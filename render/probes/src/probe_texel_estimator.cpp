@@ -9,6 +9,7 @@
 #include "phyir/render/direct_lighting.h"
 #include "phyir/render/streams.h"
 #include "phyir/render/sampling.h"
+#include "punctual_deposit.h"
 
 namespace phyir::render {
 
@@ -28,6 +29,12 @@ constexpr float kMinSpecularKeep = 0.125f;
 // most from one direction to the next (measured: the ceiling beside a light fixture).
 constexpr int kNearLightSamples = 8;
 
+// Where the cache holds the direct light, the punctual lights' diffuse light is evaluated at
+// the hit itself, one shadow ray per light (exact: no blur of their hard shadows, no fill
+// noise), in scenes of up to this many punctual lights; with more, the cost per direction
+// would grow with them, and the cache's value at the cell's points is used.
+constexpr int kMaxExactPunctualLights = 8;
+
 // Where the cache holds the direct light, a specular next-event sample adding less than this
 // fraction of the diffuse light traces its shadow ray with probability (its share / this)
 // (direct_light). Measured: 0.05 saves 86 M of 371 M rays on the bench for 1% more error;
@@ -42,10 +49,14 @@ CachePoint cache_point(const SurfaceInteraction& si, const glm::vec3& shading_no
 
 TexelEstimator::TexelEstimator(const RenderScene& scene, const Effects& effects, const ProbeSettings& settings,
                                const RadianceCache* cache)
-    : scene_(scene), settings_(settings), cache_(cache), tracer_(scene, effects, settings.path) {}
+    : scene_(scene),
+      settings_(settings),
+      cache_(cache),
+      tracer_(scene, effects, settings.path),
+      exact_punctual_(scene.emitters().delta_lights().size() <= kMaxExactPunctualLights) {}
 
 glm::vec3 TexelEstimator::sample(const Ray& ray, uint64_t key, Part part, const FootCorrection& foot, bool* saw_hard,
-                                 float* distance, glm::vec3* emitted, PathCounters* c) const {
+                                 float* distance, glm::vec3* emitted, PathCounters* c, bool* saw_environment) const {
   *emitted = glm::vec3(0.0f);
   if (settings_.mode == ProbeMode::kPath) return tracer_.radiance(ray, key, c);
   if (part == Part::kEmission) {  // most of these rays: a light texel's many directions
@@ -59,7 +70,10 @@ glm::vec3 TexelEstimator::sample(const Ray& ray, uint64_t key, Part part, const 
   }
   SurfaceInteraction si;
   ++c->rays;
-  if (!scene_.trace(ray, &si)) return part == Part::kRest ? glm::vec3(0.0f) : miss(ray.direction);
+  if (!scene_.trace(ray, &si)) {
+    if (saw_environment && scene_.environment()) *saw_environment = true;
+    return part == Part::kRest ? glm::vec3(0.0f) : miss(ray.direction);
+  }
   *distance = std::min(*distance, si.distance);
   const glm::vec3 Le = si.emits ? si.emission : glm::vec3(0.0f);
   // The texel sees something small and bright or hard to sample: a light, glass, or a
@@ -148,7 +162,7 @@ glm::vec3 TexelEstimator::reflected_at(const Ray& ray, const SurfaceInteraction&
 glm::vec3 TexelEstimator::reflected_split(const ShadingPoint& x, const glm::vec3& fd, const CachedIrradiance& E,
                                           int depth, uint64_t key, PathCounters* c) const {
   const BrdfParams& p = x.brdf;
-  glm::vec3 L = fd * (E.indirect + E.direct);
+  glm::vec3 L = fd * (E.indirect + E.direct + punctual_at(x, E, c));
   const glm::vec3 albedo = specular_albedo(p, x.wo.z);
   const float albedo_s = luminance(albedo);
   const float share = safe_div(albedo_s, albedo_s + kPi * luminance(fd));
@@ -197,12 +211,17 @@ glm::vec3 TexelEstimator::terminal(const SurfaceInteraction& si, const glm::vec3
   glm::vec3 L(0.0f);
   const glm::vec3 lobe = mean_brdf(p, x.wo.z);
   const CachedIrradiance E = lookup(si, x, depth, key, c);
-  if (E.has_direct) return lobe * (E.indirect + E.direct);  // the whole lobe as if lit uniformly
+  if (E.has_direct) return lobe * (E.indirect + E.all_direct());  // the whole lobe as if lit uniformly
   // Light sampling alone: no BRDF-sampled ray at a chain's end competes for the emitters.
   DirectLightOptions nee;
   nee.mis = false;
   if (has_lights(scene_)) L += direct_light(x, nee, depth, key, c);
   return L + lobe * E.indirect;
+}
+
+glm::vec3 TexelEstimator::punctual_at(const ShadingPoint& x, const CachedIrradiance& E, PathCounters* c) const {
+  if (!exact_punctual_) return E.punctual;
+  return punctual_irradiance(scene_, x.position, x.frame.n, x.geometric_normal, &c->rays);
 }
 
 glm::vec3 TexelEstimator::direct_light(const ShadingPoint& x, const DirectLightOptions& options, int depth,

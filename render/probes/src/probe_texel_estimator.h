@@ -38,8 +38,9 @@ class TexelEstimator {
   // *distance is lowered to the first hit's distance (cache mode; unchanged on a miss).
   // *emitted receives the part of the result a light seen first emits (cache mode; not the
   // environment's). Lookups at the first hit go through `foot` (foot_correction.h).
+  // *saw_environment (if given) is set when the ray leaves the scene and sees the environment.
   glm::vec3 sample(const Ray& ray, uint64_t key, Part part, const FootCorrection& foot, bool* saw_hard, float* distance,
-                   glm::vec3* emitted, PathCounters* c) const;
+                   glm::vec3* emitted, PathCounters* c, bool* saw_environment = nullptr) const;
 
  private:
   glm::vec3 miss(const glm::vec3& direction) const;
@@ -86,6 +87,10 @@ class TexelEstimator {
   glm::vec3 terminal(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key,
                      PathCounters* c) const;
 
+  // The punctual lights' irradiance at x where the cache holds the direct light: exact at x
+  // (punctual_irradiance) in scenes of few punctual lights, else the cache's.
+  glm::vec3 punctual_at(const ShadingPoint& x, const CachedIrradiance& E, PathCounters* c) const;
+
   // The cache's irradiance at the surface of x (si's hit), keyed for its fallback.
   CachedIrradiance lookup(const SurfaceInteraction& si, const ShadingPoint& x, int depth, uint64_t key,
                           PathCounters* c) const;
@@ -99,6 +104,7 @@ class TexelEstimator {
   const ProbeSettings& settings_;
   const RadianceCache* cache_;
   PathTracer tracer_;  // kPath, and glass
+  bool exact_punctual_;  // punctual_at() traces its own shadow rays
 };
 
 // The cache's view of a surface point: normals on the side it was seen from.

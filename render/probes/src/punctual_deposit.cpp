@@ -8,6 +8,7 @@
 
 #include "phyir/core/safe_math.h"
 #include "phyir/render/equirect.h"
+#include "phyir/render/ray_offset.h"
 
 namespace phyir::render {
 
@@ -35,6 +36,23 @@ bool punctual_texel(const RenderScene& scene, int light, const glm::vec3& origin
 }
 
 }  // namespace
+
+glm::vec3 punctual_irradiance(const RenderScene& scene, const glm::vec3& position, const glm::vec3& n,
+                              const glm::vec3& ng, uint64_t* rays) {
+  const DeltaLights& lights = scene.emitters().delta_lights();
+  glm::vec3 sum(0.0f);
+  for (int light = 0; light < lights.size(); ++light) {
+    DeltaIllumination seen;
+    if (!lights.illuminate(light, position, &seen)) continue;
+    const float cosine = glm::dot(n, seen.wi);
+    if (!(cosine > 0.0f) || !(glm::dot(ng, seen.wi) > 0.0f)) continue;
+    Ray shadow{spawn_origin(position, ng, seen.wi), seen.wi};
+    if (std::isfinite(seen.distance)) shadow.tmax = seen.distance * (1.0f - kShadowRayShortening);
+    ++*rays;
+    if (!scene.accelerator().occluded(shadow)) sum += seen.irradiance * cosine;
+  }
+  return is_finite(sum) ? sum : glm::vec3(0.0f);
+}
 
 uint64_t deposit_punctual_lights(const RenderScene& scene, const ProbeLayout& layout,
                                  const std::vector<ProbeSite>& sites, const std::vector<int>& probes, Image* mosaic) {

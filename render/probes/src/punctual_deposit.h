@@ -20,6 +20,14 @@ namespace phyir::render {
 uint64_t deposit_punctual_lights(const RenderScene& scene, const ProbeLayout& layout,
                                  const std::vector<ProbeSite>& sites, const std::vector<int>& probes, Image* mosaic);
 
+// The irradiance the punctual lights give a point, occlusion included: sum over the lights it
+// sees of E max(0, n . wi), n its unit shading normal, lights below its geometric normal `ng`
+// left out; one shadow ray per light that faces it (counted in *rays). Exact, no random
+// numbers: at a probe's origin, what its texels can never hold of the light its foot gets;
+// at a surface, the diffuse light of the punctual lights without the cache's blur.
+glm::vec3 punctual_irradiance(const RenderScene& scene, const glm::vec3& position, const glm::vec3& n,
+                              const glm::vec3& ng, uint64_t* rays);
+
 // The texel (row, col) of an h x w probe that direction `d` falls in.
 glm::ivec2 probe_texel_of(const glm::vec3& d, int height, int width);
 

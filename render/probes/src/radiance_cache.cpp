@@ -15,6 +15,7 @@
 #include "phyir/render/probe_grid.h"
 #include "phyir/render/ray_offset.h"
 #include "phyir/render/streams.h"
+#include "punctual_deposit.h"
 #include "phyir/render/sampling.h"
 
 namespace phyir::render {
@@ -42,6 +43,20 @@ int normal_bucket(const glm::vec3& n) {
   auto third = [](float t) { return std::clamp(int((t + 1.0f) * 1.5f), 0, 2); };
   const float s = n[(axis + 1) % 3] / major, t = n[(axis + 2) % 3] / major;
   return (axis * 2 + sign) * 9 + third(s) * 3 + third(t);
+}
+
+// Whether the light sample of variates (u_select, u_light) at `position` falls on an emissive
+// triangle: the cache's sampled direct light is theirs alone, the punctual lights' being
+// exact (Cell::punctual). Dropping the samples that choose a punctual light keeps the
+// triangles' estimate unbiased (each sample's pdf includes its choice).
+bool samples_emissive_triangle(const RenderScene& scene, const glm::vec3& position, float u_select,
+                               const glm::vec2& u_light) {
+  if (!has_lights(scene)) return false;
+  const EmitterSampler& emitters = scene.emitters();
+  if (emitters.delta_lights().empty()) return true;
+  if (emitters.emissive_triangle_count() == 0) return false;
+  EmitterSample ls;
+  return emitters.sample(position, u_select, u_light, &ls) && !ls.delta;
 }
 
 }  // namespace
@@ -163,7 +178,7 @@ void RadianceCache::build(const std::vector<const Collector*>& collectors, PathC
   const std::vector<glm::vec3> smoothed = settings_.smooth_indirect ? smooth_indirect() : std::vector<glm::vec3>();
   lookup_ = grid_of([&](size_t i) {
     const Cell& cell = cells_[i];
-    return Value{smoothed.empty() ? cell.indirect : smoothed[i], cell.direct, cell.has_direct, cell.edge};
+    return Value{smoothed.empty() ? cell.indirect : smoothed[i], cell.direct, cell.punctual, cell.has_direct, cell.edge};
   });
   direct_cells_ = size_t(std::count_if(cells_.begin(), cells_.end(), [](const Cell& c) { return c.has_direct; }));
   edge_cells_ = size_t(std::count_if(cells_.begin(), cells_.end(), [](const Cell& c) { return c.edge_layer != 0; }));
@@ -233,7 +248,7 @@ std::vector<glm::vec3> RadianceCache::smooth_indirect() {
 
 float RadianceCache::mean_irradiance_luminance() const {
   double sum = 0.0;
-  for (const Cell& c : cells_) sum += double(luminance(c.indirect + (c.has_direct ? c.direct : glm::vec3(0.0f))));
+  for (const Cell& c : cells_) sum += double(luminance(c.indirect + (c.has_direct ? c.direct + c.punctual : glm::vec3(0.0f))));
   return cells_.empty() ? 0.0f : float(sum / double(cells_.size()));
 }
 
@@ -291,6 +306,15 @@ void RadianceCache::fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) 
       }
     }
   }
+  if (sample_direct && !emitters.delta_lights().empty()) {
+    glm::vec3 punctual(0.0f);
+    for (int k = 0; k < cell->count; ++k) {
+      const CachePoint& point = cell->points[k];
+      punctual += punctual_irradiance(*scene_, point.position, point.shading_normal, point.geometric_normal,
+                                      &counters->rays);
+    }
+    cell->punctual = punctual / float(std::max(cell->count, 1));
+  }
   const double count = double(std::max(sample, 1));
   cell->indirect = glm::vec3(indirect / count);
   cell->direct = glm::vec3(direct / count);
@@ -330,7 +354,7 @@ bool RadianceCache::interpolate(const CachePoint& point, CachedIrradiance* out) 
   const std::array<const Value*, 8> corners = lookup_.corners(first, bucket, wanted);
   const Value* self = corners[size_t(own.x + 2 * own.y + 4 * own.z)];  // its weight is >= 1/8
   if (!self) return false;
-  glm::dvec3 indirect(0.0), direct(0.0);
+  glm::dvec3 indirect(0.0), direct(0.0), punctual(0.0);
   double w_all = 0.0, w_direct = 0.0;
   for (int corner = 0; corner < 8; ++corner) {
     const Value* cell = corners[size_t(corner)];
@@ -340,6 +364,7 @@ bool RadianceCache::interpolate(const CachePoint& point, CachedIrradiance* out) 
     w_all += w;
     if (self->has_direct && cell->has_direct) {  // direct light is only used where the point's own cell holds it
       direct += w * glm::dvec3(cell->direct);
+      punctual += w * glm::dvec3(cell->punctual);
       w_direct += w;
     }
   }
@@ -349,6 +374,7 @@ bool RadianceCache::interpolate(const CachePoint& point, CachedIrradiance* out) 
                              glm::vec3(0.0f));
   out->has_direct = self->has_direct;
   out->direct = w_direct > 0.0 ? glm::vec3(direct / w_direct) : self->direct;
+  out->punctual = w_direct > 0.0 ? glm::vec3(punctual / w_direct) : self->punctual;
   return true;
 }
 
@@ -364,7 +390,7 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
   const RenderScene& scene = *scene_;
   const glm::vec3& ns = point.shading_normal;
   const glm::vec3& ng = point.geometric_normal;
-  if (direct && has_lights(scene)) {
+  if (direct && samples_emissive_triangle(scene, point.position, u_select, u_light)) {
     ShadingPoint x;
     x.position = point.position;
     x.geometric_normal = ng;

@@ -26,6 +26,12 @@
 // sample (shadow ray) per estimate, combined with the estimate's cosine ray by the power
 // heuristic. Near an emitter direct irradiance changes too fast across a cell (the bright
 // rim on a ceiling round a lamp), so there the probes keep sampling it per direction.
+// Punctual lights (point, spot, sun) are kept apart: their light has hard shadow edges
+// (a chair's legs under a lamp, a window's frame in the sun) that interpolation between
+// cells blurs, and it is exact at a point for one shadow ray per light. So the sampled
+// direct part is the emissive triangles' alone, and such cells hold the punctual lights'
+// irradiance at their points exactly (`punctual`, the mean over the points), for lookups
+// that end a path in the cache; a probe ray's own hit evaluates them itself.
 //
 // Smoothing. Indirect light comes from whole walls and changes over tens of centimetres,
 // while a cell's fill noise is its own and is shared by every lookup of the cell (the
@@ -79,11 +85,14 @@ struct CachePoint {
   glm::vec3 geometric_normal{0.0f, 0.0f, 1.0f};
 };
 
-// What a lookup returns. `direct` is meaningful only when has_direct.
+// What a lookup returns. `direct` (the emissive triangles') and `punctual` (the punctual
+// lights') are meaningful only when has_direct; their sum is the direct irradiance.
 struct CachedIrradiance {
   glm::vec3 indirect{0.0f};
   glm::vec3 direct{0.0f};
+  glm::vec3 punctual{0.0f};
   bool has_direct = false;
+  glm::vec3 all_direct() const { return direct + punctual; }
 };
 
 class RadianceCache {
@@ -166,6 +175,7 @@ class RadianceCache {
     CachePoint points[kPointsPerCell];
     glm::vec3 indirect{0.0f};
     glm::vec3 direct{0.0f};
+    glm::vec3 punctual{0.0f};
     bool has_direct = false;
     int edge_layer = 0;  // 1, 2: the first or second layer of cells from a concave edge
     int edge = -1;            // index into edges_ when it holds a profile
@@ -174,6 +184,7 @@ class RadianceCache {
   struct Value {
     glm::vec3 indirect{0.0f};
     glm::vec3 direct{0.0f};
+    glm::vec3 punctual{0.0f};
     bool has_direct = false;
     int32_t edge = -1;
   };
