@@ -56,7 +56,7 @@ TexelEstimator::TexelEstimator(const RenderScene& scene, const Effects& effects,
       exact_punctual_(scene.emitters().delta_lights().size() <= kMaxExactPunctualLights) {}
 
 glm::vec3 TexelEstimator::sample(const Ray& ray, uint64_t key, Part part, const FootCorrection& foot, bool* saw_hard,
-                                 float* distance, glm::vec3* emitted, PathCounters* c, bool* saw_environment) const {
+                                 float* distance, glm::vec3* emitted, PathCounters* c) const {
   *emitted = glm::vec3(0.0f);
   if (settings_.mode == ProbeMode::kPath) return tracer_.radiance(ray, key, c);
   if (part == Part::kEmission) {  // most of these rays: a light texel's many directions
@@ -70,10 +70,7 @@ glm::vec3 TexelEstimator::sample(const Ray& ray, uint64_t key, Part part, const 
   }
   SurfaceInteraction si;
   ++c->rays;
-  if (!scene_.trace(ray, &si)) {
-    if (saw_environment && scene_.environment()) *saw_environment = true;
-    return part == Part::kRest ? glm::vec3(0.0f) : miss(ray.direction);
-  }
+  if (!scene_.trace(ray, &si)) return part == Part::kRest ? glm::vec3(0.0f) : miss(ray.direction);
   *distance = std::min(*distance, si.distance);
   const glm::vec3 Le = si.emits ? si.emission : glm::vec3(0.0f);
   // The texel sees something small and bright or hard to sample: a light, glass, or a

@@ -38,9 +38,8 @@ class TexelEstimator {
   // *distance is lowered to the first hit's distance (cache mode; unchanged on a miss).
   // *emitted receives the part of the result a light seen first emits (cache mode; not the
   // environment's). Lookups at the first hit go through `foot` (foot_correction.h).
-  // *saw_environment (if given) is set when the ray leaves the scene and sees the environment.
   glm::vec3 sample(const Ray& ray, uint64_t key, Part part, const FootCorrection& foot, bool* saw_hard, float* distance,
-                   glm::vec3* emitted, PathCounters* c, bool* saw_environment = nullptr) const;
+                   glm::vec3* emitted, PathCounters* c) const;
 
  private:
   glm::vec3 miss(const glm::vec3& direction) const;

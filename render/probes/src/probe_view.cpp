@@ -272,21 +272,16 @@ void ProbeView::shade_texel(TileProbe& probe, int t, int pass, Worker* w) {
   const bool lit = probe.lit[size_t(t)] != 0;
   bool hard = lit;
   glm::vec3 value(0.0f), seen_emission(0.0f);
-  bool sky = false;
   if (!hard) {
     float spread = 0.0f;
-    value = estimate(x, 0, spp, Part::kAll, &hard, &spread, w, &sky);
-    const bool spreads = spp > 1 && spread > settings_.spread_threshold * (luminance(value) + dark_floor_);
-    // The environment seen past an edge (a window's frame): its part is estimated apart, from
-    // cheap rays that only look for it, like a light's partial coverage.
-    if (sky && spreads && adaptive_) probe.lit[size_t(t)] = EmitterFootprints::kEdge;
-    hard = hard || spreads;
+    value = estimate(x, 0, spp, Part::kAll, &hard, &spread, w);
+    if (spp > 1 && spread > settings_.spread_threshold * (luminance(value) + dark_floor_)) hard = true;
   }
   const bool supersampled = hard && adaptive_;
   if (supersampled) {
     bool unused = false;
-    value = probe.lit[size_t(t)] ? shade_lit_texel(x, w, &seen_emission)
-                                 : estimate(x, spp, spp * settings_.hard_spp_factor, Part::kAll, &unused, nullptr, w);
+    value = lit ? shade_lit_texel(x, w, &seen_emission)
+                : estimate(x, spp, spp * settings_.hard_spp_factor, Part::kAll, &unused, nullptr, w);
     ++w->stats.supersampled_texels;
   }
   if (x.measure)
@@ -302,22 +297,19 @@ glm::vec3 ProbeView::shade_lit_texel(Texel& x, Worker* w, glm::vec3* seen_emissi
   const glm::vec3 rest_cos = x.cos_all;
   const bool edge = probe.lit[size_t(x.t)] == EmitterFootprints::kEdge;
   glm::vec3 seen_emission_cos(0.0f);
-  glm::vec3 seen_cos(0.0f);  // the cosine-weighted light of the seen part, the environment's included
   if (probe.analytic) {
     probe.lights.texel_pieces(x.row, x.col, layout_.res_height, layout_.res_width, &w->pieces);
     Rng rng = item_stream(probe_seed_, texel_id(probe.p, x.t), Purpose::kProbeLightPart);
     *seen_emission = visible_emission(probe.lights, w->pieces, scene_.accelerator(), out_.sites[size_t(probe.p)].origin,
                                       spp * (edge ? kLightPartEdgeSppFactor : kLightPartSppFactor), rng, probe.measured,
                                       &seen_emission_cos, &w->strata, &w->stats.counters.rays);
-    seen_cos = seen_emission_cos;
   } else {
     *seen_emission = estimate(x, spp + hard_spp, spp * (edge ? kEmissionEdgeSppFactor : kEmissionSppFactor),
                               Part::kEmission, &unused, nullptr, w);
     seen_emission_cos = x.cos_emitted;
-    seen_cos = x.cos_all;
   }
   // The texel's whole light: its rest (no emission seen first) and its emission.
-  x.cos_all = rest_cos + seen_cos;
+  x.cos_all = rest_cos + seen_emission_cos;
   x.cos_emitted = seen_emission_cos;
   w->stats.light_edge_texels += edge;
   ++w->stats.light_texels;
@@ -327,8 +319,7 @@ glm::vec3 ProbeView::shade_lit_texel(Texel& x, Worker* w, glm::vec3* seen_emissi
 // `spread` (if given) receives the range of the samples' luminances; x.cos_all and
 // x.cos_emitted the sample means of the radiance and its emitted part times the cosine to
 // the probe's normal when the texel is measured (FootIrradiance), else 0.
-glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* saw_hard, float* spread, Worker* w,
-                              bool* saw_environment) {
+glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* saw_hard, float* spread, Worker* w) {
   TileProbe& probe = *x.probe;
   const uint64_t id = texel_id(probe.p, x.t);
   Rng permutation = item_stream(probe_seed_, id, Purpose::kProbeStrata, uint64_t(first));
@@ -342,8 +333,7 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* s
     const uint64_t key = sample_key(probe_seed_, id, uint64_t(first + s));
     const Ray ray{origin, x.cone.direction(w->strata[size_t(s)])};
     glm::vec3 emitted;
-    glm::vec3 L = estimator_->sample(ray, key, part, probe.foot, saw_hard, &x.distance, &emitted, &w->stats.counters,
-                                     saw_environment);
+    glm::vec3 L = estimator_->sample(ray, key, part, probe.foot, saw_hard, &x.distance, &emitted, &w->stats.counters);
     if (!is_finite(L) || !is_finite(emitted)) {
       ++w->stats.counters.nonfinite_samples;
       L = emitted = glm::vec3(0.0f);

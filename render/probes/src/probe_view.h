@@ -73,9 +73,7 @@ class ProbeView {
   // A lit texel's light: the rest from hard_spp fresh samples, the emission seen directly apart.
   glm::vec3 shade_lit_texel(Texel& x, Worker* w, glm::vec3* seen_emission);
   // The mean of `count` fresh samples from sample id `first` on, stratified over the texel.
-  // *saw_environment (if given) is set when a direction saw the environment.
-  glm::vec3 estimate(Texel& x, int first, int count, Part part, bool* saw_hard, float* spread, Worker* w,
-                     bool* saw_environment = nullptr);
+  glm::vec3 estimate(Texel& x, int first, int count, Part part, bool* saw_hard, float* spread, Worker* w);
   void store_texel(const Texel& x, glm::vec3 value, const glm::vec3& seen_emission, bool supersampled, Worker* w);
   void correct_feet();
   void share_between_neighbours();
