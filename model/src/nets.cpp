@@ -47,7 +47,7 @@ torch::Tensor area_resize(const torch::Tensor& x, int h, int w) {
 }  // namespace
 
 bool convolve_with_onednn(const torch::Tensor& x) {
-  return !torch::GradMode::is_enabled() && x.is_cpu() && x.scalar_type() == torch::kFloat;
+  return !torch::GradMode::is_enabled() && x.is_cpu() && x.scalar_type() == torch::kFloat && at::hasMKLDNN();
 }
 
 torch::Tensor cirpad(const torch::Tensor& x, int pad_h, int pad_w) {
@@ -65,9 +65,9 @@ torch::Tensor CirConvImpl::forward(const torch::Tensor& x) {
   if (!convolve_with_onednn(padded)) return conv->forward(padded);
   // ATen sends a batch-1 convolution whose input holds at most 20480 values (LNet's 2x4
   // bottleneck at the default size) to im2col + BLAS, Debian's reference BLAS: oneDNN directly.
-  const auto& o = conv->options;
-  return at::mkldnn_convolution(padded, conv->weight, conv->bias.defined() ? c10::optional<torch::Tensor>(conv->bias) : c10::nullopt,
-                                {0, 0}, o.stride(), {1, 1}, 1);
+  const c10::optional<torch::Tensor> bias =
+      conv->bias.defined() ? c10::optional<torch::Tensor>(conv->bias) : c10::nullopt;
+  return at::mkldnn_convolution(padded, conv->weight, bias, {0, 0}, conv->options.stride(), {1, 1}, 1);
 }
 
 // --- GMNet ---------------------------------------------------------------------------------

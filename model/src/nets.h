@@ -12,8 +12,9 @@
 
 namespace phyir::model {
 
-// Whether CirConv calls oneDNN itself: without a gradient, for float on the CPU (inference and
-// validation; docs/performance.md, "Inference"). Training keeps ATen's choice of backend.
+// Whether CirConv calls oneDNN itself: without a gradient, for float on the CPU, when LibTorch
+// has oneDNN (inference and validation; docs/performance.md, "Inference"). Training keeps
+// ATen's choice of backend.
 bool convolve_with_onednn(const torch::Tensor& x);
 
 // CirP (circular padding, Wang et al. / UniFuse): wrap along the panorama's width,
