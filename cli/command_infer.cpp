@@ -23,7 +23,8 @@ void add_infer_command(CLI::App& app) {
   cmd->add_option("--input", o->input, "equirect panorama: .png (LDR, as input.png) or .exr/.hdr (HDR: exposed, then sRGB-encoded)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", o->out_dir, "output folder")->required();
-  cmd->add_option("--threads", o->threads, "torch threads")->capture_default_str();
+  cmd->add_option("--threads", o->threads, "torch threads (0: every core; the outputs are the same for any count)")
+      ->capture_default_str();
   cmd->add_option("--device", o->device, "cpu, cuda or cuda:N (CUDA needs a CUDA LibTorch: docs/model.md \"Build\")")
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed of the rendering layer's samples")->capture_default_str();

@@ -4,6 +4,8 @@
 
 #include <torch/torch.h>
 
+#include <thread>
+
 #include "phyir/core/error.h"
 #include "phyir/core/log.h"
 #include "trainer.h"
@@ -56,6 +58,7 @@ StageDefaults stage_defaults(Stage s) {
 }
 
 void set_threads(int threads) {
+  if (threads == 0) threads = int(std::thread::hardware_concurrency());
   torch::set_num_threads(std::max(1, threads));
 }
 

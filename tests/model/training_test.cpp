@@ -358,6 +358,37 @@ TEST(ModelTrainCli, DeviceCpuEqualsTheDefaultAndAnUnavailableDeviceIsNamed) {
   EXPECT_FALSE(fs::exists(work / "cuda" / "checkpoint.pt"));
 }
 
+// Same seed, same output whatever the thread count: phyir infer (which uses every core by
+// default) writes the same bytes with 1 and 2 torch threads.
+TEST(ModelTrainCli, InferIsIdenticalWithOneAndTwoThreads) {
+  const fs::path bin = PHYIR_BINARY;
+  if (!fs::is_regular_file(bin)) GTEST_SKIP() << bin << " not built";
+  const fs::path work = scratch("infer_threads");
+  fs::create_directories(work);
+  const std::string log = " >> " + (work / "log.txt").string() + " 2>&1";
+  ASSERT_EQ(std::system((bin.string() + " --log-level warn train --data " + dataset().string() +
+                         " --stage gmnet --epochs 1 --batch 2 --seed 3 --input-height 32 --input-width 64"
+                         " --render-height 16 --render-width 32 --probe-height 4 --probe-width 8"
+                         " --width-divisor 4 --threads 1 --quiet --out " + (work / "run").string() + log).c_str()), 0)
+      << work / "log.txt";
+  const std::string input = (fs::path(pm::find_view_folders(dataset())[0]) / "input.png").string();
+  for (int threads : {1, 2})
+    ASSERT_EQ(std::system((bin.string() + " --log-level warn infer --model " + (work / "run" / "checkpoint.pt").string() +
+                           " --input " + input + " --threads " + std::to_string(threads) + " --out " +
+                           (work / ("t" + std::to_string(threads))).string() + log).c_str()), 0)
+        << work / "log.txt";
+  auto bytes = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  for (const char* f : {"depth.exr", "normal.exr", "basecolor.exr", "roughness.exr", "metalness.exr", "probes.exr",
+                        "rerender.exr"}) {
+    const std::string one = bytes(work / "t1" / f);
+    EXPECT_FALSE(one.empty()) << f;
+    EXPECT_EQ(one, bytes(work / "t2" / f)) << f;
+  }
+}
+
 TEST(ModelTrain, BadOptionsAreReported) {
   EXPECT_THROW(pm::parse_stage("gsnett"), phyir::Error);
   pm::TrainOptions o = options(scratch("bad").string(), pm::Stage::kGMNet);

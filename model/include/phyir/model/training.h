@@ -140,7 +140,7 @@ struct InferOptions {
   std::string checkpoint;
   std::string input;        // panorama .png (LDR, as input.png) or .exr/.hdr (HDR: exposed, then sRGB)
   std::string out_dir;
-  int threads = 1;
+  int threads = 0;          // torch threads; 0: every core (outputs are the same for any count)
   std::string device = "cpu";  // cpu, cuda or cuda:N (as TrainOptions::device)
   uint64_t seed = 1;        // the rendering layer's Monte-Carlo samples
   // The input's exposure in stops (input = display(2^stops x radiance)). NaN: for an HDR
@@ -178,7 +178,7 @@ struct RenderCheckResult {
 };
 RenderCheckResult check_render_layer(const RenderCheckOptions& options);
 
-// Sets torch's intra-op thread count (commands call it before any work).
+// Sets torch's intra-op thread count (commands call it before any work); 0: every core.
 void set_threads(int threads);
 
 }  // namespace phyir::model
