@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "phyir/core/error.h"
 #include "phyir/eval/pixel_metrics.h"
@@ -158,7 +159,11 @@ Metrics evaluate_view(const GroundTruthView& gt, const Prediction& pred, const E
   }
   // Probes (eq. 7) and relighting (Table 5).
   if (pred.probes && gt.probes) {
-    const ProbeSet pred_probes = scaled_probe_set(*pred.probes, scale), gt_probes = scaled_probe_set(*gt.probes, scale);
+    // Copies only when the unit changes anything (absolute units: the probes as loaded).
+    std::optional<ProbeSet> scaled_pred, scaled_gt;
+    if (scale != 1.0) scaled_pred = scaled_probe_set(*pred.probes, scale), scaled_gt = scaled_probe_set(*gt.probes, scale);
+    const ProbeSet& pred_probes = scaled_pred ? *scaled_pred : *pred.probes;
+    const ProbeSet& gt_probes = scaled_gt ? *scaled_gt : *gt.probes;
     const ProbeScore score = probe_ssim(pred_probes, gt_probes);
     m["probe_ssim"] = score.ssim;
     m["probes_compared"] = double(score.probes);

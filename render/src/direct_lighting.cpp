@@ -55,7 +55,7 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
                                PathCounters* counters) {
   EmitterSample ls;
   if (!scene.emitters().sample(x.position, u.select, u.point, &ls) || !(ls.pdf > 0.0f) ||
-      !(max_component(ls.radiance) > 0.0f))
+      !(max_component(ls.radiance) > 0.0f) || (ls.delta && !options.punctual))
     return glm::vec3(0.0f);
   const glm::vec3 wi = x.frame.to_local(ls.wi);
   const glm::vec3 f = lobe_eval(x, options.lobes, wi);

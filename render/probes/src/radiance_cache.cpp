@@ -45,20 +45,6 @@ int normal_bucket(const glm::vec3& n) {
   return (axis * 2 + sign) * 9 + third(s) * 3 + third(t);
 }
 
-// Whether the light sample of variates (u_select, u_light) at `position` falls on an emissive
-// triangle: the cache's sampled direct light is theirs alone, the punctual lights' being
-// exact (Cell::punctual). Dropping the samples that choose a punctual light keeps the
-// triangles' estimate unbiased (each sample's pdf includes its choice).
-bool samples_emissive_triangle(const RenderScene& scene, const glm::vec3& position, float u_select,
-                               const glm::vec2& u_light) {
-  if (!has_lights(scene)) return false;
-  const EmitterSampler& emitters = scene.emitters();
-  if (emitters.delta_lights().empty()) return true;
-  if (emitters.emissive_triangle_count() == 0) return false;
-  EmitterSample ls;
-  return emitters.sample(position, u_select, u_light, &ls) && !ls.delta;
-}
-
 }  // namespace
 
 RadianceCache::RadianceCache(const RenderScene& scene, const Effects& effects, const PathSettings& path,
@@ -390,13 +376,14 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
   const RenderScene& scene = *scene_;
   const glm::vec3& ns = point.shading_normal;
   const glm::vec3& ng = point.geometric_normal;
-  if (direct && samples_emissive_triangle(scene, point.position, u_select, u_light)) {
+  if (direct && has_lights(scene)) {
     ShadingPoint x;
     x.position = point.position;
     x.geometric_normal = ng;
     x.frame = Frame(ns);
     DirectLightOptions irradiance;
     irradiance.lobes = Lobes::kCosine;
+    irradiance.punctual = false;  // exact in Cell::punctual
     const glm::vec3 E = sample_emitter_light(scene, x, LightVariates{u_select, u_light}, irradiance, glm::vec3(1.0f),
                                              nullptr, counters);
     if (is_finite(E)) out.direct += E;

@@ -63,6 +63,10 @@ struct DirectLightOptions {
   // A sample whose unoccluded value (luminance) is below this traces its shadow ray with
   // probability value / weak, drawn from *roulette, and is divided by it (unbiased; 0: never).
   float weak = 0.0f;
+  // false: a sample that chooses a punctual light gives 0 (the emissive triangles' estimate
+  // alone, still unbiased: each sample's pdf includes its choice), for callers that add the
+  // punctual lights exactly themselves.
+  bool punctual = true;
 };
 
 // One next-event estimate of the light arriving straight from the emitters through the
