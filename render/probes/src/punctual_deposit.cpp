@@ -21,15 +21,20 @@ glm::ivec2 probe_texel_of(const glm::vec3& d, int height, int width) {
 
 namespace {
 
+// Whether nothing hides the light `seen` describes from `origin` (one shadow ray, counted).
+bool unoccluded(const RenderScene& scene, const glm::vec3& origin, const DeltaIllumination& seen, uint64_t* rays) {
+  Ray shadow{origin, seen.wi};
+  if (std::isfinite(seen.distance)) shadow.tmax = seen.distance * (1.0f - kShadowRayShortening);
+  ++*rays;
+  return !scene.accelerator().occluded(shadow);
+}
+
 // The light `light` sends to `origin` if nothing hides it, as a texel and the radiance to add.
 bool punctual_texel(const RenderScene& scene, int light, const glm::vec3& origin, const ProbeLayout& layout,
                     glm::ivec2* texel, glm::vec3* radiance, uint64_t* rays) {
   DeltaIllumination seen;
   if (!scene.emitters().delta_lights().illuminate(light, origin, &seen)) return false;
-  Ray shadow{origin, seen.wi};
-  if (std::isfinite(seen.distance)) shadow.tmax = seen.distance * (1.0f - kShadowRayShortening);
-  ++*rays;
-  if (scene.accelerator().occluded(shadow)) return false;
+  if (!unoccluded(scene, origin, seen, rays)) return false;
   *texel = probe_texel_of(seen.wi, layout.res_height, layout.res_width);
   *radiance = seen.irradiance / equirect_texel_solid_angle(texel->x, layout.res_width, layout.res_height);
   return is_finite(*radiance);
@@ -46,10 +51,7 @@ glm::vec3 punctual_irradiance(const RenderScene& scene, const glm::vec3& positio
     if (!lights.illuminate(light, position, &seen)) continue;
     const float cosine = glm::dot(n, seen.wi);
     if (!(cosine > 0.0f) || !(glm::dot(ng, seen.wi) > 0.0f)) continue;
-    Ray shadow{spawn_origin(position, ng, seen.wi), seen.wi};
-    if (std::isfinite(seen.distance)) shadow.tmax = seen.distance * (1.0f - kShadowRayShortening);
-    ++*rays;
-    if (!scene.accelerator().occluded(shadow)) sum += seen.irradiance * cosine;
+    if (unoccluded(scene, spawn_origin(position, ng, seen.wi), seen, rays)) sum += seen.irradiance * cosine;
   }
   return is_finite(sum) ? sum : glm::vec3(0.0f);
 }
