@@ -184,13 +184,6 @@ struct SlurmFlags {
   bool submit = false;
 };
 
-fs::path this_executable() {
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (ec) fail("cannot find the phyir binary (/proc/self/exe); pass --phyir PATH");
-  return self;
-}
-
 void add_generate(CLI::App* dataset) {
   auto f = std::make_shared<GenerateFlags>();
   auto* cmd = dataset->add_subcommand(

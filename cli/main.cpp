@@ -14,10 +14,26 @@ void not_yet_available(const std::string& command, int issue) {
   std::exit(3);
 }
 
+namespace {
+std::vector<std::string> recorded_command_line;
+}  // namespace
+
+void set_command_line(int argc, char** argv) { recorded_command_line.assign(argv + 1, argv + argc); }
+
+const std::vector<std::string>& command_line() { return recorded_command_line; }
+
+std::filesystem::path this_executable() {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) fail("cannot find the phyir binary (/proc/self/exe); pass --phyir PATH");
+  return self;
+}
+
 }  // namespace phyir::cli
 
 int main(int argc, char** argv) {
   phyir::init_logging();
+  phyir::cli::set_command_line(argc, argv);
   CLI::App app{"phyir: physically based inverse rendering of indoor panoramas.\n"
                "Scenes in (glTF 2.0), HDR panoramas, AOVs and light probes out, the PhyIR "
                "network trained and evaluated on them."};

@@ -7,7 +7,7 @@ PACKAGES=(
   cmake ninja-build g++ ccache pkg-config git
   libembree-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libglm-dev
   libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev opencolorio-tools
-  libtbb-dev libtorch-dev libfmt-dev libspdlog-dev libcli11-dev libdraco-dev libmeshoptimizer-dev
+  libtbb-dev libtorch-dev libgloo-dev libfmt-dev libspdlog-dev libcli11-dev libdraco-dev libmeshoptimizer-dev
   libtinyobjloader-dev libzip-dev sweethome3d-furniture
   libgtest-dev libgmock-dev libbenchmark-dev libssl-dev
   python3-numpy python3-matplotlib python3-openimageio python3-skimage

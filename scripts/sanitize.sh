@@ -39,7 +39,7 @@ export LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp:print_suppressions=0"
 #    code under the sanitizers, and a second cluster start in one CI run only costs time.
 #    What it exercises of ours (sharding, merge, verify) runs here in dataset_shards_test
 #    and the dataset_test suite.
-exclude='^(slurm_dataset_test)$'
+exclude='^(slurm_dataset_test|slurm_train_test)$'
 
 cd "$build"
 ctest --output-on-failure -j "$jobs" --timeout 1500 -E "$exclude"

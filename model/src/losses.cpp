@@ -1,6 +1,7 @@
 // PhyIR's losses (eqs. 2-4, 7, 8, 11).
 #include "losses.h"
 
+#include "batch_share.h"
 #include "nets.h"
 #include "render_layer.h"
 
@@ -19,8 +20,8 @@ torch::Tensor full_mask(const torch::Tensor& x, const torch::Tensor& mask) {
 
 torch::Tensor masked_mean(const torch::Tensor& x, const torch::Tensor& mask_in) {
   const torch::Tensor mask = full_mask(x, mask_in);
-  const torch::Tensor count = mask.sum() * x.size(1);
-  return (x * mask).sum() / count.clamp_min(1.0);
+  const torch::Tensor count = batch_sum(mask) * x.size(1);
+  return batch_sum(x * mask) / count.clamp_min(1.0);
 }
 
 torch::Tensor l2_loss(const torch::Tensor& pred, const torch::Tensor& gt, const torch::Tensor& mask) {
@@ -30,15 +31,15 @@ torch::Tensor l2_loss(const torch::Tensor& pred, const torch::Tensor& gt, const 
 torch::Tensor metalness_loss(const torch::Tensor& pred, const torch::Tensor& gt, const torch::Tensor& mask_in) {
   const torch::Tensor mask = full_mask(pred, mask_in);
   const torch::Tensor metal = (gt > 0.5).to(pred.dtype()) * mask;
-  const torch::Tensor n = metal.sum();
-  const torch::Tensor mean_pred_metal = (pred * metal).sum() / n.clamp_min(1.0);  // 0 if no metal
+  const torch::Tensor n = batch_sum(metal);
+  const torch::Tensor mean_pred_metal = batch_sum(pred * metal) / n.clamp_min(1.0);  // 0 if no metal
   return l2_loss(pred, gt, mask) * (2.0 - mean_pred_metal);
 }
 
 torch::Tensor berhu_loss(const torch::Tensor& pred, const torch::Tensor& gt, const torch::Tensor& mask_in) {
   const torch::Tensor mask = full_mask(pred, mask_in);
   const torch::Tensor x = (pred - gt).abs();
-  const torch::Tensor c = (0.2 * (x * mask).max()).detach().clamp_min(1e-6);
+  const torch::Tensor c = (0.2 * batch_max(x * mask)).clamp_min(1e-6);
   const torch::Tensor quad = (x * x + c * c) / (2.0 * c);
   return masked_mean(torch::where(x <= c, x, quad), mask);
 }
@@ -84,9 +85,10 @@ torch::Tensor probe_ssim_loss(const torch::Tensor& pred_log, const torch::Tensor
   };
   const torch::Tensor s = ssim_map(images(pred_log), images(gt_log)).mean({1, 2, 3});  // per probe
   const torch::Tensor m = mask.reshape({B * H * W});
-  const torch::Tensor mean_ssim = (s * m).sum() / m.sum().clamp_min(1.0);
+  const torch::Tensor probes = batch_sum(m);
+  const torch::Tensor mean_ssim = batch_sum(s * m) / probes.clamp_min(1.0);
   // No probe counts: nothing to learn (0, not 0.5 (1 - 0)).
-  return torch::where(m.sum() > 0, 0.5 * (1.0 - mean_ssim), torch::zeros_like(mean_ssim));
+  return torch::where(probes > 0, 0.5 * (1.0 - mean_ssim), torch::zeros_like(mean_ssim));
 }
 
 torch::Tensor spatial_coherence_loss(const torch::Tensor& probes, const torch::Tensor& depth,
@@ -115,7 +117,7 @@ torch::Tensor spatial_coherence_loss(const torch::Tensor& probes, const torch::T
          depth.narrow(2, 1, H - 1), dirs.narrow(0, 0, H - 1), dirs.narrow(0, 1, H - 1),
          mask.narrow(2, 0, H - 1) * mask.narrow(2, 1, H - 1));
   }
-  return total / count.clamp_min(1.0);
+  return batch_sum(total) / batch_sum(count).clamp_min(1.0);
 }
 
 }  // namespace phyir::model

@@ -74,13 +74,13 @@ torch::Tensor CirConvImpl::forward(const torch::Tensor& x) {
 
 BasicBlockImpl::BasicBlockImpl(int in, int out, int stride) {
   conv1 = register_module("conv1", CirConv(in, out, 3, stride, false));
-  bn1 = register_module("bn1", torch::nn::BatchNorm2d(out));
+  bn1 = register_module("bn1", SharedBatchNorm2d(out));
   conv2 = register_module("conv2", CirConv(out, out, 3, 1, false));
-  bn2 = register_module("bn2", torch::nn::BatchNorm2d(out));
+  bn2 = register_module("bn2", SharedBatchNorm2d(out));
   if (stride != 1 || in != out) {
     down = register_module(
         "down", torch::nn::Conv2d(torch::nn::Conv2dOptions(in, out, 1).stride(stride).bias(false)));
-    down_bn = register_module("down_bn", torch::nn::BatchNorm2d(out));
+    down_bn = register_module("down_bn", SharedBatchNorm2d(out));
   }
 }
 
@@ -94,7 +94,7 @@ torch::Tensor BasicBlockImpl::forward(const torch::Tensor& x) {
 ResNet18EncoderImpl::ResNet18EncoderImpl(int div) {
   auto c = [div](int n) { return n / div; };
   conv1 = register_module("conv1", CirConv(3, c(64), 7, 2, false));
-  bn1 = register_module("bn1", torch::nn::BatchNorm2d(c(64)));
+  bn1 = register_module("bn1", SharedBatchNorm2d(c(64)));
   auto layer = [](int in, int out, int stride) {
     return torch::nn::Sequential(BasicBlock(in, out, stride), BasicBlock(out, out, 1));
   };

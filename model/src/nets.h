@@ -10,6 +10,8 @@
 
 #include <string>
 
+#include "shared_batch_norm.h"
+
 namespace phyir::model {
 
 // Whether CirConv calls oneDNN itself: without a gradient, for float on the CPU, when LibTorch
@@ -36,9 +38,9 @@ struct BasicBlockImpl : torch::nn::Module {
   BasicBlockImpl(int in, int out, int stride);
   torch::Tensor forward(const torch::Tensor& x);
   CirConv conv1{nullptr}, conv2{nullptr};
-  torch::nn::BatchNorm2d bn1{nullptr}, bn2{nullptr};
+  SharedBatchNorm2d bn1{nullptr}, bn2{nullptr};
   torch::nn::Conv2d down{nullptr};
-  torch::nn::BatchNorm2d down_bn{nullptr};
+  SharedBatchNorm2d down_bn{nullptr};
 };
 TORCH_MODULE(BasicBlock);
 
@@ -49,7 +51,7 @@ struct ResNet18EncoderImpl : torch::nn::Module {
   explicit ResNet18EncoderImpl(int div = 1);
   std::vector<torch::Tensor> forward(const torch::Tensor& x);
   CirConv conv1{nullptr};
-  torch::nn::BatchNorm2d bn1{nullptr};
+  SharedBatchNorm2d bn1{nullptr};
   torch::nn::Sequential layer1{nullptr}, layer2{nullptr}, layer3{nullptr}, layer4{nullptr};
 };
 TORCH_MODULE(ResNet18Encoder);

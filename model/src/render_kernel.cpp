@@ -177,6 +177,7 @@ inline T fresnel_weight_grad(T x, T fc) {
 struct Sizes {
   int h, w, nd, ns;
   uint64_t seed;
+  uint64_t first_stream;  // pixel p draws from stream first_stream + p
 };
 
 template <typename T>
@@ -237,7 +238,7 @@ void shade_pixel(const PixelIn<T>& in, const Sizes& sz, uint64_t pixel, T* out_d
   const T wf = T(w), hf = T(h);
   auto dir_grad = [&](const V3<T>& g) { return V3<T>{g.x * wf, g.y * hf, g.z * wf}; };
 
-  Pcg32 rng(mix64(sz.seed), pixel);
+  Pcg32 rng(mix64(sz.seed), sz.first_stream + pixel);
   T L[3], gL[3];
 
   // --- Diffuse: cosine samples, f_d L cos / pdf = B (1 - M) L (eq. 18) ---
@@ -495,15 +496,17 @@ using torch::autograd::variable_list;
 struct FusedRenderFunction : torch::autograd::Function<FusedRenderFunction> {
   static variable_list forward(AutogradContext* ctx, const torch::Tensor& n, const torch::Tensor& v,
                                const torch::Tensor& B, const torch::Tensor& R, const torch::Tensor& M,
-                               const torch::Tensor& probes, int64_t nd, int64_t ns, int64_t seed) {
+                               const torch::Tensor& probes, int64_t nd, int64_t ns, int64_t seed,
+                               int64_t first_stream) {
     const Inputs x = contiguous(n, v, B, R, M, probes);
     const Sizes sz{static_cast<int>(probes.size(1)), static_cast<int>(probes.size(2)), static_cast<int>(nd),
-                   static_cast<int>(ns), static_cast<uint64_t>(seed)};
+                   static_cast<int>(ns), static_cast<uint64_t>(seed), static_cast<uint64_t>(first_stream)};
     // Only the inputs are kept: backward recomputes every sample from them and the seed.
     ctx->save_for_backward({x.n, x.v, x.B, x.R, x.M, x.probes});
     ctx->saved_data["nd"] = nd;
     ctx->saved_data["ns"] = ns;
     ctx->saved_data["seed"] = seed;
+    ctx->saved_data["first_stream"] = first_stream;
     const FusedRenderOutput out = forward_impl(x, sz);
     return {out.diffuse, out.specular};
   }
@@ -513,11 +516,13 @@ struct FusedRenderFunction : torch::autograd::Function<FusedRenderFunction> {
     const Inputs x{saved[0], saved[1], saved[2], saved[3], saved[4], saved[5]};
     const Sizes sz{static_cast<int>(x.probes.size(1)), static_cast<int>(x.probes.size(2)),
                    static_cast<int>(ctx->saved_data["nd"].toInt()), static_cast<int>(ctx->saved_data["ns"].toInt()),
-                   static_cast<uint64_t>(ctx->saved_data["seed"].toInt())};
+                   static_cast<uint64_t>(ctx->saved_data["seed"].toInt()),
+                   static_cast<uint64_t>(ctx->saved_data["first_stream"].toInt())};
     // The sample directions' derivatives are the costly part: only when n or R need them.
     const bool geometry = ctx->needs_input_grad(0) || ctx->needs_input_grad(3);
     const Grads g = backward_impl(x, sz, grad_out[0], grad_out[1], geometry);
-    return {g.n, torch::Tensor(), g.B, g.R, g.M, g.probes, torch::Tensor(), torch::Tensor(), torch::Tensor()};
+    return {g.n,           torch::Tensor(), g.B,           g.R,           g.M, g.probes, torch::Tensor(),
+            torch::Tensor(), torch::Tensor(), torch::Tensor()};
   }
 };
 
@@ -526,23 +531,25 @@ struct FusedRenderFunction : torch::autograd::Function<FusedRenderFunction> {
 FusedRenderOutput render_pixels_fused(const torch::Tensor& n, const torch::Tensor& v,
                                       const torch::Tensor& base_color, const torch::Tensor& roughness,
                                       const torch::Tensor& metalness, const torch::Tensor& probes,
-                                      int diffuse_samples, int specular_samples, uint64_t seed) {
+                                      int diffuse_samples, int specular_samples, uint64_t seed,
+                                      uint64_t first_stream) {
   TORCH_CHECK(n.dim() == 2 && n.size(1) == 3 && probes.dim() == 4 && probes.size(0) == n.size(0) &&
                   probes.size(3) == 3,
               "render_pixels_fused: n ", n.sizes(), " and probes ", probes.sizes(), " do not match");
   const auto out = FusedRenderFunction::apply(n, v, base_color, roughness, metalness, probes, diffuse_samples,
-                                              specular_samples, static_cast<int64_t>(seed));
+                                              specular_samples, static_cast<int64_t>(seed),
+                                              static_cast<int64_t>(first_stream));
   return {out[0], out[1]};
 }
 
 std::pair<torch::Tensor, torch::Tensor> render_uniforms(int64_t pixels, int nd, int ns, uint64_t seed,
-                                                        torch::Dtype dtype) {
+                                                        torch::Dtype dtype, uint64_t first_stream) {
   torch::Tensor ud = torch::empty({pixels, nd, 2}, torch::kDouble);
   torch::Tensor us = torch::empty({pixels, ns, 2}, torch::kDouble);
   double* pd = ud.data_ptr<double>();
   double* ps = us.data_ptr<double>();
   for (int64_t p = 0; p < pixels; ++p) {
-    Pcg32 rng(mix64(seed), static_cast<uint64_t>(p));
+    Pcg32 rng(mix64(seed), first_stream + static_cast<uint64_t>(p));
     for (int s = 0; s < nd; ++s) draw(rng, 0.0, kDiffuseUMax, pd[(p * nd + s) * 2], pd[(p * nd + s) * 2 + 1]);
     for (int s = 0; s < ns; ++s)
       draw(rng, kSpecularUMin, kSpecularUMax, ps[(p * ns + s) * 2], ps[(p * ns + s) * 2 + 1]);

@@ -280,12 +280,13 @@ RenderOutput render_layer(const torch::Tensor& normal, const torch::Tensor& base
     // The fused kernel is CPU code: elsewhere the torch-composed estimator runs, on the same
     // uniforms (render_uniforms: pixel p's own stream), so it agrees with the kernel (tested).
     auto [ud, us] = render_uniforms(f.n.size(0), settings.diffuse_samples, settings.specular_samples, seed,
-                                    f.n.scalar_type());
+                                    f.n.scalar_type(), static_cast<uint64_t>(settings.first_stream));
     auto [d, s] = render_pixels(f.n, f.v, f.base, f.R, f.M, f.probes, ud.to(f.n.device()), us.to(f.n.device()));
     return to_images(f, d, s);
   }
   const FusedRenderOutput r = render_pixels_fused(f.n, f.v, f.base, f.R, f.M, f.probes, settings.diffuse_samples,
-                                                  settings.specular_samples, seed);
+                                                  settings.specular_samples, seed,
+                                                  static_cast<uint64_t>(settings.first_stream));
   return to_images(f, r.diffuse, r.specular);
 }
 

@@ -51,6 +51,8 @@ struct RenderSettings {
   int diffuse_samples = 64;   // paper: 512
   int specular_samples = 32;  // paper: 256
   int64_t max_pixels_per_chunk = 4096;  // unused since the fused kernel (kept for callers)
+  int64_t first_stream = 0;   // the random stream of the batch's first pixel (a rank's share of a
+                              // batch continues the global batch's numbering: batch_share.h)
 };
 
 struct RenderOutput {

@@ -1,6 +1,7 @@
 // A stage's forward pass and losses (stage_loss.h).
 #include "stage_loss.h"
 
+#include "batch_share.h"
 #include "losses.h"
 #include "phyir/core/error.h"
 
@@ -69,6 +70,7 @@ LightResult run_light(Networks& nets, const ModelConfig& c, const torch::Tensor&
   RenderSettings rs;
   rs.diffuse_samples = c.diffuse_samples;
   rs.specular_samples = c.specular_samples;
+  rs.first_stream = batch_first_view() * Hr * Wr;
   r.render = render_layer(
       torch::nn::functional::normalize(area(gm.normal, Hr, Wr),
                                        torch::nn::functional::NormalizeFuncOptions().dim(1).eps(1e-6)),

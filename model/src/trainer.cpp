@@ -3,8 +3,11 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <optional>
 
 #include "augment.h"
+#include "batch_share.h"
+#include "data_parallel.h"
 #include "device.h"
 #include "phyir/core/error.h"
 #include "phyir/core/log.h"
@@ -46,6 +49,7 @@ Trainer::Trainer(const TrainOptions& o)
 
 TrainSummary Trainer::run() {
   settle_settings();
+  join_ranks();
   build_networks();
   load_data();
   summary_.checkpoint = checkpoint_path_.string();
@@ -57,9 +61,12 @@ TrainSummary Trainer::run() {
     summary_.first_loss = summary_.epoch_losses.front();
     summary_.last_loss = summary_.epoch_losses.back();
   }
-  if (!fs::is_regular_file(checkpoint_path_))
+  if (lead() && !fs::is_regular_file(checkpoint_path_))
     save_checkpoint(checkpoint_path_, meta(start_epoch_, start_batch_), *nets_, opt_.get());
-  write_summary();
+  if (lead()) write_summary();
+  // No rank reports success before rank 0's last files are written.
+  if (group_) group_->barrier("the end of training");
+  if (!lead()) return summary_;
   spdlog::info("train {}: {} steps, mean loss first epoch {:.5g}, last epoch {:.5g}; checkpoint {}", stage_name_,
                summary_.steps, summary_.first_loss, summary_.last_loss, checkpoint_path_.string());
   return summary_;
@@ -111,6 +118,15 @@ void Trainer::settle_settings() {
   check_config(config_);
 }
 
+void Trainer::join_ranks() {
+  const DistributedOptions& d = o_.distributed;
+  if (d.world_size <= 1) return;
+  spdlog::info("train {}: rank {} of {} joining at {}", stage_name_, d.rank, d.world_size, d.rendezvous);
+  group_ = ProcessGroup::join(d);
+  rank_ = group_->rank();
+  ranks_ = group_->size();
+}
+
 void Trainer::build_networks() {
   torch::manual_seed(o_.seed);
   nets_ = std::make_unique<Networks>(config_);
@@ -132,8 +148,10 @@ void Trainer::build_networks() {
   collect(*nets_->gmnet, stage_.gmnet);
   collect(*nets_->lnet, stage_.lnet);
   collect(*nets_->gsnet, stage_.gsnet);
+  trained_params_ = params;
   opt_ = std::make_unique<torch::optim::Adam>(params, torch::optim::AdamOptions(lr_));
   best_.metric = o_.validation.best_metric;
+  if (group_) broadcast_networks(*group_, *nets_);
   if (!o_.resume) return;
   const json m = load_checkpoint(checkpoint_path_.string(), nets_.get(), opt_.get(), true, device_);
   start_epoch_ = m.at("epoch");
@@ -164,14 +182,24 @@ void Trainer::load_data() {
     fail("stage {}: {} has no probes.exr (render the dataset with probes)", stage_name_, views.folder(0).string());
   views_ = static_cast<int64_t>(views.size().value());
   batch_ = std::min<int64_t>(batch_size_, views_);
-  batches_per_epoch_ = (views_ + batch_ - 1) / batch_;
+  batches_per_epoch_ = global_batches(views_, batch_, ranks_);
+  if (batches_per_epoch_ * batch_ < views_)
+    spdlog::warn("train {}: the last {} view(s) of each epoch are fewer than the {} ranks and are left out of "
+                 "it (a different view each epoch)", stage_name_, views_ - batches_per_epoch_ * batch_, ranks_);
   yaw_divisions_ = yaw_divisions(config_);
   stream_ = std::make_unique<BatchStream>(
       TrainingBatches(std::move(views), o_.augment, yaw_divisions_, o_.seed, units),
       StreamOptions{o_.workers, o_.prefetch});
   const json saved_schedule = o_.resume ? resumed_.value("schedule", json()) : json();
   schedule_ = make_schedule(o_.schedule, saved_schedule, lr_, o_.epochs, batches_per_epoch_);
-  validator_ = std::make_unique<Validator>(o_.data_dir, o_.validation, config_, device_);
+  // Rank 0 alone validates (the others wait for it at the next step).
+  ValidationOptions validation = o_.validation;
+  if (!lead()) validation.split.clear();
+  validator_ = std::make_unique<Validator>(o_.data_dir, validation, config_, device_);
+  if (group_)
+    spdlog::info("train {}: rank {} of {} reads {} of each batch's {} views", stage_name_, rank_, ranks_,
+                 rank_batch(batch_, rank_, ranks_), batch_);
+  if (!lead()) return;
   spdlog::info("train {}: {} views (streamed: {} workers, {} batches ahead), batch {}, {} steps/epoch, lr {} ({}), "
                "{} threads, device {}, input {}x{}, render {}x{}, probes {}x{}, augmentation {}, validation {}",
                stage_name_, views_, o_.workers, o_.workers > 0 ? o_.prefetch : 0, batch_, batches_per_epoch_, lr_,
@@ -195,13 +223,15 @@ bool Trainer::run_epoch(int epoch) {
   bool stopped = false;  // --max-steps reached inside the epoch
   int64_t bi = epoch == start_epoch_ ? start_batch_ : 0;
   // The epoch's order depends only on (seed, epoch), so a resumed run sees the same batches.
-  const std::vector<size_t> order = epoch_order(static_cast<size_t>(views_), o_.seed, epoch);
-  stream_->run_epoch(epoch, order, bi, batch_, [&](Batch b) {
+  // Each rank reads its slice of every global batch (data_parallel.h); one process reads them all.
+  const std::vector<size_t> order =
+      rank_order(epoch_order(static_cast<size_t>(views_), o_.seed, epoch), batch_, rank_, ranks_);
+  stream_->run_epoch(epoch, order, bi, rank_batch(batch_, rank_, ranks_), [&](Batch b) {
     run_step(epoch, bi, b.to(device_));
     const bool at_limit = o_.max_steps > 0 && global_step_ >= o_.max_steps;
     if (bi + 1 == batches_per_epoch_) return false;  // the epoch's end: below
     // Resume point: the next batch of this epoch.
-    if (at_limit || (o_.checkpoint_every > 0 && global_step_ % o_.checkpoint_every == 0))
+    if (lead() && (at_limit || (o_.checkpoint_every > 0 && global_step_ % o_.checkpoint_every == 0)))
       save_checkpoint(checkpoint_path_, meta(epoch, bi + 1), *nets_, opt_.get());
     ++bi;
     stopped = at_limit;
@@ -213,7 +243,7 @@ bool Trainer::run_epoch(int epoch) {
   }
   if (epoch_steps_ > 0) summary_.epoch_losses.push_back(epoch_loss_sum_ / static_cast<double>(epoch_steps_));
   if (validator_->due(epoch + 1, o_.epochs)) validate(epoch + 1);
-  save_checkpoint(checkpoint_path_, meta(epoch + 1, 0), *nets_, opt_.get());
+  if (lead()) save_checkpoint(checkpoint_path_, meta(epoch + 1, 0), *nets_, opt_.get());
   summary_.epochs_done = epoch + 1;
   return !(o_.max_steps > 0 && global_step_ >= o_.max_steps);
 }
@@ -222,6 +252,9 @@ double Trainer::run_step(int epoch, int64_t bi, const Batch& b) {
   const auto t0 = Clock::now();
   const double lr = schedule_.at(global_step_);
   for (auto& group : opt_->param_groups()) static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
+  // With ranks, the loss is the global batch's (batch_share.h): the same value on every rank.
+  std::optional<BatchShare> share;
+  if (group_) share.emplace(*group_, rank_slice(std::min(batch_, views_ - bi * batch_), rank_, ranks_).first);
   const StepLoss L = stage_loss(*nets_, config_, weights_, stage_, b);
   const double loss = L.total.item<double>();
   // The NaN check of every step: stop before the optimiser spreads it into the weights.
@@ -231,6 +264,8 @@ double Trainer::run_step(int epoch, int64_t bi, const Batch& b) {
          stage_name_, loss, epoch + 1, bi + 1, global_step_ + 1, format_parts(L), checkpoint_path_.string());
   opt_->zero_grad();
   L.total.backward();
+  share.reset();
+  if (group_) average_gradients(*group_, trained_params_);
   opt_->step();
   ++global_step_;
   epoch_loss_sum_ += loss;
@@ -240,6 +275,7 @@ double Trainer::run_step(int epoch, int64_t bi, const Batch& b) {
 }
 
 void Trainer::log_step(int epoch, int64_t bi, double loss, const StepLoss& L, double lr, double step_seconds) {
+  if (!lead()) return;
   if (!step_log_->has_header()) {
     std::vector<std::string> columns = {"stage", "epoch", "global_step", "loss"};
     for (const auto& part : L.parts) columns.push_back(part.first);
@@ -314,7 +350,8 @@ json Trainer::meta(int epoch, int64_t batch) const {
               {"learning_rate", lr_}, {"batch_size", batch_}, {"weights", weights_to_json(weights_)},
               {"trained", t}, {"schedule", schedule_.to_json()}, {"augment", augment_to_json(o_.augment)},
               {"validation", validation_to_json(o_.validation)}, {"best", best_.to_json()},
-              {"epoch_loss_sum", batch > 0 ? epoch_loss_sum_ : 0.0}, {"epoch_steps", batch > 0 ? epoch_steps_ : 0}};
+              {"epoch_loss_sum", batch > 0 ? epoch_loss_sum_ : 0.0}, {"epoch_steps", batch > 0 ? epoch_steps_ : 0},
+              {"ranks", ranks_}};
 }
 
 void Trainer::write_summary() {

@@ -16,6 +16,7 @@
 
 #include "checkpoint.h"
 #include "data.h"
+#include "process_group.h"
 #include "lr_schedule.h"
 #include "phyir/model/training.h"
 #include "stage_loss.h"
@@ -42,6 +43,7 @@ class Trainer {
 
  private:
   void settle_settings();     // learning rate, batch, weights, configuration
+  void join_ranks();          // data-parallel: the process group (no-op for one process)
   void build_networks();      // networks, which of them train, optimiser, resumed state
   void load_data();           // training views, validator, schedule, logs
   bool run_epoch(int epoch);  // false when --max-steps stopped the run inside it
@@ -51,6 +53,7 @@ class Trainer {
   nlohmann::json meta(int epoch, int64_t batch) const;
   void set_modes(bool training);
   void write_summary();
+  bool lead() const { return rank_ == 0; }  // the rank that validates and writes every file
 
   const TrainOptions& o_;
   std::string stage_name_;
@@ -67,13 +70,16 @@ class Trainer {
 
   std::unique_ptr<Networks> nets_;
   std::unique_ptr<torch::optim::Adam> opt_;
+  std::vector<torch::Tensor> trained_params_;
   int start_epoch_ = 0;
   int64_t start_batch_ = 0, global_step_ = 0;
 
   torch::Device device_ = torch::kCPU;
+  std::unique_ptr<ProcessGroup> group_;  // null for one process
+  int rank_ = 0, ranks_ = 1;
   std::unique_ptr<BatchStream> stream_;  // the training views, read as batches are due
   int64_t views_ = 0;
-  int64_t batch_ = 1, batches_per_epoch_ = 1;
+  int64_t batch_ = 1, batches_per_epoch_ = 1;  // the global batch (all ranks' views of a step)
   int yaw_divisions_ = 1;
   std::unique_ptr<Validator> validator_;
   LrSchedule schedule_;

@@ -75,6 +75,19 @@ struct LrScheduleOptions {
   double min_fraction = 0.01;  // cosine: the last step's rate over the base rate
 };
 
+// Data-parallel training (docs/model.md "Training on several processes"): this process is rank
+// `rank` of `world_size`, and the ranks meet at `rendezvous`: file:PATH (a file on a file
+// system every rank sees; it must not exist before the run) or tcp:HOST:PORT (a store that
+// rank 0 serves on HOST). `phyir train --nproc N` and `phyir train slurm`'s script fill these in.
+// --batch stays the global batch: N ranks at batch B train as one process at batch B.
+struct DistributedOptions {
+  int rank = 0;
+  int world_size = 1;          // 1: one process, no group
+  std::string rendezvous;
+  int timeout_seconds = 1800;  // how long a rank waits for the others in a collective (rank 0's
+                               // validation passes and checkpoints included) before it fails
+};
+
 struct TrainOptions {
   std::string data_dir;     // a dataset (manifest.json, docs/dataset.md) or a folder of view folders
   std::string split = "train";  // the manifest's split to train on (empty: every view)
@@ -106,6 +119,7 @@ struct TrainOptions {
   AugmentOptions augment;
   ValidationOptions validation;
   LrScheduleOptions schedule;
+  DistributedOptions distributed;
 };
 
 // One validation pass: the stage's loss on the validation views and `phyir eval`'s metrics
