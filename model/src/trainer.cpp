@@ -196,9 +196,13 @@ void Trainer::load_data() {
   ValidationOptions validation = o_.validation;
   if (!lead()) validation.split.clear();
   validator_ = std::make_unique<Validator>(o_.data_dir, validation, config_, device_);
-  if (group_)
-    spdlog::info("train {}: rank {} of {} reads {} of each batch's {} views", stage_name_, rank_, ranks_,
-                 rank_batch(batch_, rank_, ranks_), batch_);
+  if (group_) {
+    int64_t gradients = 0;
+    for (const torch::Tensor& p : trained_params_) gradients += p.numel();
+    spdlog::info("train {}: rank {} of {} reads {} of each batch's {} views; {} gradients ({:.1f} MB) all-reduced a "
+                 "step", stage_name_, rank_, ranks_, rank_batch(batch_, rank_, ranks_), batch_, gradients,
+                 4e-6 * static_cast<double>(gradients));
+  }
   if (!lead()) return;
   spdlog::info("train {}: {} views (streamed: {} workers, {} batches ahead), batch {}, {} steps/epoch, lr {} ({}), "
                "{} threads, device {}, input {}x{}, render {}x{}, probes {}x{}, augmentation {}, validation {}",
