@@ -134,13 +134,8 @@ void add_train_slurm_command(CLI::App& train) {
       std::printf("submit with: sbatch %s\n", script.c_str());
       return;
     }
-    const std::string command = "sbatch --parsable " + dataset::shell_quote(script.string()) + " 2>&1";
-    FILE* pipe = ::popen(command.c_str(), "r");
-    if (!pipe) fail("cannot run sbatch");
-    std::string output;
-    char buffer[4096];
-    while (size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
-    if (::pclose(pipe) != 0) fail("sbatch {} failed (is sbatch on PATH and the cluster reachable?):\n{}", script.string(), output);
+    const std::string output =
+        dataset::run_submission("sbatch --parsable " + dataset::shell_quote(script.string()), script.string());
     const std::string id = output.substr(0, output.find_first_of(";\n"));
     std::printf("submitted job %s; watch: squeue -j %s; log: %s/train-%s.log\njob=%s\n", id.c_str(), id.c_str(),
                 logs.c_str(), id.c_str(), id.c_str());

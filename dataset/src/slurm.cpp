@@ -114,17 +114,20 @@ SlurmScripts write_slurm_scripts(const SlurmOptions& o) {
   return s;
 }
 
-std::string submit_slurm_scripts(const SlurmScripts& scripts) {
-  const std::string command = "bash " + shell_quote(scripts.submit.string()) + " 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (!pipe) fail("cannot run {}", scripts.submit.string());
+std::string run_submission(const std::string& command, const std::string& what) {
+  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) fail("cannot run {}", what);
   std::string output;
   char buffer[4096];
   while (size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
   const int status = ::pclose(pipe);
   if (status != 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    fail("submitting {} failed (is sbatch on PATH and the cluster reachable?):\n{}", scripts.submit.string(), output);
+    fail("submitting {} failed (is sbatch on PATH and the cluster reachable?):\n{}", what, output);
   return output;
+}
+
+std::string submit_slurm_scripts(const SlurmScripts& scripts) {
+  return run_submission("bash " + shell_quote(scripts.submit.string()), scripts.submit.string());
 }
 
 }  // namespace phyir::dataset

@@ -10,16 +10,8 @@
 set -euo pipefail
 phyir=$1
 work=$2
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-source "$here/lib/local_slurm.sh"
-stop_stale_slurm "$work"
-rm -rf "$work"
-mkdir -p "$work"
-cd "$work"
-work=$(pwd)
-die() { echo "FAIL: $*" >&2; exit 1; }
-skip() { echo "SKIPPED: $*"; exit 0; }
-start=$(date +%s)
+source "$(dirname "${BASH_SOURCE[0]}")/lib/local_slurm.sh"
+enter_slurm_scratch
 "$phyir" train --help | grep -q -- "--nproc" || skip "this phyir has no training (built with PHYIR_BUILD_MODEL=OFF)"
 start_local_slurm
 

@@ -1,10 +1,23 @@
-# A private single-node Slurm cluster on localhost for the Slurm tests (sourced after
-# prologue-style setup: $work is the test's scratch folder, die() and skip() exist). Installs
+# A private single-node Slurm cluster on localhost for the Slurm tests (sourced; $work is the
+# test's scratch folder). Installs
 # Debian's slurm-wlm and munge with apt-get if missing (as root; skip() when that is impossible),
 # starts munged, slurmctld and slurmd from a private config in $work (own munge socket and key,
 # free ports, no systemd, no accounting), exports SLURM_CONF, and traps EXIT to cancel left-over
 # jobs and stop the three daemons by their pid files. wait_for_jobs SECONDS polls squeue until
 # the queue is empty.
+
+# The tests' start: stops an earlier run's daemons, empties $work and enters it, defines die()
+# and skip(), and notes the start time.
+enter_slurm_scratch() {
+  stop_stale_slurm "$work"
+  rm -rf "$work"
+  mkdir -p "$work"
+  cd "$work"
+  work=$(pwd)
+  start=$(date +%s)
+}
+die() { echo "FAIL: $*" >&2; exit 1; }
+skip() { echo "SKIPPED: $*"; exit 0; }
 
 # Daemons of an earlier run that was killed before its trap ran (e.g. a ctest timeout): stop
 # them by their pid files before the scratch folder is emptied. Call before emptying $work.

@@ -46,6 +46,10 @@ SlurmScripts write_slurm_scripts(const SlurmOptions& options);
 // Runs submit.sh; returns its output (the job ids). Throws phyir::Error when sbatch fails.
 std::string submit_slurm_scripts(const SlurmScripts& scripts);
 
+// Runs a submission command (`bash submit.sh`, `sbatch ...`) through the shell and returns its
+// output, stderr included. Throws phyir::Error naming `what` and the output when it fails.
+std::string run_submission(const std::string& command, const std::string& what);
+
 // 'text' quoted for bash (single quotes, embedded ones escaped).
 std::string shell_quote(const std::string& text);
 
