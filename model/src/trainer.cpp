@@ -125,6 +125,11 @@ void Trainer::join_ranks() {
   group_ = ProcessGroup::join(d);
   rank_ = group_->rank();
   ranks_ = group_->size();
+  // --device cuda without an index: the ranks of a node spread over its GPUs.
+  if (device_.is_cuda() && !device_.has_index()) {
+    device_ = torch::Device(torch::kCUDA, static_cast<c10::DeviceIndex>(rank_ % torch::cuda::device_count()));
+    spdlog::info("train {}: rank {} trains on {}", stage_name_, rank_, device_.str());
+  }
 }
 
 void Trainer::build_networks() {

@@ -86,6 +86,14 @@ class TexelEstimator {
   glm::vec3 terminal(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key,
                      PathCounters* c) const;
 
+  // DirectLightOptions::weak for `light_samples` light samples at si: where si emits, a
+  // sample adding less than kWeakShadowFraction of its emission (known exactly: the texel's
+  // own light, or the hit weight's) traces its shadow ray only with probability (its share /
+  // that), weighted by the inverse. A nearly black emitter (a glowing shade, a light's
+  // housing) reflects a few percent, so its samples cost about one shadow ray, not one
+  // each. 0 where si does not emit: every shadow ray traced.
+  float weak_beside_emission(const SurfaceInteraction& si, int light_samples) const;
+
   // The punctual lights' irradiance at x where the cache holds the direct light: exact at x
   // (punctual_irradiance) in scenes of few punctual lights, else the cache's.
   glm::vec3 punctual_at(const ShadingPoint& x, const CachedIrradiance& E, PathCounters* c) const;

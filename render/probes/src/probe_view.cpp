@@ -258,43 +258,52 @@ void ProbeView::prepare_probe(TileProbe* probe, int pass) const {
   probe->foot = pass == 1 ? feet_[probe->k].less(common_difference_) : FootCorrection();
 }
 
-// Hard texels (the first samples met a light, glass or a glossy surface, or their values
-// spread over more than spread_threshold x (their mean + a floor): the texel straddles an
-// edge or a highlight) are estimated again from hard_spp_factor x spp fresh samples. Texels
-// a light may cover (EmitterFootprints) are hard from the start, and the emission seen first
-// there is estimated apart: partial coverage of a light is the largest error otherwise. No
-// decision looks at the samples it selects, so none biases the value.
+// Hard texels (the first samples met glass or a glossy surface, or their values spread over
+// more than spread_threshold x (their mean + a floor): the texel straddles an edge or a
+// highlight) are estimated again from hard_spp_factor x spp fresh samples. No decision looks
+// at the samples it selects, so none biases the value.
 void ProbeView::shade_texel(TileProbe& probe, int t, int pass, Worker* w) {
   const int row = t / layout_.res_width, col = t % layout_.res_width;
   Texel x{&probe, t, row, col, ProbeTexel(row, col, layout_.res_height, layout_.res_width),
           pass == 0 && correct_foot_ ? &probe.measured : nullptr, std::numeric_limits<float>::infinity()};
-  const int spp = settings_.spp;
-  const bool lit = probe.lit[size_t(t)] != 0;
-  bool hard = lit;
   glm::vec3 value(0.0f), seen_emission(0.0f);
-  if (!hard) {
-    float spread = 0.0f;
-    value = estimate(x, 0, spp, Part::kAll, &hard, &spread, w);
-    if (spp > 1 && spread > settings_.spread_threshold * (luminance(value) + dark_floor_)) hard = true;
-  }
-  const bool supersampled = hard && adaptive_;
-  if (supersampled) {
-    bool unused = false;
-    value = lit ? shade_lit_texel(x, w, &seen_emission)
-                : estimate(x, spp, spp * settings_.hard_spp_factor, Part::kAll, &unused, nullptr, w);
-    ++w->stats.supersampled_texels;
+  bool supersampled = false;
+  if (probe.lit[size_t(t)] != 0) {
+    value = shade_lit_texel(x, w, &seen_emission, &supersampled);
+  } else {
+    value = shade_rest(x, Part::kAll, glm::vec3(0.0f), w, &supersampled);
   }
   if (x.measure)
     x.measure->add_texel(x.cos_all, x.cos_emitted, equirect_texel_solid_angle(row, layout_.res_width, layout_.res_height));
   store_texel(x, value, seen_emission, supersampled, w);
 }
 
-glm::vec3 ProbeView::shade_lit_texel(Texel& x, Worker* w, glm::vec3* seen_emission) {
+glm::vec3 ProbeView::shade_rest(Texel& x, Part part, const glm::vec3& exact, Worker* w, bool* supersampled) {
+  const int spp = settings_.spp;
+  bool hard = false;
+  float spread = 0.0f;
+  glm::vec3 value = estimate(x, 0, spp, part, &hard, &spread, w);
+  // The spread is judged against the texel's whole value: light it has exactly (the
+  // emission seen directly, estimated apart) makes the same spread matter less.
+  if (spp > 1 && spread > settings_.spread_threshold * (luminance(value) + luminance(exact) + dark_floor_)) hard = true;
+  *supersampled = hard && adaptive_;
+  if (*supersampled) {
+    bool unused = false;
+    value = estimate(x, spp, spp * settings_.hard_spp_factor, part, &unused, nullptr, w);
+    ++w->stats.supersampled_texels;
+  }
+  return value;
+}
+
+// A texel a light may cover (EmitterFootprints): the emission seen first is estimated apart
+// (partial coverage of a light is the largest error otherwise), the rest from its own
+// samples. Where a light's outline crosses the texel the rest straddles it (the light's
+// reflection on one side, what lies beyond on the other) and is supersampled from the
+// start; elsewhere the light covers the texel wholly or not at all, and the rest is hard
+// only by its own first samples, as in any texel.
+glm::vec3 ProbeView::shade_lit_texel(Texel& x, Worker* w, glm::vec3* seen_emission, bool* supersampled) {
   const int spp = settings_.spp, hard_spp = spp * settings_.hard_spp_factor;
   TileProbe& probe = *x.probe;
-  bool unused = false;
-  const glm::vec3 value = estimate(x, spp, hard_spp, Part::kRest, &unused, nullptr, w);
-  const glm::vec3 rest_cos = x.cos_all;
   const bool edge = probe.lit[size_t(x.t)] == EmitterFootprints::kEdge;
   glm::vec3 seen_emission_cos(0.0f);
   if (probe.analytic) {
@@ -304,12 +313,22 @@ glm::vec3 ProbeView::shade_lit_texel(Texel& x, Worker* w, glm::vec3* seen_emissi
                                       spp * (edge ? kLightPartEdgeSppFactor : kLightPartSppFactor), rng, probe.measured,
                                       &seen_emission_cos, &w->strata, &w->stats.counters.rays);
   } else {
+    bool unused = false;
     *seen_emission = estimate(x, spp + hard_spp, spp * (edge ? kEmissionEdgeSppFactor : kEmissionSppFactor),
                               Part::kEmission, &unused, nullptr, w);
     seen_emission_cos = x.cos_emitted;
   }
+  glm::vec3 value;
+  if (edge) {
+    bool unused = false;
+    value = estimate(x, spp, hard_spp, Part::kRest, &unused, nullptr, w);
+    *supersampled = true;
+    ++w->stats.supersampled_texels;
+  } else {
+    value = shade_rest(x, Part::kRest, *seen_emission, w, supersampled);
+  }
   // The texel's whole light: its rest (no emission seen first) and its emission.
-  x.cos_all = rest_cos + seen_emission_cos;
+  x.cos_all += seen_emission_cos;
   x.cos_emitted = seen_emission_cos;
   w->stats.light_edge_texels += edge;
   ++w->stats.light_texels;

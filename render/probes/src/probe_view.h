@@ -70,8 +70,12 @@ class ProbeView {
   void shade_tile(const std::vector<size_t>& tile, int pass, Worker* w);
   void prepare_probe(TileProbe* probe, int pass) const;
   void shade_texel(TileProbe& probe, int t, int pass, Worker* w);
-  // A lit texel's light: the rest from hard_spp fresh samples, the emission seen directly apart.
-  glm::vec3 shade_lit_texel(Texel& x, Worker* w, glm::vec3* seen_emission);
+  // A texel's `part` from spp samples, or from hard_spp fresh ones where those were hard;
+  // `exact` is the light the texel has apart from them (the emission seen directly).
+  glm::vec3 shade_rest(Texel& x, Part part, const glm::vec3& exact, Worker* w, bool* supersampled);
+  // A lit texel's light: the emission seen directly apart, the rest by shade_rest (from
+  // hard_spp samples from the start where a light's outline crosses the texel).
+  glm::vec3 shade_lit_texel(Texel& x, Worker* w, glm::vec3* seen_emission, bool* supersampled);
   // The mean of `count` fresh samples from sample id `first` on, stratified over the texel.
   glm::vec3 estimate(Texel& x, int first, int count, Part part, bool* saw_hard, float* spread, Worker* w);
   void store_texel(const Texel& x, glm::vec3 value, const glm::vec3& seen_emission, bool supersampled, Worker* w);
