@@ -92,7 +92,7 @@ class PathKernel {
     beta_ *= ds.weight;
     previous_delta_ = true;
     previous_position_ = si.position;
-    ray_ = Ray{spawn_origin(si.position, si.geometric_normal, wi), wi};
+    ray_ = next_ray(si, wi);
     return !(max_component(beta_) <= 0.0f);  // a NaN goes on, to be counted at the end
   }
 
@@ -129,8 +129,19 @@ class PathKernel {
     previous_delta_ = bs.delta;
     previous_pdf_ = bs.pdf;
     previous_position_ = si.position;
-    ray_ = Ray{spawn_origin(si.position, si.geometric_normal, wi_world), wi_world};
+    ray_ = next_ray(si, wi_world);
     return true;
+  }
+
+  // The path's next ray keeps the pixel's cone (pbrt-v4 approximates later bounces' ray
+  // differentials by the camera's footprint alike): the footprint grows with the length of
+  // the path, so later bounces read the texture level that matches it instead of
+  // full-resolution texels, which cost cache misses and add nothing a pixel can resolve.
+  Ray next_ray(const SurfaceInteraction& si, const glm::vec3& direction) const {
+    Ray next{spawn_origin(si.position, si.geometric_normal, direction), direction};
+    next.spread = ray_.spread;
+    next.width = ray_.width + ray_.spread * si.distance;
+    return next;
   }
 
   bool roulette(int bounce) {

@@ -59,11 +59,11 @@ struct HitFrame {
   bool front_face = true;
 };
 
-// A camera ray's pixel footprint on the surface it hits: (spread x distance)^2, stretched by
-// 1 / |cos| of the incidence (capped at 100x at grazing angles).
+// A ray's pixel footprint on the surface it hits: (width + spread x distance)^2, stretched
+// by 1 / |cos| of the incidence (capped at 100x at grazing angles).
 TextureFootprint footprint(const Ray& ray, float distance, const glm::vec3& geometric_normal) {
-  if (!(ray.spread > 0.0f)) return {};
-  const float width = ray.spread * distance;
+  const float width = ray.width + ray.spread * distance;
+  if (!(width > 0.0f)) return {};
   const float cos_incidence = std::max(std::abs(glm::dot(geometric_normal, ray.direction)), 0.01f);
   const float area = width * width / cos_incidence;
   return TextureFootprint{std::isfinite(area) ? area : 0.0f};

@@ -1,8 +1,10 @@
 // Texture filtering at camera hits: the mip pyramid (OpenImageIO box halving) holds the
 // means of the texels below, trilinear lookups blend two levels, and a distant checkerboard
 // seen through a panorama's pixels reads as the pixels' mean colour (what a supersampled
-// render converges to) instead of aliasing to black or white. Rays that are not camera
-// rays (spread 0) read the full resolution, as before.
+// render converges to) instead of aliasing to black or white; a later ray of the path, which
+// starts as wide as the footprint it leaves, reads what the camera ray's cone would have read
+// there. Rays without a cone (probe texels, shadow rays: spread and width 0) read the full
+// resolution.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -62,16 +64,16 @@ TEST(TextureMips, LookupsBlendTheTwoLevelsAroundTheLod) {
   EXPECT_EQ(plain.sample(uv, 3.0f), plain.sample(uv));  // no pyramid: full resolution
 }
 
-// A floor (y = 0) covered by a 512 x 512 checkerboard of single texels repeated every 0.5 m,
-// seen from 1.5 m above through a 128 x 64 panorama: far away, each pixel spans hundreds of
-// texels.
+// A floor (y = 0) covered by a 512 x 512 checkerboard of `cell` x `cell` texel squares (single
+// texels by default) repeated every 0.5 m, seen from 1.5 m above through a 128 x 64 panorama:
+// far away, each pixel spans hundreds of texels. Mip levels above log2(cell) are uniform 0.5.
 struct CheckerFloor {
   scenes::Scene scene;
   CameraModel camera;
-  CheckerFloor() {
+  explicit CheckerFloor(int cell = 1) {
     std::vector<glm::vec4> texels;
     for (int y = 0; y < 512; ++y)
-      for (int x = 0; x < 512; ++x) texels.push_back(glm::vec4(glm::vec3(float((x + y) % 2)), 1.0f));
+      for (int x = 0; x < 512; ++x) texels.push_back(glm::vec4(glm::vec3(float((x / cell + y / cell) % 2)), 1.0f));
     scenes::Texture checker = scenes::Texture::from_linear(512, 512, texels);
     checker.build_mips();
     scene.textures.push_back(std::move(checker));
@@ -125,6 +127,30 @@ TEST(TextureFootprint, ADistantCheckerboardReadsAsThePixelsMeanNotAsAliases) {
               reference_sum / pixels);
   EXPECT_LT(filtered_rmse, 0.3 * point_rmse);
   EXPECT_NEAR(filtered_sum / pixels, reference_sum / pixels, 0.03);
+}
+
+// The footprint is width + spread x t: a ray that starts k metres along the camera ray's cone,
+// as wide as the cone is there, reads the same texture level as the camera ray itself. Squares
+// of 256 texels (0.25 m) keep levels 0-8 distinct, so a finer level reads another value.
+TEST(TextureFootprint, ALaterRayContinuesTheCone) {
+  const CheckerFloor f(256);
+  const RenderScene rs(f.scene);
+  int compared = 0;
+  for (float y = 36.5f; y < 48.0f; y += 1.0f) {
+    const Ray camera_ray = f.camera.generate_ray(glm::vec2(20.5f, y));
+    SurfaceInteraction hit;
+    ASSERT_TRUE(rs.trace(camera_ray, &hit));
+    const float k = 0.6f * hit.distance;
+    Ray later{camera_ray.origin + k * camera_ray.direction, camera_ray.direction};
+    later.spread = camera_ray.spread;
+    later.width = camera_ray.spread * k;
+    const float from_camera = base_colour(rs, camera_ray, true), continued = base_colour(rs, later, true);
+    EXPECT_NEAR(continued, from_camera, 1e-4f) << y;
+    Ray narrow = later;
+    narrow.width = 0.0f;  // the cone restarted at the later origin: a finer level
+    if (std::abs(base_colour(rs, narrow, true) - from_camera) > 1e-3f) ++compared;
+  }
+  EXPECT_GE(compared, 6) << "the width must matter on most of the 12 pixels, or the test sees nothing";
 }
 
 TEST(TextureFootprint, NonCameraRaysAndGrazingHitsStayFinite) {

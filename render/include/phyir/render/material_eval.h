@@ -23,8 +23,9 @@ inline glm::vec3 barycentrics(const glm::vec2& b12) { return glm::vec3(1.0f - b1
 glm::vec2 slot_uv(const scenes::Mesh& mesh, const glm::uvec3& tri, const glm::vec3& bary,
                   const scenes::TextureSlot& slot);
 
-// The surface area a camera ray's pixel covers at its hit (m^2; Ray::spread): textures are
-// filtered to it. 0: no footprint, full resolution (every ray but a camera's).
+// The surface area the pixel's ray cone covers at a hit (m^2; Ray::width and Ray::spread):
+// textures are filtered to it. 0: no footprint, full resolution (rays without a cone: probe
+// texels, light and shadow rays).
 struct TextureFootprint {
   float area = 0.0f;
 };
