@@ -67,9 +67,10 @@ TEST(EmitterFootprints, PartlyCoveredTexelsAreEdgesFullyCoveredOnesAreCovered) {
   std::cout << full << " texels fully covered, " << partial << " partly, " << edges << " marked as edges\n";
 }
 
-TEST(EmitterFootprints, ADiagonalInsideAPanelIsNoOutlineACreaseIs) {
+TEST(EmitterFootprints, NeitherADiagonalInsideAPanelNorACreaseSeenFromBothFrontsIsAnOutline) {
   // One mesh of two triangles sharing the edge v0-v2 (by index); flat, that edge is the
-  // panel's diagonal; with v3 pulled towards the probe, it is a crease the probe sees.
+  // panel's diagonal; with v3 pulled towards the probe, it is a crease whose two sides both
+  // face the probe: the light continues across it.
   for (bool bent : {false, true}) {
     scenes::Scene scene;
     scenes::Mesh mesh;
@@ -85,7 +86,32 @@ TEST(EmitterFootprints, ADiagonalInsideAPanelIsNoOutlineACreaseIs) {
     // The texel of a point a quarter of the way along the shared edge.
     const glm::vec2 uv = equirect_uv(glm::normalize(glm::vec3(1.0f, -0.5f, -0.5f)));
     const uint8_t f = flags[size_t(uv.y * h) * w + size_t(uv.x * w)];
-    EXPECT_EQ(f, bent ? EmitterFootprints::kEdge : EmitterFootprints::kCovered) << (bent ? "bent" : "flat");
+    EXPECT_EQ(f, EmitterFootprints::kCovered) << (bent ? "bent" : "flat");
+  }
+}
+
+TEST(EmitterFootprints, ACreaseIsAnOutlineWhereOneSideTurnsAway) {
+  // The corner of a box light: faces x = 1 (normal +X) and z = 1 (normal +Z), one-sided, each
+  // with its own vertices (as exporters split them at a crease: matched by position). From
+  // (3, 0, 3) both faces are in view and the light continues across the crease; from
+  // (3, 0, 0.5) the +Z face turns away and the crease is the light's outline.
+  scenes::Scene scene;
+  scenes::Mesh mesh;
+  mesh.name = "box corner";
+  mesh.material = test::add_material(scene, test::make_emitter(glm::vec3(10.0f)));
+  mesh.positions = {{1, -1, -1}, {1, 1, -1}, {1, 1, 1}, {1, -1, 1},     // x = 1
+                    {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}, {-1, -1, 1}};  // z = 1
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
+  scene.meshes.push_back(mesh);
+  const EmitterFootprints footprints(scene);
+  const int h = 16, w = 32;
+  for (const auto& [origin, expected] : {std::pair{glm::vec3(3.0f, 0.0f, 3.0f), EmitterFootprints::kCovered},
+                                         std::pair{glm::vec3(3.0f, 0.0f, 0.5f), EmitterFootprints::kEdge}}) {
+    std::vector<uint8_t> flags(size_t(h) * w, 0);
+    footprints.mark(origin, h, w, &flags);
+    // The texel of a point a quarter of the way up the crease.
+    const glm::vec2 uv = equirect_uv(glm::normalize(glm::vec3(1.0f, -0.5f, 1.0f) - origin));
+    EXPECT_EQ(flags[size_t(uv.y * h) * w + size_t(uv.x * w)], expected) << origin.z;
   }
 }
 

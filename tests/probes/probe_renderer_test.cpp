@@ -123,11 +123,14 @@ TEST(ProbeLights, APartlyHiddenLightMatchesThePathMode) {
   EXPECT_LT(worst, 0.05);
 }
 
-TEST(ProbeEnclosure, OneBounceEveryTexelIsOnePlusTheFresnelReflectionOfTheWalls) {
-  // L_i(d) = Le + integral of f_s Le cos = 1 + A(n.v at the wall hit along d). Base colour 0
-  // leaves only the model's specular lobe, which still reflects 1-2% (more at grazing).
-  const scenes::Scene scene = enclosure();
-  const glm::vec3 origin(0.2f, -0.1f, 0.3f);
+// The enclosure's walls seen from `origin`: per texel of an h x w probe, the exact one-bounce
+// value, the mean of 1 + A(n.v) over the texel (8 x 8 directions, each's wall found
+// analytically: the slab it leaves the box through), and the mean of ceil(8 A(n.v)).
+struct EnclosureView {
+  std::vector<double> exact, ceil_8a;
+};
+
+EnclosureView enclosure_view(const glm::vec3& origin, int h, int w) {
   constexpr int kTable = 65;
   std::vector<double> albedo(kTable);
   for (int k = 0; k < kTable; ++k) albedo[k] = enclosure_albedo(std::max(double(k) / (kTable - 1), 1e-4));
@@ -136,38 +139,98 @@ TEST(ProbeEnclosure, OneBounceEveryTexelIsOnePlusTheFresnelReflectionOfTheWalls)
     const int k = std::min(int(x), kTable - 2);
     return albedo[k] + (x - k) * (albedo[k + 1] - albedo[k]);
   };
+  EnclosureView v;
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) {
+      double exact = 0.0, ceil_8a = 0.0;
+      for (int a = 0; a < 8; ++a)
+        for (int b = 0; b < 8; ++b) {
+          const glm::vec3 d = probe_texel_direction(r, c, h, w, glm::vec2((a + 0.5f) / 8, (b + 0.5f) / 8));
+          float t = std::numeric_limits<float>::infinity();
+          int axis = 0;
+          for (int k = 0; k < 3; ++k) {
+            if (d[k] == 0.0f) continue;
+            const float tk = ((d[k] > 0 ? 1.0f : -1.0f) - origin[k]) / d[k];
+            if (tk < t) t = tk, axis = k;
+          }
+          exact += 1.0 + A(std::abs(d[axis]));
+          ceil_8a += std::ceil(8.0 * A(std::abs(d[axis])));
+        }
+      v.exact.push_back(exact / 64.0);
+      v.ceil_8a.push_back(ceil_8a / 64.0);
+    }
+  return v;
+}
+
+TEST(ProbeEnclosure, OneBounceEveryTexelIsOnePlusTheFresnelReflectionOfTheWalls) {
+  // L_i(d) = Le + integral of f_s Le cos = 1 + A(n.v at the wall hit along d). Base colour 0
+  // leaves only the model's specular lobe, which still reflects 1-2% (more at grazing).
+  const scenes::Scene scene = enclosure();
+  const glm::vec3 origin(0.2f, -0.1f, 0.3f);
   const int h = 8, w = 16;
+  const EnclosureView view = enclosure_view(origin, h, w);
   for (ProbeMode mode : kModes) {
-    const Image probe = render_single(scene, origin, settings_for(mode, mode == ProbeMode::kPath ? 128 : 16, h, w, 1));
+    // Cache mode samples a black emitter's reflection with one light sample per direction
+    // (its albedo's share of 8): at 64 directions the largest difference is ~4e-3.
+    const Image probe = render_single(scene, origin, settings_for(mode, mode == ProbeMode::kPath ? 128 : 64, h, w, 1));
     double worst = 0.0;
     for (int r = 0; r < h; ++r)
       for (int c = 0; c < w; ++c) {
-        // The exact texel value: the mean of 1 + A over the texel (8 x 8 directions, each's
-        // wall found analytically: the slab it leaves the box through).
-        double expected = 0.0;
-        for (int a = 0; a < 8; ++a)
-          for (int b = 0; b < 8; ++b) {
-            const glm::vec3 d = probe_texel_direction(r, c, h, w, glm::vec2((a + 0.5f) / 8, (b + 0.5f) / 8));
-            float t = std::numeric_limits<float>::infinity();
-            int axis = 0;
-            for (int k = 0; k < 3; ++k) {
-              if (d[k] == 0.0f) continue;
-              const float tk = ((d[k] > 0 ? 1.0f : -1.0f) - origin[k]) / d[k];
-              if (tk < t) t = tk, axis = k;
-            }
-            expected += 1.0 + A(std::abs(d[axis]));
-          }
-        expected /= 64.0;
+        const double expected = view.exact[size_t(r * w + c)];
         for (int ch = 0; ch < 3; ++ch) {
           const double v = probe.at(c, r, ch);
           worst = std::max(worst, std::abs(v - expected));
-          // The reflection is 1-3% of the texel; its Monte Carlo noise here is ~1e-3.
+          // The reflection is 1-3% of the texel; its Monte Carlo noise here is ~1-2e-3.
           ASSERT_NEAR(v, expected, 6e-3) << probe_mode_name(mode) << " texel " << r << "," << c;
           ASSERT_GT(v, 1.005) << "the Fresnel reflection is missing";
         }
       }
     std::printf("[ enclosure, one bounce, %s ] largest |texel - exact| = %.5f\n", probe_mode_name(mode).c_str(), worst);
   }
+}
+
+// Every texel sees an emitter whose emission is exact and whose reflection is a few percent
+// of it: the default cache mode (4 directions) must neither supersample the texels (their
+// rest spreads by at most the walls' albedo, far under 0.75 x the emission; no light's
+// outline crosses a texel, the box's creases being seen from inside) nor spend 8 light
+// samples at each hit. Each direction of the rest costs its ray, the BRDF-sampled ray and
+// one shadow ray per light sample, ceil(8 A(n.v)) of them (A = the walls' albedo, at least
+// one): at most 2 + the mean of ceil(8 A) over the texels (~3), where each took 10 (1 + 8 +
+// 1) in 6 x as many directions before. The texels still equal the exact answer.
+TEST(ProbeEnclosure, NearlyBlackEmittingWallsAreNeitherSupersampledNorLightSampledMoreThanTheirAlbedoAsks) {
+  const scenes::Scene scene = enclosure();
+  const glm::vec3 origin(0.2f, -0.1f, 0.3f);
+  const int h = 8, w = 16, spp = 4;
+  const EnclosureView view = enclosure_view(origin, h, w);
+  const RenderScene rs(scene);
+  const ProbeOutput out = ProbeRenderer(rs, analyse_effects(scene, false), settings_for(ProbeMode::kCache, spp, h, w, 1))
+                              .render_at(single_site(origin));
+  const ProbeStats& st = out.stats;
+  const double texels = double(h * w);
+  double bound = 0.0, worst = 0.0, mean_error = 0.0;
+  for (int t = 0; t < h * w; ++t) {
+    bound += (2.0 + view.ceil_8a[size_t(t)]) / texels;
+    for (int ch = 0; ch < 3; ++ch) {
+      const double e = out.mosaic.at(t % w, t / w, ch) - view.exact[size_t(t)];
+      worst = std::max(worst, std::abs(e));
+      mean_error += e / (3.0 * texels);
+    }
+  }
+  const double rest_rays = double(st.counters.rays - st.cache_rays - st.emission_rays) / (texels * spp);
+  // A lone probe leaves cells undiscovered: each such lookup traces one more ray (one bounce).
+  bound += double(st.cache_fallbacks) / (texels * spp);
+  std::printf("[ enclosure, default spp ] %llu of %d texels supersampled, %llu outline texels, %.3f rays per direction "
+              "of the rest (bound %.3f), |texel - exact| mean %.5f largest %.5f\n",
+              static_cast<unsigned long long>(st.supersampled_texels), h * w,
+              static_cast<unsigned long long>(st.light_edge_texels), rest_rays, bound, mean_error, worst);
+  EXPECT_EQ(st.light_texels, uint64_t(h * w));
+  EXPECT_EQ(st.light_edge_texels, 0u);
+  EXPECT_EQ(st.supersampled_texels, 0u);
+  EXPECT_LE(rest_rays, bound);
+  // 4 directions of one light sample each leave up to ~2% of noise in a texel (its
+  // reflection's); over the probe they average to the exact value.
+  EXPECT_LT(worst, 0.04);
+  EXPECT_NEAR(mean_error, 0.0, 2e-3);
 }
 
 // A room [-2, 2] x [0, 3] x [-1.5, 1.5] whose six walls emit six different colours.

@@ -13,22 +13,42 @@
 namespace phyir::render {
 
 EmitterFootprints::EmitterFootprints(const scenes::Scene& scene) {
-  const std::vector<LightTriangle> lights = light_triangles(scene);
-  // An edge two coplanar triangles of one mesh share is inside the light (a panel's
-  // diagonal), not on its outline; a crease (a box light's corner) is an outline.
-  auto edge = [](int mesh, uint32_t a, uint32_t b) { return std::make_tuple(mesh, std::min(a, b), std::max(a, b)); };
-  std::map<std::tuple<int, uint32_t, uint32_t>, std::vector<glm::vec3>> edge_normals;
-  for (const LightTriangle& t : lights)
-    for (int e = 0; e < 3; ++e) edge_normals[edge(t.mesh, t.vertices[e], t.vertices[(e + 1) % 3])].push_back(t.normal);
-  for (const LightTriangle& t : lights) {
-    Triangle tri{t, {}};
-    for (int e = 0; e < 3; ++e) {
-      const std::vector<glm::vec3>& n = edge_normals[edge(t.mesh, t.vertices[e], t.vertices[(e + 1) % 3])];
-      tri.outline[e] = !(n.size() == 2 && glm::dot(n[0], n[1]) > 0.999f);
-    }
-    triangles_.push_back(tri);
-  }
+  for (const LightTriangle& t : light_triangles(scene)) triangles_.push_back(Triangle{t, {true, true, true}, {-1, -1, -1}});
   build_clusters();
+  find_outlines();
+}
+
+void EmitterFootprints::find_outlines() {
+  // Edges are matched by their end points' positions within a mesh: exporters split vertices
+  // where normals or texture coordinates change, along a box light's creases and seams.
+  using Point = std::tuple<float, float, float>;
+  using Edge = std::tuple<int, Point, Point>;
+  auto edge = [](const Triangle& t, int e) {
+    Point a{t.p[e].x, t.p[e].y, t.p[e].z}, b{t.p[(e + 1) % 3].x, t.p[(e + 1) % 3].y, t.p[(e + 1) % 3].z};
+    if (b < a) std::swap(a, b);
+    return Edge{t.mesh, a, b};
+  };
+  std::map<Edge, std::vector<int>> sides;
+  for (size_t k = 0; k < triangles_.size(); ++k)
+    for (int e = 0; e < 3; ++e) sides[edge(triangles_[k], e)].push_back(int(k));
+  for (size_t k = 0; k < triangles_.size(); ++k) {
+    Triangle& tri = triangles_[k];
+    for (int e = 0; e < 3; ++e) {
+      const std::vector<int>& s = sides[edge(tri, e)];
+      if (s.size() != 2) continue;  // an open edge, or more than two sides: always the outline
+      const int other = s[0] == int(k) ? s[1] : s[0];
+      const Triangle& o = triangles_[size_t(other)];
+      // Two coplanar triangles (a panel's diagonal): inside the light. A crease (a box
+      // light's corner, the corner of an emitting room) between consistently wound sides
+      // (the edge runs the other way in the other triangle): inside the light's image where
+      // the probe sees both sides from the same side, its outline where not (mark_outline).
+      bool consistent = false;
+      for (int f = 0; f < 3; ++f)
+        consistent |= o.p[f] == tri.p[(e + 1) % 3] && o.p[(f + 1) % 3] == tri.p[e];
+      if (glm::dot(tri.normal, o.normal) > 0.999f) tri.outline[e] = false;
+      else if (consistent) tri.across[e] = other;
+    }
+  }
 }
 
 namespace {
@@ -97,6 +117,13 @@ void EmitterFootprints::mark_outline(const Triangle& tri, const glm::vec3& origi
   // Points every 1/8 of a texel's height.
   for (int e = 0; e < 3; ++e) {
     if (!tri.outline[e]) continue;
+    // A crease whose two sides the probe sees from the same side (their fronts, or both
+    // backs of a two-sided light): the same light continues across it.
+    if (tri.across[e] >= 0) {
+      const Triangle& o = triangles_[size_t(tri.across[e])];
+      const float a = glm::dot(tri.normal, origin - tri.p[0]), b = glm::dot(o.normal, origin - o.p[0]);
+      if ((a > 0.0f && b > 0.0f) || (a < 0.0f && b < 0.0f && o.two_sided)) continue;
+    }
     const glm::vec3& a = tri.p[e];
     const glm::vec3& b = tri.p[(e + 1) % 3];
     const float la = glm::length(a - origin), lb = glm::length(b - origin);

@@ -25,8 +25,11 @@ class EmitterFootprints {
   // that a front-facing emissive triangle may cover, occlusion ignored: the texel box of
   // points sampled densely along its edges, grown by one texel, or the whole cap when the
   // triangle surrounds a pole. Texels that a point of the light's outline (the triangle
-  // edges no other emissive triangle of its mesh shares, sampled at 1/8 of a texel) falls
-  // in are raised to kEdge: there coverage is partial. A cluster of nearby light triangles
+  // edges not shared with a coplanar emissive triangle of its mesh, sampled at 1/8 of a texel) falls
+  // in are raised to kEdge: there coverage is partial. A crease between two triangles of one
+  // light (edges matched by position, sides wound consistently) is on its outline only where
+  // `origin` sees one side from the front and the other from behind: from inside an emitting
+  // box, or in front of two faces of a box light, the light continues across it. A cluster of nearby light triangles
   // (a lamp shade of real furniture has thousands) that subtends less than a texel is marked
   // as the cap of its bounding sphere, all kEdge: a per-probe cost in clusters, not triangles.
   // A light of at most 32 triangles (a panel, a box) is marked triangle by triangle: as cheap,
@@ -35,8 +38,11 @@ class EmitterFootprints {
 
  private:
   struct Triangle : LightTriangle {
-    bool outline[3];  // edge p[e] -> p[e+1] is on the light's outline (not shared in its mesh)
+    bool outline[3];  // edge p[e] -> p[e+1] may be on the light's outline (not coplanar with a neighbour)
+    int across[3];    // the triangle of its mesh across that edge where the edge is a crease, else -1
   };
+  // Sets outline and across once the triangles are in their final order.
+  void find_outlines();
   // Up to kClusterSize triangles of one mesh, close together: triangles_[first, first + count).
   struct Cluster {
     glm::vec3 center{0.0f};

@@ -26,6 +26,7 @@ nlohmann::json ProbeStats::to_json() const {
           {"shared_texels", shared_texels},
           {"light_texels", light_texels},
           {"light_edge_texels", light_edge_texels},
+          {"emission_rays", emission_rays},
           {"negative_texels_clamped", negative_texels},
           {"foot_correction",
            {{"probes", foot_corrections},
@@ -41,6 +42,7 @@ nlohmann::json ProbeStats::counts_json() const {
 
 nlohmann::json ProbeStats::cache_json() const {
   return {{"cells", cache_cells},
+          {"rays", cache_rays},
           {"cells_with_direct_light", cache_direct_cells},
           {"cells_at_concave_edges", cache_edge_cells},
           {"edge_profiles", cache_edge_profiles},
@@ -91,6 +93,7 @@ ProbeStats& ProbeStats::operator+=(const ProbeStats& o) {
   shared_texels += o.shared_texels;
   light_texels += o.light_texels;
   light_edge_texels += o.light_edge_texels;
+  emission_rays += o.emission_rays;
   negative_texels += o.negative_texels;
   foot_corrections += o.foot_corrections;
   return *this;

@@ -86,13 +86,12 @@ class TexelEstimator {
   glm::vec3 terminal(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key,
                      PathCounters* c) const;
 
-  // DirectLightOptions::weak for `light_samples` light samples at si: where si emits, a
-  // sample adding less than kWeakShadowFraction of its emission (known exactly: the texel's
-  // own light, or the hit weight's) traces its shadow ray only with probability (its share /
-  // that), weighted by the inverse. A nearly black emitter (a glowing shade, a light's
-  // housing) reflects a few percent, so its samples cost about one shadow ray, not one
-  // each. 0 where si does not emit: every shadow ray traced.
-  float weak_beside_emission(const SurfaceInteraction& si, int light_samples) const;
+  // Light samples at a probe ray's own hit x near a light: kNearLightSamples, which serve a
+  // texel whose light is the direct light x reflects. Where x emits, the texel holds its
+  // emission exactly and the reflection is at most x's albedo of the light arriving: the
+  // samples are scaled by that albedo, at least one (the path tracer's). A black emitting
+  // wall (albedo ~5%, its Fresnel lobe) takes one, a white glowing shade nearly all.
+  int near_light_samples(const SurfaceInteraction& si, const ShadingPoint& x) const;
 
   // The punctual lights' irradiance at x where the cache holds the direct light: exact at x
   // (punctual_irradiance) in scenes of few punctual lights, else the cache's.

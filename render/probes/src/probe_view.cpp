@@ -193,6 +193,8 @@ void ProbeView::build_cache() {
   for (const auto& collector : collectors) list.push_back(&collector);
   ProbeStats& stats = out_.stats;
   cache_->build(list, &stats.counters);
+  stats.cache_rays = stats.counters.rays;  // the fill's; the discovery's are the workers' so far
+  for (const Worker& w : workers_) stats.cache_rays += w.stats.counters.rays;
   stats.cache_cells = cache_->cell_count();
   stats.cache_direct_cells = cache_->direct_cell_count();
   stats.cache_edge_cells = cache_->edge_cell_count();
@@ -258,9 +260,9 @@ void ProbeView::prepare_probe(TileProbe* probe, int pass) const {
   probe->foot = pass == 1 ? feet_[probe->k].less(common_difference_) : FootCorrection();
 }
 
-// Hard texels (the first samples met glass or a glossy surface, or their values spread over
-// more than spread_threshold x (their mean + a floor): the texel straddles an edge or a
-// highlight) are estimated again from hard_spp_factor x spp fresh samples. No decision looks
+// Hard texels (the first samples met glass, a glossy surface or a light whose emission is
+// not estimated apart, or their values spread over more than spread_threshold x (their
+// mean + a floor): the texel straddles an edge or a highlight) are estimated again from hard_spp_factor x spp fresh samples. No decision looks
 // at the samples it selects, so none biases the value.
 void ProbeView::shade_texel(TileProbe& probe, int t, int pass, Worker* w) {
   const int row = t / layout_.res_width, col = t % layout_.res_width;
@@ -306,6 +308,7 @@ glm::vec3 ProbeView::shade_lit_texel(Texel& x, Worker* w, glm::vec3* seen_emissi
   TileProbe& probe = *x.probe;
   const bool edge = probe.lit[size_t(x.t)] == EmitterFootprints::kEdge;
   glm::vec3 seen_emission_cos(0.0f);
+  const uint64_t rays_before = w->stats.counters.rays;
   if (probe.analytic) {
     probe.lights.texel_pieces(x.row, x.col, layout_.res_height, layout_.res_width, &w->pieces);
     Rng rng = item_stream(probe_seed_, texel_id(probe.p, x.t), Purpose::kProbeLightPart);
@@ -318,6 +321,7 @@ glm::vec3 ProbeView::shade_lit_texel(Texel& x, Worker* w, glm::vec3* seen_emissi
                               Part::kEmission, &unused, nullptr, w);
     seen_emission_cos = x.cos_emitted;
   }
+  w->stats.emission_rays += w->stats.counters.rays - rays_before;
   glm::vec3 value;
   if (edge) {
     bool unused = false;

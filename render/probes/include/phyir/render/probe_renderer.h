@@ -45,6 +45,8 @@ struct ProbeStats {
   uint64_t shared_texels = 0;     // texels averaged with at least one neighbour's
   uint64_t light_texels = 0;      // texels a light may cover (emission estimated apart)
   uint64_t light_edge_texels = 0; // of those, texels a light's outline crosses (16x the emission directions)
+  uint64_t emission_rays = 0;     // rays of those texels' emission seen directly (in counters.rays)
+  uint64_t cache_rays = 0;        // rays of the cache's discovery and fill (in counters.rays)
   uint64_t negative_texels = 0;   // texel estimates below zero (the control variate's), clamped to 0
   uint64_t foot_corrections = 0;  // probes whose own-surface texels took the cache's error out (foot_correction.h)
   glm::vec3 foot_common_difference{0.0f};  // the difference common to all probes (the last bounce), W/m^2
