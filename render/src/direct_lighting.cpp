@@ -84,7 +84,7 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
   return visible() ? contribution / keep : glm::vec3(0.0f);
 }
 
-glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint& x, const glm::vec2& u,
+glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint& x, const glm::vec3& u,
                                    const glm::vec3& throughput, PathCounters* counters) {
   const EnvironmentLight* environment = scene.environment();
   glm::vec3 wi_world, Le;

@@ -45,21 +45,18 @@ EnvironmentLight::EnvironmentLight(const Image& image, float scale) {
     }
   }
 
-  // Texel weight = luminance x texel solid angle; the marginal over rows sums each row.
-  std::vector<float> row_weights(height_);
-  columns_.reserve(height_);
+  // Texel weight = luminance x texel solid angle.
+  std::vector<float> weights(texels_.size());
   for (int y = 0; y < height_; ++y) {
-    const float solid_angle = equirect_texel_solid_angle(y, width_, height_);
-    std::vector<float> w(width_);
-    double sum = 0.0;
+    solid_angles_.push_back(equirect_texel_solid_angle(y, width_, height_));
+    cos_edges_.push_back(std::cos(kPi * double(y) / height_));
     for (int x = 0; x < width_; ++x) {
-      w[x] = luminance(texels_[static_cast<size_t>(y) * width_ + x]) * solid_angle;
-      sum += w[x];
+      const size_t i = static_cast<size_t>(y) * width_ + x;
+      weights[i] = luminance(texels_[i]) * solid_angles_.back();
     }
-    row_weights[y] = static_cast<float>(sum);
-    columns_.emplace_back(std::move(w));
   }
-  rows_ = Distribution1D(std::move(row_weights));
+  cos_edges_.push_back(-1.0);
+  choice_ = AliasTable(weights);
 }
 
 glm::vec3 EnvironmentLight::radiance(const glm::vec3& direction) const {
@@ -67,33 +64,29 @@ glm::vec3 EnvironmentLight::radiance(const glm::vec3& direction) const {
   return texels_[static_cast<size_t>(t.y) * width_ + t.x];
 }
 
-bool EnvironmentLight::sample(const glm::vec2& u, glm::vec3* direction, glm::vec3* radiance, float* pdf) const {
-  if (rows_.empty()) return false;
-  float pmf_row = 0.0f, pmf_col = 0.0f, u_row = 0.0f, u_col = 0.0f;
-  const int row = rows_.sample(u.y, &pmf_row, &u_row);
-  const int col = columns_[row].sample(u.x, &pmf_col, &u_col);
-  if (row < 0 || col < 0) return false;
-
-  // Uniform inside the texel's solid angle: phi uniform across the column, cos(theta)
-  // uniform across the row's band (Archimedes: equal cos bands have equal area).
-  const double cos_top = std::cos(kPi * double(row) / height_);
-  const double cos_bottom = std::cos(kPi * double(row + 1) / height_);
-  const float cos_theta = static_cast<float>(cos_top + (cos_bottom - cos_top) * double(u_row));
+bool EnvironmentLight::sample(const glm::vec3& u, glm::vec3* direction, glm::vec3* radiance, float* pdf) const {
+  float pmf = 0.0f, u_theta = 0.0f;
+  const int texel = choice_.sample(u.x, u.y, &pmf, &u_theta);
+  if (texel < 0) return false;
+  const int row = texel / width_, col = texel % width_;
+  // Uniform inside the texel's solid angle: cos(theta) uniform across the row's band
+  // (Archimedes: equal cos bands have equal area; the draw's remapped number), phi uniform
+  // across the column (u.z).
+  const double cos_top = cos_edges_[size_t(row)], cos_bottom = cos_edges_[size_t(row) + 1];
+  const float cos_theta = static_cast<float>(cos_top + (cos_bottom - cos_top) * double(u_theta));
   const float sin_theta = safe_sqrt(1.0f - cos_theta * cos_theta);
-  const float uu = (static_cast<float>(col) + u_col) / static_cast<float>(width_);
+  const float uu = (static_cast<float>(col) + u.z) / static_cast<float>(width_);
   const float phi = (uu - 0.5f) * kTwoPi;  // equirect.h: 0 along -Z, growing towards +X
   *direction = glm::vec3(sin_theta * std::sin(phi), cos_theta, -sin_theta * std::cos(phi));
-
-  const float solid_angle = equirect_texel_solid_angle(row, width_, height_);
-  *pdf = safe_div(pmf_row * pmf_col, solid_angle);
-  *radiance = texels_[static_cast<size_t>(row) * width_ + col];
+  *pdf = safe_div(pmf, solid_angles_[size_t(row)]);
+  *radiance = texels_[size_t(texel)];
   return *pdf > 0.0f;
 }
 
 float EnvironmentLight::pdf(const glm::vec3& direction) const {
-  if (rows_.empty()) return 0.0f;
+  if (choice_.empty()) return 0.0f;
   const glm::ivec2 t = texel_of(direction, width_, height_);
-  return safe_div(rows_.pmf(t.y) * columns_[t.y].pmf(t.x), equirect_texel_solid_angle(t.y, width_, height_));
+  return safe_div(choice_.pmf(t.y * width_ + t.x), solid_angles_[size_t(t.y)]);
 }
 
 }  // namespace phyir::render

@@ -109,7 +109,8 @@ class PathKernel {
     if constexpr (kEnvironment) {
       if (environment_) {
         Rng rng = stream(key_, Purpose::kPathEnvironment, uint64_t(bounce));
-        L_ += sample_environment_light(scene_, x, rng.next_2d(), beta_, counters_);
+        const float u_texel = rng.next_float();  // its own statement: argument order is unspecified
+        L_ += sample_environment_light(scene_, x, glm::vec3(u_texel, rng.next_2d()), beta_, counters_);
       }
     }
   }

@@ -17,6 +17,12 @@
 namespace phyir::render {
 namespace {
 
+// The three uniforms of EnvironmentLight::sample.
+glm::vec3 next_3d(Rng& rng) {
+  const float a = rng.next_float();
+  return glm::vec3(a, rng.next_2d());
+}
+
 // A W x H RGB image with smooth variation, a dark band, a black texel and a bright "sun".
 Image structured_image(int w, int h) {
   Image img(w, h, 3);
@@ -84,7 +90,7 @@ TEST(EnvironmentLight, SamplePdfAndRadianceMatchTheLookups) {
   for (int i = 0; i < n; ++i) {
     glm::vec3 d, L;
     float p;
-    ASSERT_TRUE(env.sample(rng.next_2d(), &d, &L, &p));
+    ASSERT_TRUE(env.sample(next_3d(rng), &d, &L, &p));
     ASSERT_NEAR(glm::length(d), 1.0f, 1e-5f);
     if (!(std::abs(env.pdf(d) - p) <= 1e-5f * p)) ++pdf_mismatch;
     if (env.radiance(d) != L) ++radiance_mismatch;
@@ -115,7 +121,7 @@ TEST(EnvironmentLight, SamplesFollowThePdfPerTexel) {
   for (int i = 0; i < n; ++i) {
     glm::vec3 d, L;
     float p;
-    ASSERT_TRUE(env.sample(rng.next_2d(), &d, &L, &p));
+    ASSERT_TRUE(env.sample(next_3d(rng), &d, &L, &p));
     const glm::ivec2 t = texel_of(d, img.width, img.height);
     observed[t.y * img.width + t.x] += 1.0;
   }
@@ -140,7 +146,7 @@ TEST(EnvironmentLight, SamplesAreUniformInsideTheirTexel) {
   for (int i = 0; i < n; ++i) {
     glm::vec3 d, L;
     float p;
-    ASSERT_TRUE(env.sample(rng.next_2d(), &d, &L, &p));
+    ASSERT_TRUE(env.sample(next_3d(rng), &d, &L, &p));
     const glm::vec2 uv = equirect_uv(d);
     const int col = std::min(int(uv.x * w), w - 1), row = std::min(int(uv.y * h), h - 1);
     const double fu = uv.x * w - col;
@@ -165,7 +171,7 @@ TEST(EnvironmentLight, ConstantEnvironmentIsUniform) {
     EXPECT_EQ(env.radiance(d), glm::vec3(0.7f));
     glm::vec3 s, L;
     float p;
-    ASSERT_TRUE(env.sample(rng.next_2d(), &s, &L, &p));
+    ASSERT_TRUE(env.sample(next_3d(rng), &s, &L, &p));
     EXPECT_NEAR(p, 1.0f / (4.0f * kPi), 1e-5f / (4.0f * kPi));
   }
 }
@@ -174,14 +180,14 @@ TEST(EnvironmentLight, BlackEnvironmentCannotBeSampled) {
   const EnvironmentLight env(Image(16, 8, 4, 0.0f));
   glm::vec3 d, L;
   float p = -1.0f;
-  EXPECT_FALSE(env.sample({0.3f, 0.7f}, &d, &L, &p));
+  EXPECT_FALSE(env.sample({0.3f, 0.7f, 0.5f}, &d, &L, &p));
   EXPECT_EQ(env.pdf({0, 1, 0}), 0.0f);
   EXPECT_EQ(env.radiance({0, 1, 0}), glm::vec3(0.0f));
   // Negative and NaN texels are not light either.
   Image bad(4, 2, 3, -1.0f);
   bad.at(1, 1, 0) = std::nanf("");
   const EnvironmentLight env2(bad);
-  EXPECT_FALSE(env2.sample({0.3f, 0.7f}, &d, &L, &p));
+  EXPECT_FALSE(env2.sample({0.3f, 0.7f, 0.5f}, &d, &L, &p));
 }
 
 TEST(EnvironmentLight, DegenerateShapesAndGreyImages) {
@@ -202,7 +208,7 @@ TEST(EnvironmentLight, DegenerateShapesAndGreyImages) {
     for (int i = 0; i < n; ++i) {
       glm::vec3 d, L;
       float p;
-      ASSERT_TRUE(env.sample(rng.next_2d(), &d, &L, &p));
+      ASSERT_TRUE(env.sample(next_3d(rng), &d, &L, &p));
       if (!(std::abs(env.pdf(d) - p) <= 1e-5f * p)) ++mismatches;
       const glm::ivec2 t = texel_of(d, img.width, img.height);
       observed[t.y * img.width + t.x] += 1.0;

@@ -9,6 +9,7 @@
 
 #include "chi_square.h"
 #include "phyir/core/safe_math.h"
+#include "phyir/render/alias_table.h"
 #include "phyir/render/brdf.h"
 #include "phyir/render/rng.h"
 #include "phyir/render/sampling.h"
@@ -200,10 +201,22 @@ TEST(SamplingTriangle, UniformOverSubTriangles) {
   EXPECT_TRUE(r.passed(kSignificance)) << r.message;
 }
 
-TEST(SamplingDistribution1D, MatchesWeightsAndSkipsZeroBins) {
+// One draw: Distribution1D takes one uniform (`first`, else from rng), AliasTable two.
+int draw(const Distribution1D& d, Rng& rng, float* pmf, float* remapped, float first = -1.0f) {
+  return d.sample(first >= 0.0f ? first : rng.next_float(), pmf, remapped);
+}
+int draw(const AliasTable& d, Rng& rng, float* pmf, float* remapped, float first = -1.0f) {
+  const float u_bin = first >= 0.0f ? first : rng.next_float();
+  return d.sample(u_bin, rng.next_float(), pmf, remapped);
+}
+
+// Distribution1D (cdf inversion) and AliasTable (Walker) promise the same: indices with
+// probability weight / sum, zero bins never, a remapped variate uniform given the index.
+template <typename Distribution>
+void expect_draws_match_weights() {
   const std::vector<float> w = {0.0f, 1.0f, 3.0f, 0.0f, 0.5f, 2.5f, 0.0f};
-  const Distribution1D d(w);
-  EXPECT_FLOAT_EQ(d.total(), 7.0f);
+  const Distribution d(w);
+  EXPECT_FLOAT_EQ(float(d.total()), 7.0f);
   EXPECT_FLOAT_EQ(d.pmf(2), 3.0f / 7.0f);
   EXPECT_EQ(d.pmf(-1), 0.0f);
   EXPECT_EQ(d.pmf(7), 0.0f);
@@ -212,25 +225,62 @@ TEST(SamplingDistribution1D, MatchesWeightsAndSkipsZeroBins) {
   for (size_t i = 0; i < w.size(); ++i) expected[i] = samples * w[i] / 7.0;
   Rng rng(31, 6);
   double remapped_sum = 0.0;
+  std::vector<double> remapped_by_index(w.size(), 0.0);
   for (int i = 0; i < samples; ++i) {
     float pmf = 0.0f, remapped = -1.0f;
-    const int k = d.sample(rng.next_float(), &pmf, &remapped);
+    const int k = draw(d, rng, &pmf, &remapped);
     ASSERT_GE(k, 0);
     ASSERT_GT(w[k], 0.0f);
     ASSERT_FLOAT_EQ(pmf, w[k] / 7.0f);
     ASSERT_GE(remapped, 0.0f);
     ASSERT_LT(remapped, 1.0f);
     remapped_sum += remapped;
+    remapped_by_index[k] += remapped;
     observed[k] += 1.0;
   }
   const auto r = test::chi_square_test(observed, expected);
   EXPECT_TRUE(r.passed(kSignificance)) << r.message;
   // The remapped variate is uniform: mean 1/2 within 5 sigma (sigma = 1/sqrt(12 n)).
   EXPECT_NEAR(remapped_sum / samples, 0.5, 5.0 / std::sqrt(12.0 * samples));
+  for (size_t k = 0; k < w.size(); ++k) {  // and uniform given each index
+    if (observed[k] > 0) {
+      EXPECT_NEAR(remapped_by_index[k] / observed[k], 0.5, 5.0 / std::sqrt(12.0 * observed[k])) << k;
+    }
+  }
   // The ends of [0, 1) land in non-empty bins.
-  EXPECT_EQ(d.sample(0.0f), 1);
-  EXPECT_EQ(d.sample(0x1.fffffep-1f), 5);
-  EXPECT_EQ(Distribution1D(std::vector<float>{0.0f, 0.0f}).sample(0.5f), -1);
+  for (float u : {0.0f, 0x1.fffffep-1f}) {
+    Rng ends(u > 0.5f ? 1 : 2, 3);
+    EXPECT_GT(w[size_t(draw(d, ends, nullptr, nullptr, u))], 0.0f) << u;
+  }
+  EXPECT_EQ(draw(Distribution(std::vector<float>{0.0f, 0.0f}), rng, nullptr, nullptr), -1);
+}
+
+TEST(SamplingDistribution1D, MatchesWeightsAndSkipsZeroBins) { expect_draws_match_weights<Distribution1D>(); }
+TEST(SamplingAliasTable, MatchesWeightsAndSkipsZeroBins) { expect_draws_match_weights<AliasTable>(); }
+
+// A large table of very unequal weights (an HDR sky with a sun): pmfs as given, and the
+// draws' histogram matches them.
+TEST(SamplingAliasTable, LargeSkewedTable) {
+  std::vector<float> w(4096);
+  Rng weights_rng(5, 1);
+  for (float& x : w) x = weights_rng.next_float() < 0.3f ? 0.0f : std::pow(weights_rng.next_float(), 8.0f);
+  w[1234] = 5000.0f;  // the sun
+  const AliasTable table(w);
+  const Distribution1D reference(w);
+  std::vector<double> observed(w.size(), 0.0), expected(w.size());
+  constexpr int samples = 2000000;
+  for (size_t i = 0; i < w.size(); ++i) {
+    EXPECT_NEAR(table.pmf(int(i)), reference.pmf(int(i)), 1e-6f * reference.pmf(int(i)) + 1e-12f) << i;
+    expected[i] = samples * double(reference.pmf(int(i)));
+  }
+  Rng rng(7, 3);
+  for (int i = 0; i < samples; ++i) {
+    const int k = draw(table, rng, nullptr, nullptr);
+    ASSERT_GT(w[size_t(k)], 0.0f) << k;
+    observed[size_t(k)] += 1.0;
+  }
+  const auto r = test::chi_square_test(observed, expected);
+  EXPECT_TRUE(r.passed(kSignificance)) << r.message;
 }
 
 TEST(SamplingMis, PowerHeuristic) {

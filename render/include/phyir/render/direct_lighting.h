@@ -76,7 +76,7 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
                                PathCounters* counters);
 
 // The same towards the environment (kAll only: only the path tracer samples it).
-glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint& x, const glm::vec2& u,
+glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint& x, const glm::vec3& u,
                                    const glm::vec3& throughput, PathCounters* counters);
 
 // The MIS weight of a BRDF-sampled ray from `from` with density `brdf_pdf` (solid angle,
