@@ -262,8 +262,9 @@ void ProbeView::prepare_probe(TileProbe* probe, int pass) const {
 
 // Hard texels (the first samples met glass, a glossy surface or a light whose emission is
 // not estimated apart, or their values spread over more than spread_threshold x (their
-// mean + a floor): the texel straddles an edge or a highlight) are estimated again from hard_spp_factor x spp fresh samples. No decision looks
-// at the samples it selects, so none biases the value.
+// mean + a floor): the texel straddles an edge or a highlight) are estimated again from
+// hard_spp_factor x spp fresh samples. No decision looks at the samples it selects, so none
+// biases the value.
 void ProbeView::shade_texel(TileProbe& probe, int t, int pass, Worker* w) {
   const int row = t / layout_.res_width, col = t % layout_.res_width;
   Texel x{&probe, t, row, col, ProbeTexel(row, col, layout_.res_height, layout_.res_width),
