@@ -22,6 +22,7 @@
 
 #include "bench_suite_runner.h"
 #include "commands.h"
+#include "scene_environment.h"
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
 #include "phyir/core/machine.h"
@@ -256,15 +257,6 @@ void log_breakdown(const std::string& config, const nlohmann::json& b) {
     line("probe " + std::to_string(j["index"].get<int>()) + " (light " +
              std::to_string(int(100 * j["nearest_light_m"].get<float>())) + " cm)",
          j);
-}
-
-// The scene's own environment (extras.phyir.environment), as `phyir render` loads it: the
-// day apartments' sky lights the rooms through their windows.
-std::unique_ptr<render::EnvironmentLight> scene_environment(const scenes::Scene& scene) {
-  if (!scene.environment) return nullptr;
-  const Image image = read_image(scene.environment->path);
-  if (image.channels < 3) fail("{}: environment map needs RGB, found {} channel(s)", scene.environment->path.string(), image.channels);
-  return std::make_unique<render::EnvironmentLight>(image, scene.environment->scale);
 }
 
 void run_bench_probes(const BenchProbeFlags& f) {
