@@ -11,7 +11,6 @@
 
 #include "bench_suite_runner.h"
 #include "commands.h"
-#include "scene_environment.h"
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
 #include "phyir/core/machine.h"
@@ -51,7 +50,7 @@ struct Loaded {
 std::unique_ptr<Loaded> load(const BenchFlags& f) {
   auto l = std::make_unique<Loaded>();
   l->scene = scenes::load_gltf(f.scene);
-  l->render_scene = std::make_unique<render::RenderScene>(l->scene, scene_environment(l->scene));
+  l->render_scene = std::make_unique<render::RenderScene>(l->scene, render::scene_environment(l->scene));
   render::RenderJob job;
   job.width = f.width;
   job.height = f.height;

@@ -22,7 +22,6 @@
 
 #include "bench_suite_runner.h"
 #include "commands.h"
-#include "scene_environment.h"
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
 #include "phyir/core/machine.h"
@@ -261,7 +260,7 @@ void log_breakdown(const std::string& config, const nlohmann::json& b) {
 
 void run_bench_probes(const BenchProbeFlags& f) {
   const scenes::Scene scene = scenes::load_gltf(f.scene);
-  std::unique_ptr<render::EnvironmentLight> environment = scene_environment(scene);
+  std::unique_ptr<render::EnvironmentLight> environment = render::scene_environment(scene);
   const bool has_environment = environment != nullptr;
   const render::RenderScene render_scene(scene, std::move(environment));
   render::RenderJob job;

@@ -70,7 +70,9 @@ std::string train_script(const TrainSlurmFlags& s, const TrainFlags& train, cons
   const fs::path out = fs::absolute(workdir / train.options.out_dir);
   std::string args;
   for (const std::string& a : s.train_args) args += " " + shell_quote(a);
-  const bool threads_given = std::find(s.train_args.begin(), s.train_args.end(), "--threads") != s.train_args.end();
+  const bool threads_given = std::any_of(s.train_args.begin(), s.train_args.end(), [](const std::string& a) {
+    return a == "--threads" || a.rfind("--threads=", 0) == 0;
+  });
   std::string t = "#!/bin/bash\n";
   t += "# Written by 'phyir train slurm': one training as Slurm tasks, one rank each; submit with sbatch.\n";
   t += sbatch_lines(s, workdir, logs);

@@ -153,7 +153,6 @@ void Trainer::build_networks() {
   collect(*nets_->gmnet, stage_.gmnet);
   collect(*nets_->lnet, stage_.lnet);
   collect(*nets_->gsnet, stage_.gsnet);
-  trained_params_ = params;
   opt_ = std::make_unique<torch::optim::Adam>(params, torch::optim::AdamOptions(lr_));
   best_.metric = o_.validation.best_metric;
   if (group_) broadcast_networks(*group_, *nets_);
@@ -203,7 +202,7 @@ void Trainer::load_data() {
   validator_ = std::make_unique<Validator>(o_.data_dir, validation, config_, device_);
   if (group_) {
     int64_t gradients = 0;
-    for (const torch::Tensor& p : trained_params_) gradients += p.numel();
+    for (const torch::Tensor& p : opt_->parameters()) gradients += p.numel();
     spdlog::info("train {}: rank {} of {} reads {} of each batch's {} views; {} gradients ({:.1f} MB) all-reduced a "
                  "step", stage_name_, rank_, ranks_, rank_batch(batch_, rank_, ranks_), batch_, gradients,
                  4e-6 * static_cast<double>(gradients));
@@ -274,7 +273,7 @@ double Trainer::run_step(int epoch, int64_t bi, const Batch& b) {
   opt_->zero_grad();
   L.total.backward();
   share.reset();
-  if (group_) average_gradients(*group_, trained_params_);
+  if (group_) average_gradients(*group_, opt_->parameters());
   opt_->step();
   ++global_step_;
   epoch_loss_sum_ += loss;

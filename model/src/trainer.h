@@ -69,8 +69,7 @@ class Trainer {
   nlohmann::json trained_;
 
   std::unique_ptr<Networks> nets_;
-  std::unique_ptr<torch::optim::Adam> opt_;
-  std::vector<torch::Tensor> trained_params_;
+  std::unique_ptr<torch::optim::Adam> opt_;  // one parameter group: the stage's networks
   int start_epoch_ = 0;
   int64_t start_batch_ = 0, global_step_ = 0;
 

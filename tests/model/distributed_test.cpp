@@ -70,10 +70,8 @@ std::string read_text(const fs::path& p) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-// Every parameter and buffer of the checkpoint's networks, by name.
-std::map<std::string, torch::Tensor> checkpoint_state(const fs::path& path) {
-  pm::Networks nets(pm::read_checkpoint_config(path.string()));
-  pm::load_checkpoint(path.string(), &nets, nullptr, false);
+// GMNet's and LNet's parameters and buffers, by name.
+std::map<std::string, torch::Tensor> named_state(pm::Networks& nets) {
   std::map<std::string, torch::Tensor> out;
   for (auto* m : {static_cast<torch::nn::Module*>(nets.gmnet.get()), static_cast<torch::nn::Module*>(nets.lnet.get())}) {
     for (const auto& p : m->named_parameters()) out[m->name() + "." + p.key()] = p.value().detach().clone();
@@ -82,16 +80,18 @@ std::map<std::string, torch::Tensor> checkpoint_state(const fs::path& path) {
   return out;
 }
 
+// Those of a checkpoint's networks.
+std::map<std::string, torch::Tensor> checkpoint_state(const fs::path& path) {
+  pm::Networks nets(pm::read_checkpoint_config(path.string()));
+  pm::load_checkpoint(path.string(), &nets, nullptr, false);
+  return named_state(nets);
+}
+
 // The networks as the trainer builds them for `seed`, before any step.
 std::map<std::string, torch::Tensor> initial_state(const fs::path& checkpoint, uint64_t seed) {
   torch::manual_seed(seed);
   pm::Networks nets(pm::read_checkpoint_config(checkpoint.string()));
-  std::map<std::string, torch::Tensor> out;
-  for (auto* m : {static_cast<torch::nn::Module*>(nets.gmnet.get()), static_cast<torch::nn::Module*>(nets.lnet.get())}) {
-    for (const auto& p : m->named_parameters()) out[m->name() + "." + p.key()] = p.value().detach().clone();
-    for (const auto& b : m->named_buffers()) out[m->name() + "." + b.key()] = b.value().detach().clone();
-  }
-  return out;
+  return named_state(nets);
 }
 
 // ||a - b|| / ||a - start|| over the parameters (running_stats false) or BatchNorm's running

@@ -122,6 +122,11 @@ std::unique_ptr<EnvironmentLight> load_environment(const RenderReport::Environme
 
 }  // namespace
 
+std::unique_ptr<EnvironmentLight> scene_environment(const scenes::Scene& scene) {
+  if (!scene.environment) return nullptr;
+  return load_environment({"scene", scene.environment->path.string(), scene.environment->scale}, scene);
+}
+
 nlohmann::json output_conventions() {
   return {
       {"world", "metres, right-handed, +Y up (glTF)"},

@@ -3,6 +3,7 @@
 // pick the camera, render colour and AOVs, write every file atomically and render.json
 // last, so a present render.json means a complete output folder.
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "phyir/render/camera.h"
+#include "phyir/render/environment_light.h"
 #include "phyir/render/probe_renderer.h"
 #include "phyir/render/render_view.h"
 
@@ -90,6 +92,11 @@ RenderReport run_render_job(const RenderJob& job);
 
 // The camera the job will use (exposed for tests and the dataset pipeline).
 CameraModel job_camera(const RenderJob& job, const scenes::Scene& scene, std::string* description);
+
+// The scene's own environment (extras.phyir.environment) as a render loads it, for commands that
+// build their RenderScene themselves (the bench commands): null when the scene has none; the
+// same checks and errors (naming the glTF file and its extras) as run_render_job's.
+std::unique_ptr<EnvironmentLight> scene_environment(const scenes::Scene& scene);
 
 // The text of render.json's "conventions" block, shared with docs and the dataset.
 nlohmann::json output_conventions();
