@@ -6,6 +6,12 @@
 
 #include <ATen/Parallel.h>
 
+// With LibTorch's OpenMP backend (Debian's), at::parallel_for is OpenMP code inlined from
+// ATen's headers: compiled without OpenMP it runs the whole loop on the calling thread.
+#if AT_PARALLEL_OPENMP && !defined(_OPENMP)
+#error "render_kernel.cpp must be compiled with OpenMP (model/CMakeLists.txt), or at::parallel_for is serial"
+#endif
+
 #include <algorithm>
 #include <cmath>
 
@@ -435,8 +441,26 @@ Inputs contiguous(const torch::Tensor& n, const torch::Tensor& v, const torch::T
   return {c(n), c(v), c(B), c(R), c(M), c(probes)};
 }
 
-// Pixels per parallel task: each is ~10^3 samples, so small grains balance the two cores.
+// Fewer pixels than this per thread are not worth a thread.
 constexpr int64_t kGrain = 16;
+// at::parallel_for gives each thread one contiguous share of the range, and pixels differ in
+// cost by region (back-facing ones stop early, mirrors take one specular lookup, samples
+// below the horizon skip theirs). Task t renders pixel (t % kBands) * band + t / kBands, a
+// column-major walk of a kBands x band grid: every thread's share spans all kBands bands.
+constexpr int64_t kBands = 64;
+
+// Calls fn(p) for every pixel p in [0, P), on at::parallel_for's threads; each pixel is
+// independent of the others, so the split does not change the result.
+template <typename Fn>
+void for_each_pixel(int64_t P, const Fn& fn) {
+  const int64_t band = (P + kBands - 1) / kBands;
+  at::parallel_for(0, band * kBands, kGrain, [&](int64_t b, int64_t e) {
+    for (int64_t t = b; t < e; ++t) {
+      const int64_t p = (t % kBands) * band + t / kBands;
+      if (p < P) fn(p);  // the grid's last band may be short
+    }
+  });
+}
 
 template <typename T>
 PixelIn<T> pixel_in(const Inputs& x, int64_t p, int64_t probe_stride) {
@@ -450,10 +474,9 @@ FusedRenderOutput forward_impl(const Inputs& x, const Sizes& sz) {
   AT_DISPATCH_FLOATING_TYPES(x.n.scalar_type(), "render_pixels_fused", [&] {
     scalar_t* d = out.diffuse.data_ptr<scalar_t>();
     scalar_t* s = out.specular.data_ptr<scalar_t>();
-    at::parallel_for(0, P, kGrain, [&](int64_t b, int64_t e) {
-      for (int64_t p = b; p < e; ++p)
-        shade_pixel<scalar_t>(pixel_in<scalar_t>(x, p, stride), sz, static_cast<uint64_t>(p), d + 3 * p, s + 3 * p,
-                              nullptr);
+    for_each_pixel(P, [&](int64_t p) {
+      shade_pixel<scalar_t>(pixel_in<scalar_t>(x, p, stride), sz, static_cast<uint64_t>(p), d + 3 * p, s + 3 * p,
+                            nullptr);
     });
   });
   return out;
@@ -478,13 +501,10 @@ Grads backward_impl(const Inputs& x, const Sizes& sz, const torch::Tensor& gd_in
     const scalar_t* pgs = gs.data_ptr<scalar_t>();
     scalar_t *gn = g.n.data_ptr<scalar_t>(), *gB = g.B.data_ptr<scalar_t>(), *gR = g.R.data_ptr<scalar_t>(),
              *gM = g.M.data_ptr<scalar_t>(), *gp = g.probes.data_ptr<scalar_t>();
-    at::parallel_for(0, P, kGrain, [&](int64_t b, int64_t e) {
-      for (int64_t p = b; p < e; ++p) {
-        const PixelGrad<scalar_t> pg{pgd + 3 * p, pgs + 3 * p, gn + 3 * p, gB + 3 * p, gR + p, gM + p,
-                                     gp + stride * p, geometry};
-        shade_pixel<scalar_t>(pixel_in<scalar_t>(x, p, stride), sz, static_cast<uint64_t>(p), nullptr, nullptr,
-                              &pg);
-      }
+    for_each_pixel(P, [&](int64_t p) {
+      const PixelGrad<scalar_t> pg{pgd + 3 * p, pgs + 3 * p, gn + 3 * p, gB + 3 * p, gR + p, gM + p,
+                                   gp + stride * p, geometry};
+      shade_pixel<scalar_t>(pixel_in<scalar_t>(x, p, stride), sz, static_cast<uint64_t>(p), nullptr, nullptr, &pg);
     });
   });
   return g;
