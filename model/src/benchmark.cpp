@@ -15,6 +15,7 @@
 #include "phyir/core/log.h"
 #include "phyir/model/training.h"
 #include "render_layer.h"
+#include "stage_loss.h"
 
 namespace phyir::model {
 
@@ -124,8 +125,7 @@ void full_inference(GMNet& gm, GSNet& gs, LNet& ln, const torch::Tensor& image, 
     return torch::nn::functional::adaptive_avg_pool2d(
         x, torch::nn::functional::AdaptiveAvgPool2dFuncOptions({s.Hr, s.Wr}));
   };
-  render_layer(torch::nn::functional::normalize(area(g.normal), torch::nn::functional::NormalizeFuncOptions().dim(1)),
-               area(g.base_color), area(g.roughness), area(g.metalness), torch::expm1(lp.clamp_max(30.0)),
+  render_layer(normalize_channels(area(g.normal)), area(g.base_color), area(g.roughness), area(g.metalness), linear_probes(lp),
                render_settings(s));
 }
 

@@ -111,8 +111,7 @@ void infer(const InferOptions& o) {
   // Maps at the panorama's resolution (bilinear up, area down), as the renderer writes its AOVs
   // at the colour's resolution; normals renormalised after the interpolation.
   auto full = [&](const torch::Tensor& m) { return resize(m, Hp, Wp); };
-  const torch::Tensor normal_full = torch::nn::functional::normalize(
-      full(p.maps.normal), torch::nn::functional::NormalizeFuncOptions().dim(1).eps(1e-6));
+  const torch::Tensor normal_full = normalize_channels(full(p.maps.normal));
   write_tensor_image(out / "input.png", pano.image[0]);
   write_tensor_image(out / "depth.exr", full(p.maps.depth)[0], {"Y"});
   write_tensor_image(out / "normal.exr", normal_full[0], {"X", "Y", "Z"});

@@ -50,6 +50,11 @@ bool convolve_with_onednn(const torch::Tensor& x) {
   return !torch::GradMode::is_enabled() && x.is_cpu() && x.scalar_type() == torch::kFloat && at::hasMKLDNN();
 }
 
+torch::Tensor normalize_channels(const torch::Tensor& x, double eps) {
+  if (torch::GradMode::is_enabled()) return F::normalize(x, F::NormalizeFuncOptions().dim(1).eps(eps));
+  return x / (x * x).sum(1, true).sqrt().clamp_min(eps);
+}
+
 torch::Tensor cirpad(const torch::Tensor& x, int pad_h, int pad_w) {
   return cirpad4(x, pad_h, pad_h, pad_w, pad_w);
 }
@@ -65,9 +70,19 @@ torch::Tensor CirConvImpl::forward(const torch::Tensor& x) {
   if (!convolve_with_onednn(padded)) return conv->forward(padded);
   // ATen sends a batch-1 convolution whose input holds at most 20480 values (LNet's 2x4
   // bottleneck at the default size) to im2col + BLAS, Debian's reference BLAS: oneDNN directly.
-  const c10::optional<torch::Tensor> bias =
-      conv->bias.defined() ? c10::optional<torch::Tensor>(conv->bias) : c10::nullopt;
-  return at::mkldnn_convolution(padded, conv->weight, bias, {0, 0}, conv->options.stride(), {1, 1}, 1);
+  return onednn_forward(padded, conv->weight, conv->bias);
+}
+
+torch::Tensor CirConvImpl::forward_reordered(const torch::Tensor& x, const torch::Tensor& order) {
+  TORCH_CHECK(convolve_with_onednn(x), "CirConv::forward_reordered: without a gradient, float on the CPU only");
+  const torch::Tensor bias = conv->bias.defined() ? conv->bias.index_select(0, order) : torch::Tensor();
+  return onednn_forward(cirpad4(x, pad_lo, pad_hi, pad_lo, pad_hi), conv->weight.index_select(0, order), bias);
+}
+
+torch::Tensor CirConvImpl::onednn_forward(const torch::Tensor& padded, const torch::Tensor& weight,
+                                          const torch::Tensor& bias) const {
+  const c10::optional<torch::Tensor> b = bias.defined() ? c10::optional<torch::Tensor>(bias) : c10::nullopt;
+  return at::mkldnn_convolution(padded, weight, b, {0, 0}, conv->options.stride(), {1, 1}, 1);
 }
 
 // --- GMNet ---------------------------------------------------------------------------------
@@ -158,7 +173,7 @@ GMOutput GMNetImpl::forward(const torch::Tensor& image) {
   const std::vector<torch::Tensor> f = encoder->forward(image * 2.0 - 1.0);
   GMOutput out;
   out.depth = F::softplus(depth->forward(f)) + 1e-3;  // metres, strictly positive
-  out.normal = F::normalize(normal->forward(f), F::NormalizeFuncOptions().dim(1).eps(1e-6));
+  out.normal = normalize_channels(normal->forward(f));
   out.base_color = torch::sigmoid(base_color->forward(f));
   out.roughness = torch::sigmoid(roughness->forward(f));
   out.metalness = torch::sigmoid(metalness->forward(f));
@@ -223,17 +238,31 @@ torch::Tensor LNetImpl::forward(const torch::Tensor& input) {
   y = torch::cat({up2(d3->forward(y)), x2}, 1);             // 512 at 1/4
   y = torch::cat({up2(d4->forward(y)), x1}, 1);             // 256 at 1/2
   y = up2(d5->forward(y));                                  // 128 at 1/1
-  y = out2->forward(torch::relu(out1->forward(y)));         // h*w*3
+  y = torch::relu(out1->forward(y));
+  if (convolve_with_onednn(y)) return probes_without_gradient(y);
   // log(1 + L) >= 0 so that L = expm1(.) is a non-negative radiance everywhere.
-  y = F::softplus(y);
+  y = F::softplus(out2->forward(y));  // h*w*3
   const int64_t B = y.size(0), H = y.size(2), W = y.size(3);
   return y.view({B, 3, h, w, H, W}).permute({0, 4, 5, 2, 3, 1}).contiguous();
 }
 
+// The output layer's channels are (colour, probe row, probe column); taken in the order
+// (row, column, colour) and written channels-last, its [B, h*w*3, H, W] output already is
+// [B, H, W, h, w, 3] in memory. At the paper's size that saves three passes over 201 MB
+// (oneDNN's reorder to NCHW, a new tensor for softplus, the permutation): the same numbers up
+// to float rounding (tested against the path with a gradient).
+torch::Tensor LNetImpl::probes_without_gradient(const torch::Tensor& features) {
+  const torch::Tensor order = torch::arange(3 * h * w, torch::kLong).view({3, h * w}).t().reshape({-1});
+  torch::Tensor y = out2->forward_reordered(features.contiguous(torch::MemoryFormat::ChannelsLast), order);
+  y = y.permute({0, 2, 3, 1});  // [B, H, W, h*w*3], contiguous
+  TORCH_CHECK(y.is_contiguous(), "LNet: oneDNN's output layer did not write channels-last");
+  at::softplus_out(y, y, 1.0, 20.0);  // F::softplus's defaults, in place
+  return y.view({y.size(0), y.size(1), y.size(2), h, w, 3});
+}
+
 torch::Tensor lnet_input(const torch::Tensor& image, const GMOutput& gm, int height, int width) {
   return torch::cat({area_resize(image, height, width),
-                     F::normalize(area_resize(gm.normal, height, width),
-                                  F::NormalizeFuncOptions().dim(1).eps(1e-6)),
+                     normalize_channels(area_resize(gm.normal, height, width)),
                      area_resize(gm.depth, height, width), area_resize(gm.base_color, height, width),
                      area_resize(gm.roughness, height, width), area_resize(gm.metalness, height, width)},
                     1);
@@ -279,7 +308,7 @@ GMOutput GSNetImpl::forward(const torch::Tensor& image, const GMOutput& coarse) 
   GMOutput out = coarse;
   out.base_color = q.narrow(1, 0, 3).clamp(0.0, 1.0);
   out.roughness = q.narrow(1, 3, 1).clamp(0.0, 1.0);
-  out.normal = F::normalize(q.narrow(1, 4, 3), F::NormalizeFuncOptions().dim(1).eps(1e-6));
+  out.normal = normalize_channels(q.narrow(1, 4, 3));
   return out;
 }
 

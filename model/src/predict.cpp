@@ -20,7 +20,7 @@ ModelOutput predict(Networks& nets, const ModelConfig& c, const torch::Tensor& i
   const auto t2 = Clock::now();
   if (use_light) {
     const LightResult light = run_light(nets, c, image, out.maps);
-    out.probes = torch::expm1(light.log_probes);
+    out.probes = light.probes;
     out.rerender = light.render.image;
   }
   const auto t3 = Clock::now();

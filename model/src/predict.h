@@ -10,7 +10,8 @@ namespace phyir::model {
 
 struct ModelOutput {
   GMOutput maps;           // [B,C,Hi,Wi], refined by GSNet when it ran
-  torch::Tensor probes;    // [B,Hr,Wr,h,w,3] linear radiance, input units; undefined without LNet
+  torch::Tensor probes;    // [B,Hr,Wr,h,w,3] linear radiance, input units (linear_probes: what the
+                           // rendering layer used); undefined without LNet
   torch::Tensor rerender;  // [B,3,Hr,Wr] the rendering layer's image, input units
   double gmnet_ms = 0.0, gsnet_ms = 0.0, light_ms = 0.0;
 };

@@ -62,19 +62,22 @@ std::string format_parts(const StepLoss& L) {
   return s;
 }
 
+torch::Tensor linear_probes(const torch::Tensor& log_probes) {
+  // clamp_max's gradient needs its input, not its result: expm1_ may overwrite the result.
+  return log_probes.clamp_max(30.0).expm1_();
+}
+
 LightResult run_light(Networks& nets, const ModelConfig& c, const torch::Tensor& image, const GMOutput& gm) {
   LightResult r;
   const int Hr = c.render_height, Wr = c.render_width;
   r.log_probes = nets.lnet->forward(lnet_input(image, gm, Hr, Wr));
-  const torch::Tensor probes = torch::expm1(r.log_probes.clamp_max(30.0));
+  r.probes = linear_probes(r.log_probes);
   RenderSettings rs;
   rs.diffuse_samples = c.diffuse_samples;
   rs.specular_samples = c.specular_samples;
   rs.first_stream = batch_first_view() * Hr * Wr;
-  r.render = render_layer(
-      torch::nn::functional::normalize(area(gm.normal, Hr, Wr),
-                                       torch::nn::functional::NormalizeFuncOptions().dim(1).eps(1e-6)),
-      area(gm.base_color, Hr, Wr), area(gm.roughness, Hr, Wr), area(gm.metalness, Hr, Wr), probes, rs);
+  r.render = render_layer(normalize_channels(area(gm.normal, Hr, Wr)), area(gm.base_color, Hr, Wr),
+                          area(gm.roughness, Hr, Wr), area(gm.metalness, Hr, Wr), r.probes, rs);
   return r;
 }
 

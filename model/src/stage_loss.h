@@ -29,8 +29,13 @@ std::string format_parts(const StepLoss& loss);  // "basecolor 0.012, depth 0.3"
 
 struct LightResult {
   torch::Tensor log_probes;  // [B,Hr,Wr,h,w,3], log(1 + L)
+  torch::Tensor probes;      // [B,Hr,Wr,h,w,3], linear_probes(log_probes): what was rendered
   RenderOutput render;
 };
+
+// Linear radiance from LNet's log(1 + L): expm1 of it clamped at 30 (L <= 1.1e13, no
+// overflow), computed in place of the clamp's result (one large tensor fewer).
+torch::Tensor linear_probes(const torch::Tensor& log_probes);
 
 // LNet on the image and GMNet's maps, then the rendering layer on its probes (the maps
 // area-resized to the rendering resolution).
