@@ -144,7 +144,8 @@ def rebuild_as_ue4(material):
     Glass (KHR_materials_transmission, Principled "Transmission" > 0) becomes what phyir renders
     (docs/conventions.md, material model): the terms above mixed with a smooth Glass BSDF
     (distribution SHARP, the material's IOR, colour = base colour) by the transmission factor;
-    phyir ignores the roughness for the refractive lobe, so the glass is sharp here too.
+    phyir ignores the roughness for the refractive lobe, so the glass is sharp here too. Left
+    different: Cycles' Glass colour tints its reflection as well, phyir's tint only the refraction.
     """
     tree = material.node_tree
     principled = next((n for n in tree.nodes if n.bl_idname == "ShaderNodeBsdfPrincipled"), None)
