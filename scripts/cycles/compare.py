@@ -5,7 +5,12 @@
         prints the world position of the scene's first camera node as x,y,z
     compare.py analyse --runs DIR --figures DIR --name NAME --spp-list 1,2,... --repeats R
                        --modes principled,ue4 --reference-spp ours=4096,cycles_principled=4096,...
-        reads DIR (layout written by compare.sh), writes NAME's CSV and PNG figures
+                       [--phyir-sweep sweep] [--machine machine.txt] [--title "mini room"]
+        reads DIR (layout written by compare.sh or compare_furnished.sh), writes NAME's CSV
+        and PNG figures; with reference/KEY_a.exr and KEY_b.exr present (two half references
+        of different seeds), also the references' own noise, measured
+    compare.py average OUT.exr A.exr B.exr
+        writes the pixel mean of two images of equal sample counts (two half references)
 
 Error: relative RMSE = sqrt(mean((a - b)^2)) / mean(|b|) over the RGB channels of every
 pixel, b the reference: the definition of `phyir bench convergence` (core/src/image_error.cpp).
@@ -112,10 +117,18 @@ def load_json(path):
         return json.load(f)
 
 
-def sweep_point(runs, key, spp, repeat):
+def load_at_start(base):
+    """The 1-minute load average when a render started (written by common.sh), or NaN."""
+    try:
+        return float(open(base + ".load").read().split()[0])
+    except (OSError, ValueError, IndexError):
+        return float("nan")
+
+
+def sweep_point(runs, key, spp, repeat, phyir_sweep="sweep"):
     """Image and times of one sweep render."""
     if key == "ours":
-        base = os.path.join(runs, "sweep", f"ours_spp{spp}_r{repeat}")
+        base = os.path.join(runs, phyir_sweep, f"ours_spp{spp}_r{repeat}")
         report = load_json(os.path.join(base, "render.json"))
         process = load_json(base + ".time.json")
         return read_exr(os.path.join(base, "color.exr")), {
@@ -124,6 +137,7 @@ def sweep_point(runs, key, spp, repeat):
             "process_seconds": process["wall_seconds"],
             "cpu_seconds": process["user_seconds"] + process["system_seconds"],
             "nonfinite": report.get("counters", {}).get("nonfinite_samples_caught", 0),
+            "load": load_at_start(base),
         }
     base = os.path.join(runs, "sweep", f"{key}_spp{spp}_r{repeat}")
     report = load_json(base + ".json")
@@ -137,6 +151,7 @@ def sweep_point(runs, key, spp, repeat):
         "process_seconds": process["wall_seconds"],
         "cpu_seconds": t["render_call_cpu_seconds"],
         "nonfinite": 0,
+        "load": load_at_start(base),
     }
 
 
@@ -212,7 +227,7 @@ def analyse(args):
     keys = ["ours"] + [f"cycles_{m}" for m in modes]
     labels = {"ours": "phyir", "cycles_principled": "Cycles, Principled BSDF (as imported)",
               "cycles_ue4": "Cycles, UE4 terms (rebuilt)"}
-    machine = open(os.path.join(runs, "machine.txt")).read()
+    machine = open(os.path.join(runs, args.machine)).read()
     reference_spp = {k: int(v) for k, v in (item.split("=") for item in args.reference_spp.split(","))}
     targets = [float(t) for t in args.targets.split(",")]
     keep = ~lights_mask(runs)
@@ -220,13 +235,20 @@ def analyse(args):
     for m in modes:
         refs[f"cycles_{m}"] = read_exr(os.path.join(runs, "reference", f"cycles_{m}.exr"))
 
+    halves = {}  # measured: relative RMSE of the two half references; the mean's is half of it
+    for key in keys:
+        a, b = (os.path.join(runs, "reference", f"{key}_{h}.exr") for h in "ab")
+        if os.path.exists(a) and os.path.exists(b):
+            d = relative_rmse(read_exr(a), read_exr(b))
+            halves[key] = {"halves_relative_rmse": d, "reference_relative_rmse": d / 2}
+
     # Sweep: time = minimum over repeats, error = mean over repeats (one seed each).
     points = []
     for key in keys:
         for spp in spps:
             errors_shared, errors_own, rmse_shared, errors_own_unlit, times = [], [], [], [], []
             for r in range(1, args.repeats + 1):
-                image, t = sweep_point(runs, key, spp, r)
+                image, t = sweep_point(runs, key, spp, r, args.phyir_sweep)
                 errors_shared.append(relative_rmse(image, refs["ours"]))
                 rmse_shared.append(rmse(image, refs["ours"]))
                 errors_own.append(relative_rmse(image, refs[key]))
@@ -242,7 +264,13 @@ def analyse(args):
                 "rel_shared": float(np.mean(errors_shared)), "rmse_shared": float(np.mean(rmse_shared)),
                 "rel_own": float(np.mean(errors_own)),
                 "rel_own_no_lights": float(np.mean(errors_own_unlit)),
+                # The reference's own noise adds in quadrature (independent renders): removed,
+                # where the half references measured it.
+                "rel_own_clean": (math.sqrt(max(np.mean(np.square(errors_own))
+                                                - halves[key]["reference_relative_rmse"] ** 2, 1e-12))
+                                  if key in halves else float("nan")),
                 "nonfinite": sum(t["nonfinite"] for t in times),
+                "load_min": min(t["load"] for t in times), "load_max": max(t["load"] for t in times),
             })
 
     os.makedirs(args.figures, exist_ok=True)
@@ -251,18 +279,22 @@ def analyse(args):
         w = csv.writer(f)
         w.writerow(["renderer", "spp", "render_seconds", "render_seconds_max", "total_seconds", "process_seconds",
                     "cpu_seconds", "relative_rmse_shared_reference", "rmse_shared_reference",
-                    "relative_rmse_own_reference", "relative_rmse_own_reference_lights_excluded"])
+                    "relative_rmse_own_reference", "relative_rmse_own_reference_lights_excluded",
+                    "relative_rmse_own_reference_noise_removed", "load_average_min", "load_average_max"])
         for p in points:
             w.writerow([p["renderer"], p["spp"], f'{p["render_seconds"]:.4f}', f'{p["render_seconds_max"]:.4f}',
                         f'{p["total_seconds"]:.4f}', f'{p["process_seconds"]:.3f}', f'{p["cpu_seconds"]:.3f}',
                         f'{p["rel_shared"]:.5f}', f'{p["rmse_shared"]:.5f}', f'{p["rel_own"]:.5f}',
-                        f'{p["rel_own_no_lights"]:.5f}'])
+                        f'{p["rel_own_no_lights"]:.5f}', f'{p["rel_own_clean"]:.5f}',
+                        f'{p["load_min"]:.2f}', f'{p["load_max"]:.2f}'])
 
     # Time to equal error, on render seconds and on CPU seconds.
     summary = []
-    columns = {"own": "rel_own", "phyir": "rel_shared", "own_lights_excluded": "rel_own_no_lights"}
+    columns = {"own": "rel_own", "phyir": "rel_shared", "own_lights_excluded": "rel_own_no_lights",
+               "own_reference_noise_removed": "rel_own_clean"}
     curves = ([(k, "own") for k in keys] + [(k, "phyir") for k in keys if k != "ours"] +
-              [(k, "own_lights_excluded") for k in keys])
+              [(k, "own_lights_excluded") for k in keys] +
+              [(k, "own_reference_noise_removed") for k in keys if k in halves and "ours" in halves])
     for key, against in curves:
         pts = [p for p in points if p["renderer"] == key]
         errors = [p[columns[against]] for p in pts]
@@ -300,8 +332,27 @@ def analyse(args):
             "mean_ratio_rgb": (a.reshape(-1, 3).mean(0) / b.reshape(-1, 3).mean(0)).tolist(),
             "alignment": alignment(b, a),
         }
+    # Cycles' half references and their mean are renders independent of phyir's reference:
+    # points at N/2 and N spp of the curve against phyir's reference, past the sweep's end.
+    references_against_phyir = {}
+    for key in keys:
+        if key == "ours" or key not in halves:
+            continue
+        rows = {}
+        cpu = {}
+        for h in "ab":
+            t = load_json(os.path.join(runs, "reference", f"{key}_{h}.json"))["timings"]
+            cpu[h] = t["render_call_cpu_seconds"]
+            rows[f"half_{h}"] = {"spp": reference_spp[key] // 2, "cpu_seconds": cpu[h],
+                                 "relative_rmse": relative_rmse(read_exr(os.path.join(runs, "reference", f"{key}_{h}.exr")),
+                                                                refs["ours"])}
+        rows["mean"] = {"spp": reference_spp[key], "cpu_seconds": cpu["a"] + cpu["b"],
+                        "relative_rmse": relative_rmse(refs[key], refs["ours"])}
+        references_against_phyir[key] = rows
     report = {"name": name, "reference_spp": reference_spp, "noise_constant": noise,
+              "references_against_phyir": references_against_phyir,
               "reference_noise": {k: noise[k] / math.sqrt(reference_spp[k]) for k in keys},
+              "reference_noise_measured": halves,
               "agreement": agreement, "depth": depth_agreement(runs),
               "nonfinite_samples_caught_phyir": sum(p["nonfinite"] for p in points if p["renderer"] == "ours"),
               "time_to_error": summary}
@@ -336,7 +387,7 @@ def analyse(args):
         axes[row, 0].set_ylabel("relative RMSE")
     axes[0, 0].legend(fontsize=8)
     cpu = next((line.split(": ", 1)[1] for line in machine.splitlines() if line.startswith("cpu:")), "")
-    fig.suptitle(f"phyir vs Cycles, {name} room, {refs['ours'].shape[1]}x{refs['ours'].shape[0]} "
+    fig.suptitle(f"phyir vs Cycles, {args.title or name + ' room'}, {refs['ours'].shape[1]}x{refs['ours'].shape[0]} "
                  f"equirect, {cpu}", fontsize=9)
     fig.tight_layout()
     fig.savefig(os.path.join(args.figures, f"cycles_{name}.png"), dpi=100)
@@ -378,6 +429,26 @@ def analyse(args):
         print(f'  converged {key} vs phyir: relative RMSE {a["relative_rmse"]:.4f} '
               f'(noise alone ~{a["expected_from_noise"]:.4f}), mean ratio {np.round(a["mean_ratio_rgb"], 4)}')
     print(f'  depth: {report["depth"]}')
+    for key, rows in references_against_phyir.items():
+        for label, row in rows.items():
+            print(f'  {key} reference {label} ({row["spp"]} spp, {row["cpu_seconds"]:.1f} CPU s) against '
+                  f'phyir\'s reference: relative RMSE {row["relative_rmse"]:.4f}')
+    for key, h in halves.items():
+        print(f'  {key} reference: half references differ by {h["halves_relative_rmse"]:.4f}, so the '
+              f'reference (their mean) has relative RMSE ~{h["reference_relative_rmse"]:.4f}')
+
+
+def average(args):
+    """Mean of two EXR images (RGB), written as float RGB."""
+    a, b = read_exr(args.a), read_exr(args.b)
+    if a.shape != b.shape:
+        sys.exit(f"{args.a}, {args.b}: sizes differ ({a.shape} against {b.shape})")
+    mean = np.ascontiguousarray((a.astype(np.float64) + b) / 2)  # read_exr picks channels: a strided view
+    spec = oiio.ImageSpec(mean.shape[1], mean.shape[0], 3, oiio.FLOAT)
+    out = oiio.ImageOutput.create(args.out)
+    if out is None or not out.open(args.out, spec) or not out.write_image(mean.astype(np.float32)):
+        sys.exit(f"{args.out}: cannot write ({oiio.geterror()})")
+    out.close()
 
 
 def main():
@@ -394,8 +465,17 @@ def main():
     an.add_argument("--modes", default="principled,ue4")
     an.add_argument("--targets", default=DEFAULT_TARGETS, help="relative RMSE levels to time")
     an.add_argument("--reference-spp", required=True, help="ours=4096,cycles_principled=4096,...")
+    an.add_argument("--phyir-sweep", default="sweep", help="folder of RUNS holding phyir's sweep renders")
+    an.add_argument("--machine", default="machine.txt", help="file of RUNS describing the machine")
+    an.add_argument("--title", default="", help="scene name in the figure's title (default: NAME room)")
+    av = sub.add_parser("average")
+    av.add_argument("out")
+    av.add_argument("a")
+    av.add_argument("b")
     args = parser.parse_args()
-    if args.command == "camera":
+    if args.command == "average":
+        average(args)
+    elif args.command == "camera":
         p = camera_position(args.scene)
         print(f"{p[0]:.6g},{p[1]:.6g},{p[2]:.6g}")
     else:

@@ -61,33 +61,7 @@ cycles_spp_of() {  # MODE-INDEX
 mkdir -p "$runs"/{scene,align,reference,sweep} "$figures"
 log() { echo "[compare.sh $(date +%H:%M:%S)] $*" >&2; }
 
-# Wall and CPU seconds of a whole process, for the totals.
-timed() {
-  local out="$1"; shift
-  /usr/bin/time -f '{"wall_seconds": %e, "user_seconds": %U, "system_seconds": %S}' -o "$out" "$@"
-}
-
-# Cycles: `max_bounces = B` renders our `--max-bounces B + 1` (it counts bounces after the
-# first hit); ours is 8, Russian roulette from bounce 3.
-ours_bounces=8
-cycles_bounces=$((ours_bounces - 1))
-
-render_ours() {  # DIR SPP SEED [extra flags]
-  local dir="$1" spp="$2" seed="$3"; shift 3
-  [[ -f "$dir/render.json" ]] && return 0
-  timed "$dir.time.json" "$PHYIR" render "$scene" --out "$dir" --width "$width" --height "$height" \
-    --spp "$spp" --seed "$seed" --camera="$camera" --max-bounces "$ours_bounces" --threads "$threads" --quiet "$@" >/dev/null
-}
-
-render_cycles() {  # OUT.exr SPP SEED MODE [extra flags]
-  local out="$1" spp="$2" seed="$3" mode="$4"; shift 4
-  [[ -f "${out%.exr}.json" ]] && return 0
-  timed "${out%.exr}.time.json" "$BLENDER" -b --factory-startup -noaudio -t "$threads" \
-    --python "$ROOT/scripts/cycles/render_cycles.py" -- --gltf "$scene" --out "$out" \
-    --width "$width" --height "$height" --samples "$spp" --seed "$seed" --bounces "$cycles_bounces" \
-    --camera="$camera" --threads "$threads" --materials "$mode" "$@" >"${out%.exr}.log" 2>&1 ||
-    { echo "compare.sh: Cycles failed, see ${out%.exr}.log" >&2; tail -20 "${out%.exr}.log" >&2; exit 1; }
-}
+source "$ROOT/scripts/cycles/common.sh"
 
 # 1. The scene: one generated room.
 if ! ls "$runs"/scene/room_*.gltf >/dev/null 2>&1; then
@@ -98,15 +72,7 @@ scene="$(ls "$runs"/scene/room_*.gltf | head -1)"
 camera="$("$PYTHON" "$ROOT/scripts/cycles/compare.py" camera "$scene")"
 log "scene $scene, camera at $camera, ${width}x${height}"
 
-{
-  echo "date: $(date -Iseconds)"
-  echo "cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ //'), $(nproc) cores"
-  echo "load average at start: $(cut -d' ' -f1-3 /proc/loadavg)"
-  echo "phyir: $PHYIR ($("$PHYIR" --version 2>/dev/null | head -1), built $(date -r "$PHYIR" -Iseconds)); scripts from $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)"
-  echo "blender: $("$BLENDER" --version 2>/dev/null | head -1)"
-  echo "threads: $threads; ours --max-bounces $ours_bounces, Cycles max_bounces $cycles_bounces"
-  echo "spp: $spp_list; references: phyir $reference_spp spp, Cycles ($modes) $cycles_reference_spp spp; repeats $repeats"
-} >"$runs/machine.txt"
+write_machine "$runs/machine.txt" <<<"spp: $spp_list; references: phyir $reference_spp spp, Cycles ($modes) $cycles_reference_spp spp; repeats $repeats"
 
 # 2. Alignment: our AOVs and a Cycles render with its depth pass.
 render_ours "$runs/align/ours" 16 7

@@ -140,15 +140,18 @@ def rebuild_as_ue4(material):
       specular lobe with F0 = 0.04 for dielectrics and the base colour for metals,
     + the emission, unchanged.
     What stays different: Cycles' exact Smith G instead of Schlick's k = (R + 1)^2 / 8 and its
-    Fresnel interpolation instead of Schlick's. Glass (transmission > 0) is left as imported.
+    Fresnel interpolation instead of Schlick's.
+    Glass (KHR_materials_transmission, Principled "Transmission" > 0) becomes what phyir renders
+    (docs/conventions.md, material model): the terms above mixed with a smooth Glass BSDF
+    (distribution SHARP, the material's IOR, colour = base colour) by the transmission factor;
+    phyir ignores the roughness for the refractive lobe, so the glass is sharp here too. Left
+    different: Cycles' Glass colour tints its reflection as well, phyir's tint only the refraction.
     """
     tree = material.node_tree
     principled = next((n for n in tree.nodes if n.bl_idname == "ShaderNodeBsdfPrincipled"), None)
     if principled is None:
         return False
     transmission = input_source(principled.inputs["Transmission"])
-    if transmission[0] is not None or transmission[1] > 0.0:
-        return False
     output = next(n for n in tree.nodes if n.bl_idname == "ShaderNodeOutputMaterial")
     base = input_source(principled.inputs["Base Color"])
     metallic = input_source(principled.inputs["Metallic"])
@@ -183,7 +186,20 @@ def rebuild_as_ue4(material):
     add = tree.nodes.new("ShaderNodeAddShader")
     tree.links.new(diffuse.outputs["BSDF"], add.inputs[0])
     tree.links.new(specular.outputs["BSDF"], add.inputs[1])
-    tree.links.new(add.outputs["Shader"], output.inputs["Surface"])
+    surface = add.outputs["Shader"]
+    if transmission[0] is not None or transmission[1] > 0.0:
+        glass = tree.nodes.new("ShaderNodeBsdfGlass")
+        glass.distribution = "SHARP"
+        connect(tree, base, glass.inputs["Color"])
+        connect(tree, input_source(principled.inputs["IOR"]), glass.inputs["IOR"])
+        if normal[0] is not None:
+            tree.links.new(normal[0], glass.inputs["Normal"])
+        mix = tree.nodes.new("ShaderNodeMixShader")  # (1 - t) BRDF + t glass
+        connect(tree, transmission, mix.inputs["Fac"])
+        tree.links.new(surface, mix.inputs[1])
+        tree.links.new(glass.outputs["BSDF"], mix.inputs[2])
+        surface = mix.outputs["Shader"]
+    tree.links.new(surface, output.inputs["Surface"])
     return True
 
 
