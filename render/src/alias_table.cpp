@@ -45,12 +45,23 @@ AliasTable::AliasTable(const std::vector<float>& weights) : bins_(weights.size()
   }
 }
 
+int AliasTable::bin_of(float u_bin) const {
+  return std::clamp(static_cast<int>(u_bin * static_cast<float>(bins_.size())), 0, size() - 1);
+}
+
+int AliasTable::prefetch(float u_bin) const {
+  if (empty()) return -1;
+  const int i = bin_of(u_bin);
+  __builtin_prefetch(&bins_[size_t(i)]);
+  return i;
+}
+
 int AliasTable::sample(float u_bin, float u_keep, float* pmf, float* remapped) const {
   if (empty()) {
     if (pmf) *pmf = 0.0f;
     return -1;
   }
-  const int i = std::clamp(static_cast<int>(u_bin * static_cast<float>(bins_.size())), 0, size() - 1);
+  const int i = bin_of(u_bin);
   const float frac = std::clamp(u_keep, 0.0f, kOneMinusEpsilon);
   const Bin& b = bins_[size_t(i)];
   if (frac < b.keep) {

@@ -83,6 +83,11 @@ bool EnvironmentLight::sample(const glm::vec3& u, glm::vec3* direction, glm::vec
   return *pdf > 0.0f;
 }
 
+void EnvironmentLight::prefetch(const glm::vec3& u) const {
+  const int texel = choice_.prefetch(u.x);
+  if (texel >= 0) __builtin_prefetch(&texels_[size_t(texel)]);
+}
+
 float EnvironmentLight::pdf(const glm::vec3& direction) const {
   if (choice_.empty()) return 0.0f;
   const glm::ivec2 t = texel_of(direction, width_, height_);

@@ -29,6 +29,7 @@ class PathKernel {
     previous_position_ = ray_.origin;
     ++counters_->paths;
     for (int bounce = 0;; ++bounce) {
+      if constexpr (kEnvironment) draw_environment_variates(bounce);
       SurfaceInteraction si;
       if (bounce == 0 && start.hit) {
         si = *start.hit;  // its emission is the caller's
@@ -107,12 +108,19 @@ class PathKernel {
       L_ += sample_emitter_light(scene_, x, u, DirectLightOptions{}, beta_, nullptr, counters_);
     }
     if constexpr (kEnvironment) {
-      if (environment_) {
-        Rng rng = stream(key_, Purpose::kPathEnvironment, uint64_t(bounce));
-        const float u_texel = rng.next_float();  // its own statement: argument order is unspecified
-        L_ += sample_environment_light(scene_, x, glm::vec3(u_texel, rng.next_2d()), beta_, counters_);
-      }
+      if (environment_) L_ += sample_environment_light(scene_, x, environment_u_, beta_, counters_);
     }
+  }
+
+  // The environment sample's numbers for the vertex the next ray finds, drawn before that
+  // ray is traced: the sky's alias bin and texel they select (cache misses in a large map)
+  // load while Embree works.
+  void draw_environment_variates(int bounce) {
+    if (!environment_) return;
+    Rng rng = stream(key_, Purpose::kPathEnvironment, uint64_t(bounce));
+    const float u_texel = rng.next_float();  // its own statement: argument order is unspecified
+    environment_u_ = glm::vec3(u_texel, rng.next_2d());
+    environment_->prefetch(environment_u_);
   }
 
   // The next ray, by sampling the BRDF.
@@ -167,6 +175,7 @@ class PathKernel {
   bool previous_delta_ = true;  // the first ray counts as a delta "bounce": no MIS
   float previous_pdf_ = 0.0f;
   glm::vec3 previous_position_{0.0f};
+  glm::vec3 environment_u_{0.0f};  // draw_environment_variates' numbers for this bounce
 };
 
 template <bool kEmitters, bool kEnvironment, bool kTransmission>

@@ -16,6 +16,16 @@
 namespace phyir::render {
 namespace {
 
+TEST(PixelSampler, SobolDimension1ByteTablesEqualTheBitwiseMatrix) {
+  Rng rng(7, 3);
+  for (uint32_t i : {0u, 1u, 2u, 3u, 255u, 256u, 0x80000000u, 0xffffffffu})
+    EXPECT_EQ(sobol_dimension1(i), sobol_dimension1_bitwise(i)) << i;
+  for (int k = 0; k < 100000; ++k) {
+    const uint32_t i = rng.next_u32();
+    ASSERT_EQ(sobol_dimension1(i), sobol_dimension1_bitwise(i)) << i;
+  }
+}
+
 TEST(PixelSampler, EveryPowerOfTwoPrefixHasOnePointInEachElementaryRectangle) {
   for (uint64_t key : {0ull, 1ull, 0x123456789abcdefull, ~0ull}) {
     for (int log2n = 0; log2n <= 8; ++log2n) {

@@ -3,6 +3,7 @@
 // itself reproduces textbook p-values and rejects a wrong pdf.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -257,6 +258,34 @@ void expect_draws_match_weights() {
 
 TEST(SamplingDistribution1D, MatchesWeightsAndSkipsZeroBins) { expect_draws_match_weights<Distribution1D>(); }
 TEST(SamplingAliasTable, MatchesWeightsAndSkipsZeroBins) { expect_draws_match_weights<AliasTable>(); }
+
+// The branch-free search finds the bin std::upper_bound finds over the same cdf (built here
+// as the constructor builds it), at random u, at the cdf's own edges and at the ends, for
+// sizes around powers of two and with runs of zero weights.
+TEST(SamplingDistribution1D, SearchFindsUpperBoundsBin) {
+  Rng rng(41, 2);
+  for (int n : {1, 2, 3, 4, 5, 7, 8, 9, 16, 17, 31, 100, 1000, 1023, 1025}) {
+    std::vector<float> w(static_cast<size_t>(n));
+    for (float& x : w) x = rng.next_float() < 0.3f ? 0.0f : rng.next_float();
+    w[size_t(rng.below(uint32_t(n)))] = 1.0f;
+    std::vector<float> cdf(w.size() + 1, 0.0f);
+    double sum = 0.0;
+    for (size_t i = 0; i < w.size(); ++i) cdf[i + 1] = float(sum += w[i]);
+    for (float& c : cdf) c = float(c / sum);
+    cdf.back() = 1.0f;
+    const Distribution1D d(w);
+    std::vector<float> us = {0.0f, 0x1.fffffep-1f};
+    for (float c : cdf) us.push_back(c);
+    for (int k = 0; k < 2000; ++k) us.push_back(rng.next_float());
+    for (float u : us) {
+      if (!(u < 1.0f)) continue;
+      int expected = int(std::upper_bound(cdf.begin() + 1, cdf.end(), u) - cdf.begin()) - 1;
+      expected = std::clamp(expected, 0, n - 1);
+      while (expected > 0 && w[size_t(expected)] == 0.0f) --expected;
+      ASSERT_EQ(d.sample(u), expected) << "n " << n << ", u " << u;
+    }
+  }
+}
 
 // A large table of very unequal weights (an HDR sky with a sun): pmfs as given, and the
 // draws' histogram matches them.

@@ -17,6 +17,10 @@ class AliasTable {
   // -1 when empty. `remapped`: u_keep rescaled to [0,1) within the decision it made.
   int sample(float u_bin, float u_keep, float* pmf = nullptr, float* remapped = nullptr) const;
   float pmf(int index) const;
+  // Starts loading the bin `u_bin` will read (sample()'s first uniform) and returns its
+  // index: a large table misses the cache at every draw, so a caller that knows its uniform
+  // early hides that wait behind other work (a ray being traced). -1 when empty.
+  int prefetch(float u_bin) const;
   int size() const { return static_cast<int>(bins_.size()); }
   bool empty() const { return !(total_ > 0.0); }
   double total() const { return total_; }
@@ -30,6 +34,7 @@ class AliasTable {
     float pmf = 0.0f;
     float alias_pmf = 0.0f;
   };
+  int bin_of(float u_bin) const;
   std::vector<Bin> bins_;
   double total_ = 0.0;
 };

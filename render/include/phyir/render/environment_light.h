@@ -24,6 +24,10 @@ class EnvironmentLight {
   // remapped, u.z). Returns false if the environment is black everywhere.
   bool sample(const glm::vec3& u, glm::vec3* direction, glm::vec3* radiance, float* pdf) const;
   float pdf(const glm::vec3& direction) const;
+  // Starts loading what sample(u) reads first (its alias bin and that bin's own texel): with
+  // a sky of 2^19 texels both are cache misses, which a caller hides by asking for them
+  // before it traces a ray and sampling after.
+  void prefetch(const glm::vec3& u) const;
   int width() const { return width_; }
   int height() const { return height_; }
 

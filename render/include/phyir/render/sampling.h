@@ -40,6 +40,7 @@ class Distribution1D {
   bool empty() const { return total_ <= 0.0f; }
 
  private:
+  const float* upper_edge(float u) const;  // the first cdf_[i > 0] above u, or the end
   std::vector<float> weights_;
   std::vector<float> cdf_;  // size() + 1 entries, cdf_[0] = 0, cdf_.back() = 1
   float total_ = 0.0f;
