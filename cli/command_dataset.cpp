@@ -101,7 +101,7 @@ void add_settings_options(CLI::App* cmd, SettingsFlags& f) {
   opt(cmd->add_option("--probe-cache-direct-cells", f.probe_cache_direct_cells,
                       "cache mode: cache direct light this many cells from every emitter (0: never) [6]"));
   opt(cmd->add_option("--probe-spread-threshold", f.probe_spread_threshold,
-                      "cache mode: texels whose first samples spread over more than this times their mean get 8x the samples [0.75]"));
+                      "cache mode: texels whose first samples spread over more than this times their mean get 6x the samples [0.75]"));
   opt(cmd->add_option("--probe-share-radius", f.probe_share_radius,
                       "cache mode: average texels with same-surface probes up to this many grid cells away (0: off) [1]"));
   opt(cmd->add_option("--probe-share-parallax", f.probe_share_parallax,

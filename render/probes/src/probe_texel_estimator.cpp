@@ -211,7 +211,10 @@ glm::vec3 TexelEstimator::terminal(const SurfaceInteraction& si, const glm::vec3
   glm::vec3 L(0.0f);
   const glm::vec3 lobe = mean_brdf(p, x.wo.z);
   const CachedIrradiance E = lookup(si, x, depth, key, c);
-  if (E.has_direct) return lobe * (E.indirect + E.all_direct());  // the whole lobe as if lit uniformly
+  // The whole lobe as if lit uniformly, the punctual lights' irradiance taken at y itself:
+  // their hard shadows (a window's frame in the sun), blurred by the cache, are what a
+  // polished surface reflects sharply.
+  if (E.has_direct) return lobe * (E.indirect + E.direct + punctual_at(x, E, c));
   // Light sampling alone: no BRDF-sampled ray at a chain's end competes for the emitters.
   DirectLightOptions nee;
   nee.mis = false;

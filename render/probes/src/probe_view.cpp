@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <limits>
 
@@ -221,9 +222,13 @@ void ProbeView::shade_tile(const std::vector<size_t>& tile, int pass, Worker* w)
     w->tile[m].p = todo_[tile[m]];
     prepare_probe(&w->tile[m], pass);
   }
+  for (TileProbe& probe : w->tile) probe.texels.assign(size_t(texels_), TexelState());
   for (int t = 0; t < texels_; ++t)
     for (TileProbe& probe : w->tile)
-      if (in_pass(probe, t, pass)) shade_texel(probe, t, pass, w);
+      if (in_pass(probe, t, pass)) first_look(probe, t, pass, w);
+  for (int t = 0; t < texels_; ++t)
+    for (TileProbe& probe : w->tile)
+      if (in_pass(probe, t, pass)) finish_texel(probe, t, w);
   if (pass == 0 && correct_foot_)
     for (const TileProbe& probe : w->tile)
       feet_[probe.k] = FootCorrection::measure(*cache_, out_.sites[size_t(probe.p)], probe.measured);
@@ -260,84 +265,109 @@ void ProbeView::prepare_probe(TileProbe* probe, int pass) const {
   probe->foot = pass == 1 ? feet_[probe->k].less(common_difference_) : FootCorrection();
 }
 
-// Hard texels (the first samples met glass, a glossy surface or a light whose emission is
-// not estimated apart, or their values spread over more than spread_threshold x (their
-// mean + a floor): the texel straddles an edge or a highlight) are estimated again from
-// hard_spp_factor x spp fresh samples. No decision looks at the samples it selects, so none
-// biases the value.
-void ProbeView::shade_texel(TileProbe& probe, int t, int pass, Worker* w) {
+// A texel's first samples, then its final value: hard texels (the first samples met glass,
+// a glossy surface or a light whose emission is not estimated apart; or they spread over
+// more than spread_threshold x (their mean + a floor); or the texel's first value steps by
+// as much from a neighbour's: an edge, a highlight, a shadow boundary or a sun patch runs
+// through it) are estimated again from hard_spp_factor x spp fresh samples. The neighbours'
+// test finds the texels whose few first samples all fell on one side of an edge: a sun
+// patch's rim seen from a ceiling probe, a lamp shade lit from inside seen from the floor.
+// No decision looks at the samples it selects, so none biases the value.
+void ProbeView::first_look(TileProbe& probe, int t, int pass, Worker* w) {
   const int row = t / layout_.res_width, col = t % layout_.res_width;
-  Texel x{&probe, t, row, col, ProbeTexel(row, col, layout_.res_height, layout_.res_width),
-          pass == 0 && correct_foot_ ? &probe.measured : nullptr, std::numeric_limits<float>::infinity()};
-  glm::vec3 value(0.0f), seen_emission(0.0f);
-  bool supersampled = false;
+  TexelState& s = probe.texels[size_t(t)];
+  s = TexelState{Texel{&probe, t, row, col, ProbeTexel(row, col, layout_.res_height, layout_.res_width),
+                       pass == 0 && correct_foot_ ? &probe.measured : nullptr, std::numeric_limits<float>::infinity()}};
+  s.looked = true;
   if (probe.lit[size_t(t)] != 0) {
-    value = shade_lit_texel(x, w, &seen_emission, &supersampled);
-  } else {
-    value = shade_rest(x, Part::kAll, glm::vec3(0.0f), w, &supersampled);
+    s.part = Part::kRest;
+    if (look_at_light(s, w)) return;  // a light's outline: supersampled from the start
   }
-  if (x.measure)
-    x.measure->add_texel(x.cos_all, x.cos_emitted, equirect_texel_solid_angle(row, layout_.res_width, layout_.res_height));
-  store_texel(x, value, seen_emission, supersampled, w);
+  s.first = estimate(s.x, 0, settings_.spp, s.part, &s.hard, &s.spread, w);
+  s.x.samples = settings_.spp;
 }
 
-glm::vec3 ProbeView::shade_rest(Texel& x, Part part, const glm::vec3& exact, Worker* w, bool* supersampled) {
+void ProbeView::finish_texel(TileProbe& probe, int t, Worker* w) {
+  TexelState& s = probe.texels[size_t(t)];
+  glm::vec3 value = s.done ? s.first : settle(probe, t, w);
+  Texel& x = s.x;
+  if (s.part == Part::kRest) {  // the texel's whole light: its rest and its emission
+    x.cos_all += s.exact_cos;
+    x.cos_emitted = s.exact_cos;
+  }
+  if (x.measure)
+    x.measure->add_texel(x.cos_all, x.cos_emitted, equirect_texel_solid_angle(x.row, layout_.res_width, layout_.res_height));
+  store_texel(x, value, s.exact, w);
+}
+
+glm::vec3 ProbeView::settle(TileProbe& probe, int t, Worker* w) {
+  TexelState& s = probe.texels[size_t(t)];
   const int spp = settings_.spp;
-  bool hard = false;
-  float spread = 0.0f;
-  glm::vec3 value = estimate(x, 0, spp, part, &hard, &spread, w);
   // The spread is judged against the texel's whole value: light it has exactly (the
   // emission seen directly, estimated apart) makes the same spread matter less.
-  if (spp > 1 && spread > settings_.spread_threshold * (luminance(value) + luminance(exact) + dark_floor_)) hard = true;
-  *supersampled = hard && adaptive_;
-  if (*supersampled) {
-    bool unused = false;
-    value = estimate(x, spp, spp * settings_.hard_spp_factor, part, &unused, nullptr, w);
-    ++w->stats.supersampled_texels;
+  const float limit = settings_.spread_threshold * (luminance(s.first) + luminance(s.exact) + dark_floor_);
+  const float step = s.part == Part::kAll ? neighbour_step(probe, t) : 0.0f;
+  const bool hard = s.hard || (spp > 1 && s.spread > limit) || step > limit;
+  if (!hard || !adaptive_) return s.first;
+  ++w->stats.supersampled_texels;
+  bool unused = false;
+  s.x.samples = spp * settings_.hard_spp_factor;
+  return estimate(s.x, spp, s.x.samples, s.part, &unused, nullptr, w);
+}
+
+float ProbeView::neighbour_step(const TileProbe& probe, int t) const {
+  // The 8 neighbours in the probe's image (columns wrap round), those of the same pass whose
+  // first value is plain (no light estimated apart).
+  const int row = t / layout_.res_width, col = t % layout_.res_width;
+  const float own = luminance(probe.texels[size_t(t)].first);
+  float step = 0.0f;
+  for (int dr = -1; dr <= 1; ++dr) {
+    const int r = row + dr;
+    if (r < 0 || r >= layout_.res_height) continue;
+    for (int dc = -1; dc <= 1; ++dc) {
+      const int c = (col + dc + layout_.res_width) % layout_.res_width;
+      const TexelState& n = probe.texels[size_t(r * layout_.res_width + c)];
+      if (!n.looked || n.part != Part::kAll || (dr == 0 && dc == 0)) continue;
+      step = std::max(step, std::abs(luminance(n.first) - own));
+    }
   }
-  return value;
+  return step;
 }
 
 // A texel a light may cover (EmitterFootprints): the emission seen first is estimated apart
 // (partial coverage of a light is the largest error otherwise), the rest from its own
 // samples. Where a light's outline crosses the texel the rest straddles it (the light's
 // reflection on one side, what lies beyond on the other) and is supersampled from the
-// start; elsewhere the light covers the texel wholly or not at all, and the rest is hard
-// only by its own first samples, as in any texel.
-glm::vec3 ProbeView::shade_lit_texel(Texel& x, Worker* w, glm::vec3* seen_emission, bool* supersampled) {
+// start (returns true); elsewhere the light covers the texel wholly or not at all, and the
+// rest is hard only by its own first samples, as in any texel.
+bool ProbeView::look_at_light(TexelState& s, Worker* w) {
   const int spp = settings_.spp, hard_spp = spp * settings_.hard_spp_factor;
+  Texel& x = s.x;
   TileProbe& probe = *x.probe;
   const bool edge = probe.lit[size_t(x.t)] == EmitterFootprints::kEdge;
-  glm::vec3 seen_emission_cos(0.0f);
   const uint64_t rays_before = w->stats.counters.rays;
   if (probe.analytic) {
     probe.lights.texel_pieces(x.row, x.col, layout_.res_height, layout_.res_width, &w->pieces);
     Rng rng = item_stream(probe_seed_, texel_id(probe.p, x.t), Purpose::kProbeLightPart);
-    *seen_emission = visible_emission(probe.lights, w->pieces, scene_.accelerator(), out_.sites[size_t(probe.p)].origin,
-                                      spp * (edge ? kLightPartEdgeSppFactor : kLightPartSppFactor), rng, probe.measured,
-                                      &seen_emission_cos, &w->strata, &w->stats.counters.rays);
+    s.exact = visible_emission(probe.lights, w->pieces, scene_.accelerator(), out_.sites[size_t(probe.p)].origin,
+                               spp * (edge ? kLightPartEdgeSppFactor : kLightPartSppFactor), rng, probe.measured,
+                               &s.exact_cos, &w->strata, &w->stats.counters.rays);
   } else {
     bool unused = false;
-    *seen_emission = estimate(x, spp + hard_spp, spp * (edge ? kEmissionEdgeSppFactor : kEmissionSppFactor),
-                              Part::kEmission, &unused, nullptr, w);
-    seen_emission_cos = x.cos_emitted;
+    s.exact = estimate(x, spp + hard_spp, spp * (edge ? kEmissionEdgeSppFactor : kEmissionSppFactor), Part::kEmission,
+                       &unused, nullptr, w);
+    s.exact_cos = x.cos_emitted;
   }
   w->stats.emission_rays += w->stats.counters.rays - rays_before;
-  glm::vec3 value;
-  if (edge) {
-    bool unused = false;
-    value = estimate(x, spp, hard_spp, Part::kRest, &unused, nullptr, w);
-    *supersampled = true;
-    ++w->stats.supersampled_texels;
-  } else {
-    value = shade_rest(x, Part::kRest, *seen_emission, w, supersampled);
-  }
-  // The texel's whole light: its rest (no emission seen first) and its emission.
-  x.cos_all += seen_emission_cos;
-  x.cos_emitted = seen_emission_cos;
   w->stats.light_edge_texels += edge;
   ++w->stats.light_texels;
-  return value;
+  if (!edge) return false;
+  bool unused = false;
+  s.first = estimate(x, spp, hard_spp, Part::kRest, &unused, nullptr, w);
+  x.samples = hard_spp;
+  s.done = true;
+  ++w->stats.supersampled_texels;
+  return true;
 }
 
 // `spread` (if given) receives the range of the samples' luminances; x.cos_all and
@@ -377,8 +407,7 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* s
   return glm::vec3(sum / double(count));
 }
 
-void ProbeView::store_texel(const Texel& x, glm::vec3 value, const glm::vec3& seen_emission, bool supersampled,
-                            Worker* w) {
+void ProbeView::store_texel(const Texel& x, glm::vec3 value, const glm::vec3& seen_emission, Worker* w) {
   // The specular control variate's corrections can be negative on their own; a texel whose
   // mean still is (dark, grazing, few directions) is clamped to 0, and counted.
   if (glm::min(value.x, glm::min(value.y, value.z)) < 0.0f) {
@@ -389,7 +418,7 @@ void ProbeView::store_texel(const Texel& x, glm::vec3 value, const glm::vec3& se
   const uint64_t id = texel_id(p, x.t);
   if (share_) {
     records_.distance[size_t(id)] = x.distance;
-    records_.samples[size_t(id)] = float(supersampled ? settings_.spp * settings_.hard_spp_factor : settings_.spp);
+    records_.samples[size_t(id)] = float(x.samples);
     // Emission seen directly is not shared: a light's edge moves across a texel with the
     // slightest parallax, and its own directions already resolve it.
     if (x.probe->lit[size_t(x.t)]) w->emission_seen.push_back({id, seen_emission});

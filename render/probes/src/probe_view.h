@@ -6,8 +6,9 @@
 //   build_cache           discovery rays from every texel, then the radiance cache's fill
 //   shade_pass            every tile in parallel (twice with the foot correction: the texels
 //                         that may look to the front, then those facing the probe's surface)
-//     shade_tile          a tile's probes texel by texel across the tile
-//       shade_texel       one texel: its first samples, then the hard texels' extra samples
+//     shade_tile          a tile's probes texel by texel across the tile, twice:
+//       first_look        every texel's first samples (and a lit texel's emission seen directly)
+//       finish_texel      its value: hard texels (by their samples or their neighbours') resampled
 //   correct_feet          the cache's error at each probe's foot, less the common part
 //   share_between_neighbours  texels averaged with neighbouring probes' on one surface
 #include <memory>
@@ -34,6 +35,7 @@ class ProbeView {
   ProbeOutput run();
 
  private:
+  struct TexelState;
   // A probe of the tile being shaded: what its texels share.
   struct TileProbe {
     size_t k = 0;  // index into todo_
@@ -44,6 +46,7 @@ class ProbeView {
     bool analytic = false;
     FootIrradiance measured{glm::vec3(0.0f, 0.0f, 1.0f)};
     FootCorrection foot;
+    std::vector<TexelState> texels;  // the pass's texels between their first samples and their value
   };
   // One thread's working memory and statistics.
   struct Worker {
@@ -55,30 +58,46 @@ class ProbeView {
   };
   // A texel being shaded.
   struct Texel {
-    TileProbe* probe;
-    int t, row, col;
-    ProbeTexel cone;
-    FootIrradiance* measure;  // where its cosine-weighted light goes (pass 0 of the correction)
-    float distance;           // its nearest hit
+    TileProbe* probe = nullptr;
+    int t = 0, row = 0, col = 0;
+    ProbeTexel cone{0, 0, 1, 1};
+    FootIrradiance* measure = nullptr;  // where its cosine-weighted light goes (pass 0 of the correction)
+    float distance = 0.0f;              // its nearest hit
     glm::vec3 cos_all{0.0f}, cos_emitted{0.0f};
+    int samples = 0;          // directions its value (apart from the emission seen directly) took
   };
   using Part = TexelEstimator::Part;
+  // A texel between its first samples and its final value.
+  struct TexelState {
+    Texel x;
+    bool looked = false;       // its first samples are in (it is in the pass being shaded)
+    Part part = Part::kAll;    // kRest where a light's emission is estimated apart
+    glm::vec3 first{0.0f};     // mean of the first samples (final where `done`)
+    float spread = 0.0f;       // their luminances' range
+    bool hard = false;         // they met glass, a glossy surface or a light
+    bool done = false;         // a light's outline: supersampled from the start
+    glm::vec3 exact{0.0f};     // the emission seen directly, estimated apart
+    glm::vec3 exact_cos{0.0f}; // its cosine-weighted mean (FootIrradiance)
+  };
 
   void select_probes();
   void build_cache();
   void shade_pass(int pass);
   void shade_tile(const std::vector<size_t>& tile, int pass, Worker* w);
   void prepare_probe(TileProbe* probe, int pass) const;
-  void shade_texel(TileProbe& probe, int t, int pass, Worker* w);
-  // A texel's `part` from spp samples, or from hard_spp fresh ones where those were hard;
-  // `exact` is the light the texel has apart from them (the emission seen directly).
-  glm::vec3 shade_rest(Texel& x, Part part, const glm::vec3& exact, Worker* w, bool* supersampled);
-  // A lit texel's light: the emission seen directly apart, the rest by shade_rest (from
-  // hard_spp samples from the start where a light's outline crosses the texel).
-  glm::vec3 shade_lit_texel(Texel& x, Worker* w, glm::vec3* seen_emission, bool* supersampled);
-  // The mean of `count` fresh samples from sample id `first` on, stratified over the texel.
+  // A texel's first spp samples (and a lit texel's emission seen directly), then, once every
+  // texel of the probe has them, its final value: hard texels from fresh samples.
+  void first_look(TileProbe& probe, int t, int pass, Worker* w);
+  void finish_texel(TileProbe& probe, int t, Worker* w);
+  // The value of a texel whose first samples are in: them, or hard_spp fresh ones.
+  glm::vec3 settle(TileProbe& probe, int t, Worker* w);
+  // The largest difference between a plain texel's first value and its neighbours' (luminance).
+  float neighbour_step(const TileProbe& probe, int t) const;
+  // A lit texel's emission seen directly; true (and its value final) where a light's
+  // outline crosses it.
+  bool look_at_light(TexelState& s, Worker* w);
   glm::vec3 estimate(Texel& x, int first, int count, Part part, bool* saw_hard, float* spread, Worker* w);
-  void store_texel(const Texel& x, glm::vec3 value, const glm::vec3& seen_emission, bool supersampled, Worker* w);
+  void store_texel(const Texel& x, glm::vec3 value, const glm::vec3& seen_emission, Worker* w);
   void correct_feet();
   void share_between_neighbours();
 

@@ -368,7 +368,8 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
                                          const glm::vec2& u_light, uint64_t key, PathCounters* counters) const {
   // Indirect: what arrives from surfaces after scattering at least once (the emission of
   // the surface a direction hits is direct light), plus the environment. One
-  // cosine-distributed direction: cos / pdf = pi. Direct (if asked): one light sample and
+  // cosine-distributed direction: cos / pdf = pi; the environment also by a sample of its
+  // own, power heuristic. Direct (if asked): one light sample and
   // the same cosine direction's emission, power heuristic.
   CachedIrradiance out;
   out.has_direct = direct;
@@ -390,15 +391,17 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
     else ++counters->nonfinite_samples;
   }
   const Frame frame(ns);
+  const EnvironmentLight* environment = scene.environment();
+  glm::vec3 E = environment ? environment_irradiance(point, frame, key, counters) : glm::vec3(0.0f);
   const glm::vec3 local = sample_cosine_hemisphere(u);
   const glm::vec3 wi = frame.to_world(local);
-  if (!(local.z >= kMinCosine) || glm::dot(wi, ng) <= 0.0f) return out;
+  if (!(local.z >= kMinCosine) || glm::dot(wi, ng) <= 0.0f) return finish_indirect(E, &out, counters);
   const Ray ray{spawn_origin(point.position, ng, wi), wi};
   SurfaceInteraction si;
   ++counters->rays;
-  glm::vec3 E(0.0f);
   if (!scene.trace(ray, &si)) {
-    if (scene.environment()) E = kPi * scene.environment()->radiance(wi);
+    // The environment seen by the cosine ray, weighted against its own sample.
+    if (environment) E += environment->radiance(wi) * (kPi * power_heuristic(local.z * kInvPi, environment->pdf(wi)));
   } else {
     const glm::vec3 Le = si.emits ? si.emission : glm::vec3(0.0f);
     if (direct && si.emits) {
@@ -408,14 +411,34 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
       else ++counters->nonfinite_samples;
     }
     // The light the hit reflects (its emission is direct light, above).
-    if (max_bounces_ >= 2) E = kPi * tracer_.continue_from(si, ray, key, max_bounces_ - 1, counters);
+    if (max_bounces_ >= 2) E += kPi * tracer_.continue_from(si, ray, key, max_bounces_ - 1, counters);
   }
-  if (!is_finite(E)) {
-    ++counters->nonfinite_samples;
-    return out;
-  }
-  out.indirect = E;
-  return out;
+  return finish_indirect(E, &out, counters);
+}
+
+CachedIrradiance RadianceCache::finish_indirect(const glm::vec3& E, CachedIrradiance* out, PathCounters* counters) {
+  if (is_finite(E)) out->indirect = E;
+  else ++counters->nonfinite_samples;
+  return *out;
+}
+
+glm::vec3 RadianceCache::environment_irradiance(const CachePoint& point, const Frame& frame, uint64_t key,
+                                                PathCounters* counters) const {
+  // The sky through a window is a small, bright part of a cell's hemisphere that cosine rays
+  // alone find a few times in a fill: one sample of the environment by its own density as
+  // well, both weighted by the power heuristic (the cosine ray's half is in estimate()).
+  const EnvironmentLight& environment = *scene_->environment();
+  Rng rng = stream(key, Purpose::kCacheFillEnvironment);
+  const glm::vec3 u(rng.next_float(), rng.next_float(), rng.next_float());
+  glm::vec3 wi, Le;
+  float pdf;
+  if (!environment.sample(u, &wi, &Le, &pdf) || !(pdf > 0.0f)) return glm::vec3(0.0f);
+  const float cosine = glm::dot(wi, frame.n);
+  if (!(cosine >= kMinCosine) || !(glm::dot(wi, point.geometric_normal) > 0.0f)) return glm::vec3(0.0f);
+  ++counters->rays;
+  if (scene_->accelerator().occluded(Ray{spawn_origin(point.position, point.geometric_normal, wi), wi}))
+    return glm::vec3(0.0f);
+  return Le * (cosine * power_heuristic(pdf, cosine * kInvPi) / pdf);
 }
 
 }  // namespace phyir::render

@@ -16,7 +16,8 @@
 // and the cell's mean sits close to its centre, where lookups interpolate. (2) Fill: each
 // cell's irradiance E = integral of L_i cos over the hemisphere of the shading normal is the
 // mean of `samples_per_cell` one-sample estimates spread over its points (stratified
-// cosine directions per point). E's first part is the INDIRECT light (plus the environment):
+// cosine directions per point). E's first part is the INDIRECT light (plus the environment,
+// also sampled by its own density: the sky through a window is a small bright patch):
 // the radiance that the surface a cosine ray hits reflects, continued by the path tracer;
 // the emission of that surface is direct light, kept apart (below). E counts paths of up to max_bounces - 1 further scattering events: a lookup at a
 // probe's first hit (scattering event 0) gives exactly the path tracer's path lengths.
@@ -70,6 +71,7 @@
 #include <glm/glm.hpp>
 
 #include "phyir/render/effects.h"
+#include "phyir/render/frame.h"
 #include "phyir/render/path_tracer.h"
 #include "phyir/render/probe_settings.h"
 #include "phyir/render/render_scene.h"
@@ -137,6 +139,12 @@ class RadianceCache {
   // (u_select, u_light) (see the header note); the direct part only if `direct`.
   CachedIrradiance estimate(const CachePoint& point, const glm::vec2& u, bool direct, float u_select,
                             const glm::vec2& u_light, uint64_t key, PathCounters* counters) const;
+  // The environment's share of an estimate's indirect irradiance from its own sample
+  // (multiple importance against the estimate's cosine ray).
+  glm::vec3 environment_irradiance(const CachePoint& point, const Frame& frame, uint64_t key,
+                                   PathCounters* counters) const;
+  // Stores a finite indirect estimate E in *out (counts a non-finite one) and returns *out.
+  static CachedIrradiance finish_indirect(const glm::vec3& E, CachedIrradiance* out, PathCounters* counters);
 
   // The cell key of a point (position and shading normal).
   uint64_t cell_key(const glm::vec3& position, const glm::vec3& normal) const;

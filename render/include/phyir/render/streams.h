@@ -30,6 +30,7 @@ enum class Purpose : uint64_t {
   kCacheFillLight = 104,          // the light choice of a fill estimate
   kCacheFillLightPoints = 105,    // permutation of a cache point's stratified light points
   kCachePoint = 106,              // per item (cell), index = the cell's point: its fill's key
+  kCacheFillEnvironment = 107,    // the environment sample of a fill estimate
   // The probe texel estimator, per specular depth.
   kTexelLight = 201,              // a next-event sample
   kTexelBrdf = 202,               // the BRDF- or GGX-sampled ray
