@@ -85,19 +85,19 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
 }
 
 glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint& x, const glm::vec3& u,
-                                   const glm::vec3& throughput, PathCounters* counters) {
+                                   const glm::vec3& throughput, PathCounters* counters, Lobes lobes) {
   const EnvironmentLight* environment = scene.environment();
   glm::vec3 wi_world, Le;
   float pdf;
   if (!environment || !environment->sample(u, &wi_world, &Le, &pdf) || !(pdf > 0.0f)) return glm::vec3(0.0f);
   const glm::vec3 wi = x.frame.to_local(wi_world);
-  const glm::vec3 f = brdf_eval(x.brdf, x.wo, wi);
+  const glm::vec3 f = lobe_eval(x, lobes, wi);
   if (!(wi.z > 0.0f) || !(glm::dot(wi_world, x.geometric_normal) > 0.0f) || !(max_component(f) > 0.0f))
     return glm::vec3(0.0f);
   ++counters->rays;
   if (scene.accelerator().occluded(Ray{spawn_origin(x.position, x.geometric_normal, wi_world), wi_world}))
     return glm::vec3(0.0f);
-  const float w = power_heuristic(pdf, brdf_pdf(x.brdf, x.wo, wi));
+  const float w = power_heuristic(pdf, lobe_pdf(x, lobes, wi));
   return throughput * f * Le * (wi.z * w / pdf);
 }
 

@@ -377,11 +377,11 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
   const RenderScene& scene = *scene_;
   const glm::vec3& ns = point.shading_normal;
   const glm::vec3& ng = point.geometric_normal;
+  ShadingPoint x;
+  x.position = point.position;
+  x.geometric_normal = ng;
+  x.frame = Frame(ns);
   if (direct && has_lights(scene)) {
-    ShadingPoint x;
-    x.position = point.position;
-    x.geometric_normal = ng;
-    x.frame = Frame(ns);
     DirectLightOptions irradiance;
     irradiance.lobes = Lobes::kCosine;
     irradiance.punctual = false;  // exact in Cell::punctual
@@ -390,18 +390,17 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
     if (is_finite(E)) out.direct += E;
     else ++counters->nonfinite_samples;
   }
-  const Frame frame(ns);
   const EnvironmentLight* environment = scene.environment();
-  glm::vec3 E = environment ? environment_irradiance(point, frame, key, counters) : glm::vec3(0.0f);
+  glm::vec3 E = environment ? environment_irradiance(x, key, counters) : glm::vec3(0.0f);
   const glm::vec3 local = sample_cosine_hemisphere(u);
-  const glm::vec3 wi = frame.to_world(local);
+  const glm::vec3 wi = x.frame.to_world(local);
   if (!(local.z >= kMinCosine) || glm::dot(wi, ng) <= 0.0f) return finish_indirect(E, &out, counters);
   const Ray ray{spawn_origin(point.position, ng, wi), wi};
   SurfaceInteraction si;
   ++counters->rays;
   if (!scene.trace(ray, &si)) {
     // The environment seen by the cosine ray, weighted against its own sample.
-    if (environment) E += environment->radiance(wi) * (kPi * power_heuristic(local.z * kInvPi, environment->pdf(wi)));
+    if (environment) E += environment->radiance(wi) * (kPi * environment_hit_weight(scene, local.z * kInvPi, wi));
   } else {
     const glm::vec3 Le = si.emits ? si.emission : glm::vec3(0.0f);
     if (direct && si.emits) {
@@ -422,23 +421,13 @@ CachedIrradiance RadianceCache::finish_indirect(const glm::vec3& E, CachedIrradi
   return *out;
 }
 
-glm::vec3 RadianceCache::environment_irradiance(const CachePoint& point, const Frame& frame, uint64_t key,
-                                                PathCounters* counters) const {
+glm::vec3 RadianceCache::environment_irradiance(const ShadingPoint& x, uint64_t key, PathCounters* counters) const {
   // The sky through a window is a small, bright part of a cell's hemisphere that cosine rays
   // alone find a few times in a fill: one sample of the environment by its own density as
   // well, both weighted by the power heuristic (the cosine ray's half is in estimate()).
-  const EnvironmentLight& environment = *scene_->environment();
   Rng rng = stream(key, Purpose::kCacheFillEnvironment);
   const glm::vec3 u(rng.next_float(), rng.next_float(), rng.next_float());
-  glm::vec3 wi, Le;
-  float pdf;
-  if (!environment.sample(u, &wi, &Le, &pdf) || !(pdf > 0.0f)) return glm::vec3(0.0f);
-  const float cosine = glm::dot(wi, frame.n);
-  if (!(cosine >= kMinCosine) || !(glm::dot(wi, point.geometric_normal) > 0.0f)) return glm::vec3(0.0f);
-  ++counters->rays;
-  if (scene_->accelerator().occluded(Ray{spawn_origin(point.position, point.geometric_normal, wi), wi}))
-    return glm::vec3(0.0f);
-  return Le * (cosine * power_heuristic(pdf, cosine * kInvPi) / pdf);
+  return sample_environment_light(*scene_, x, u, glm::vec3(1.0f), counters, Lobes::kCosine);
 }
 
 }  // namespace phyir::render

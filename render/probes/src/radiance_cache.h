@@ -71,7 +71,7 @@
 #include <glm/glm.hpp>
 
 #include "phyir/render/effects.h"
-#include "phyir/render/frame.h"
+#include "phyir/render/direct_lighting.h"
 #include "phyir/render/path_tracer.h"
 #include "phyir/render/probe_settings.h"
 #include "phyir/render/render_scene.h"
@@ -141,8 +141,7 @@ class RadianceCache {
                             const glm::vec2& u_light, uint64_t key, PathCounters* counters) const;
   // The environment's share of an estimate's indirect irradiance from its own sample
   // (multiple importance against the estimate's cosine ray).
-  glm::vec3 environment_irradiance(const CachePoint& point, const Frame& frame, uint64_t key,
-                                   PathCounters* counters) const;
+  glm::vec3 environment_irradiance(const ShadingPoint& x, uint64_t key, PathCounters* counters) const;
   // Stores a finite indirect estimate E in *out (counts a non-finite one) and returns *out.
   static CachedIrradiance finish_indirect(const glm::vec3& E, CachedIrradiance* out, PathCounters* counters);
 

@@ -75,9 +75,10 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
                                const DirectLightOptions& options, const glm::vec3& throughput, Rng* roulette,
                                PathCounters* counters);
 
-// The same towards the environment (kAll only: only the path tracer samples it).
+// The same towards the environment, through `lobes` (the path tracer: kAll; the radiance
+// cache's fill: kCosine, irradiance).
 glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint& x, const glm::vec3& u,
-                                   const glm::vec3& throughput, PathCounters* counters);
+                                   const glm::vec3& throughput, PathCounters* counters, Lobes lobes = Lobes::kAll);
 
 // The MIS weight of a BRDF-sampled ray from `from` with density `brdf_pdf` (solid angle,
 // the probability of tracing it included) that hits the emitter at `hit`, against
