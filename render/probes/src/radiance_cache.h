@@ -94,7 +94,6 @@ struct CachedIrradiance {
   glm::vec3 direct{0.0f};
   glm::vec3 punctual{0.0f};
   bool has_direct = false;
-  glm::vec3 all_direct() const { return direct + punctual; }
 };
 
 class RadianceCache {
