@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <limits>
 #include <cmath>
+#include <unordered_map>
 
 #include "phyir/core/safe_math.h"
 #include "phyir/render/emitter_visibility.h"
 #include "phyir/render/material_eval.h"
 #include "phyir/render/spherical_triangle.h"
+#include "phyir/scenes/triangle_corners.h"
 
 namespace phyir::render {
 
@@ -79,49 +81,72 @@ float bounding_radius(const scenes::Scene& scene) {
 
 }  // namespace
 
+namespace {
+
+// Power per unit area of an emissive material: luminance of the emission, times its
+// texture's mean; 0 when it emits nothing.
+float power_density_of(const scenes::Scene& scene, const scenes::Material& material) {
+  float power_density = luminance(material.emission());
+  const scenes::TextureSlot& slot = material.emissive_texture;
+  if (slot.present() && static_cast<size_t>(slot.texture) < scene.textures.size())
+    power_density *= mean_luminance(scene.textures[slot.texture]);
+  return power_density > 0.0f && std::isfinite(power_density) ? power_density : 0.0f;
+}
+
+}  // namespace
+
+bool EmitterSampler::make_triangle(const scenes::Mesh& mesh, int m, int t, EmissiveTriangle* e) {
+  const glm::uvec3 tri = mesh.triangles[size_t(t)];
+  const size_t n = mesh.positions.size();
+  if (tri.x >= n || tri.y >= n || tri.z >= n) return false;
+  *e = EmissiveTriangle{m, t, mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z], glm::vec3(0.0f),
+                        0.0f, glm::vec3(0.0f), 0.0f, /*cluster=*/-1, /*pmf_in_cluster=*/0.0f};
+  const glm::vec3 c = glm::cross(e->p1 - e->p0, e->p2 - e->p0);
+  const float len = glm::length(c);
+  // Zero-area (or non-finite) triangles emit nothing and cannot be sampled uniformly.
+  if (!(len > 0.0f) || !std::isfinite(len) || !is_finite(e->p0) || !is_finite(e->p1) || !is_finite(e->p2))
+    return false;
+  e->normal = c / len;
+  e->area = 0.5f * len;
+  e->centroid = (e->p0 + e->p1 + e->p2) / 3.0f;
+  e->longest_edge2 = std::max({glm::dot(e->p1 - e->p0, e->p1 - e->p0), glm::dot(e->p2 - e->p1, e->p2 - e->p1),
+                               glm::dot(e->p0 - e->p2, e->p0 - e->p2)});
+  return true;
+}
+
 EmitterSampler::EmitterSampler(const scenes::Scene& scene, const Accelerator* occluders)
     : scene_(&scene), delta_(scene.lights, scene.lights.empty() ? 1.0f : bounding_radius(scene)) {
   first_of_mesh_.assign(scene.meshes.size(), -1);
   std::vector<float> weights;
+  // Kept triangles of double-sided emitters by their corners: a coincident twin adds no light.
+  std::unordered_map<scenes::TriangleCorners, int, scenes::TriangleCornersHash> double_sided_kept;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const scenes::Mesh& mesh = scene.meshes[m];
     if (mesh.material < 0 || static_cast<size_t>(mesh.material) >= scene.materials.size()) continue;
     const scenes::Material& material = scene.materials[mesh.material];
     if (!material.is_emissive() || mesh.triangles.empty()) continue;
-
-    // Power per unit area: luminance of the emission, times the texture's mean.
-    float power_density = luminance(material.emission());
-    const scenes::TextureSlot& slot = material.emissive_texture;
-    if (slot.present() && static_cast<size_t>(slot.texture) < scene.textures.size())
-      power_density *= mean_luminance(scene.textures[slot.texture]);
-    if (!(power_density > 0.0f) || !std::isfinite(power_density)) continue;
+    const float power_density = power_density_of(scene, material);
+    if (power_density == 0.0f) continue;
 
     first_of_mesh_[m] = static_cast<int>(lookup_.size());
-    const size_t n = mesh.positions.size();
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-      const glm::uvec3 tri = mesh.triangles[t];
       lookup_.push_back(-1);
-      if (tri.x >= n || tri.y >= n || tri.z >= n) continue;
-      EmissiveTriangle e{static_cast<int>(m), static_cast<int>(t), mesh.positions[tri.x],
-                         mesh.positions[tri.y], mesh.positions[tri.z], glm::vec3(0.0f), 0.0f, glm::vec3(0.0f), 0.0f,
-                         /*cluster=*/-1, /*pmf_in_cluster=*/0.0f};
-      const glm::vec3 c = glm::cross(e.p1 - e.p0, e.p2 - e.p0);
-      const float len = glm::length(c);
-      // Zero-area (or non-finite) triangles emit nothing and cannot be sampled uniformly.
-      if (!(len > 0.0f) || !std::isfinite(len) || !is_finite(e.p0) || !is_finite(e.p1) || !is_finite(e.p2))
-        continue;
-      e.normal = c / len;
-      e.area = 0.5f * len;
-      e.centroid = (e.p0 + e.p1 + e.p2) / 3.0f;
-      e.longest_edge2 = std::max({glm::dot(e.p1 - e.p0, e.p1 - e.p0), glm::dot(e.p2 - e.p1, e.p2 - e.p1),
-                                  glm::dot(e.p0 - e.p2, e.p0 - e.p2)});
+      EmissiveTriangle e;
+      if (!make_triangle(mesh, int(m), int(t), &e)) continue;
       const float weight = e.area * power_density;
       if (!(weight > 0.0f) || !std::isfinite(weight)) continue;
+      const scenes::TriangleCorners corners(e.p0, e.p1, e.p2);
+      if (const auto twin = double_sided_kept.find(corners); twin != double_sided_kept.end()) {
+        lookup_.back() = twin->second;  // a ray hitting this twin hit the kept triangle's sheet
+        ++twins_;
+        continue;
+      }
       if (occluders && emits_only_into_solids(scene, *occluders, e.p0, e.p1, e.p2, e.normal, material.double_sided)) {
         ++enclosed_;
         continue;
       }
       lookup_.back() = static_cast<int>(triangles_.size());
+      if (material.double_sided) double_sided_kept.emplace(corners, lookup_.back());
       triangles_.push_back(e);
       weights.push_back(weight);
     }
@@ -137,9 +162,10 @@ EmitterSampler::EmitterSampler(const scenes::Scene& scene, const Accelerator* oc
     triangle_share_ = safe_div(triangle_power, triangle_power + delta_.total_power());
   }
   if (!triangles_.empty())
-    spdlog::debug("emitter sampler: {} emissive triangles in {} clusters ({}), total power {}; {} enclosed left out",
-                  triangles_.size(), clusters_.size(), spatial_ ? "spatial selection" : "power selection",
-                  total_power(), enclosed_);
+    spdlog::debug(
+        "emitter sampler: {} emissive triangles in {} clusters ({}), total power {}; {} enclosed and {} twins left out",
+        triangles_.size(), clusters_.size(), spatial_ ? "spatial selection" : "power selection", total_power(),
+        enclosed_, twins_);
 }
 
 void EmitterSampler::build_clusters(const std::vector<float>& weights) {

@@ -2,8 +2,10 @@
 #include "asset_meshes.h"
 
 #include <unordered_map>
+#include <unordered_set>
 
 #include "asset_normals.h"
+#include "phyir/scenes/triangle_corners.h"
 
 namespace phyir::scenes {
 
@@ -73,6 +75,9 @@ std::vector<AssetMesh> build_meshes(const ObjSoup& soup, std::vector<std::string
   std::vector<MeshWelder> welders;
   welders.reserve(soup.materials.size());
   for (size_t m = 0; m < soup.materials.size(); ++m) welders.emplace_back(soup, static_cast<int>(m));
+  // Every material is double-sided (asset_material.h), so a coincident twin of a triangle
+  // in the same material adds nothing but a tie for which of the two a ray hits.
+  std::vector<std::unordered_set<TriangleCorners, TriangleCornersHash>> seen(soup.materials.size());
   size_t degenerate = 0;
   for (size_t i = 0; i < soup.triangles.size(); ++i) {
     const ObjTriangle& t = soup.triangles[i];
@@ -81,6 +86,8 @@ std::vector<AssetMesh> build_meshes(const ObjSoup& soup, std::vector<std::string
       ++degenerate;
       continue;
     }
+    const auto corner = [&](int k) { return soup.positions[static_cast<size_t>(t.corners[k].position)]; };
+    if (!seen[static_cast<size_t>(t.material)].insert(TriangleCorners(corner(0), corner(1), corner(2))).second) continue;
     for (int k = 0; k < 3; ++k) welders[static_cast<size_t>(t.material)].add_corner(t.corners[k], normals[3 * i + static_cast<size_t>(k)]);
   }
   if (degenerate > 0) warnings.push_back(std::to_string(degenerate) + " zero-area triangles dropped");

@@ -19,7 +19,8 @@ fixture/PhyirFixture.sh3f: five models made here (public domain):
   continuation, ':' and ' ' separators, '!' comments and CRLF line ends.
 broken/: archives that must be refused or must load with warnings:
   no_catalog.sh3f, missing_model.sh3f, bad_number.sh3f, broken_models.sh3f (lines only, a
-  face with out-of-range indices, a missing MTL, a missing texture).
+  face with out-of-range indices, a missing MTL, a missing texture; and a sheet made
+  double-sided by twin triangles, which loads with its twins dropped).
 """
 import struct
 import sys
@@ -390,6 +391,10 @@ def broken_archives():
     bad_indices = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 1\nf 1 2 3\nf 1 2 99\nf 1 3 4\n"
     no_mtl = b"mtllib absent.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 1\nusemtl gone\nf 1 2 3\n"
     no_texture = b"mtllib tex.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 1\nvt 0 0\nvt 1 0\nvt 1 1\nusemtl t\nf 1/1 2/2 3/3\n"
+    # A quad and its copy wound the other way (vertex 5 repeats vertex 3's position), and a
+    # copy of its first triangle in another material.
+    twins = (b"mtllib twins.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1 1 0\n"
+             b"usemtl a\nf 1 2 3\nf 1 3 4\nf 5 2 1\nf 4 3 1\nusemtl b\nf 1 2 3\n")
     return {
         "no_catalog.sh3f": [("LICENSE.TXT", LICENSE), ("cube/cube.obj", cube.text())],
         "missing_model.sh3f": [
@@ -403,9 +408,11 @@ def broken_archives():
         "broken_models.sh3f": [
             ("PluginFurnitureCatalog.properties",
              small_catalog([(1, "Broken#lines", "/m/lines.obj", 10), (2, "Broken#indices", "/m/indices.obj", 10),
-                            (3, "Broken#nomtl", "/m/nomtl.obj", 10), (4, "Broken#notexture", "/m/notexture.obj", 10)])),
+                            (3, "Broken#nomtl", "/m/nomtl.obj", 10), (4, "Broken#notexture", "/m/notexture.obj", 10),
+                            (5, "Broken#twins", "/m/twins.obj", 10)])),
             ("m/lines.obj", lines_only), ("m/indices.obj", bad_indices), ("m/nomtl.obj", no_mtl),
-            ("m/notexture.obj", no_texture), ("m/tex.mtl", b"newmtl t\nKd 0.5 0.5 0.5\nmap_Kd missing.jpg\n")],
+            ("m/notexture.obj", no_texture), ("m/tex.mtl", b"newmtl t\nKd 0.5 0.5 0.5\nmap_Kd missing.jpg\n"),
+            ("m/twins.obj", twins), ("m/twins.mtl", b"newmtl a\nKd 1 1 1\n\nnewmtl b\nKd 0.5 0.5 0.5\n")],
     }
 
 

@@ -155,6 +155,29 @@ TEST(EmitterCoverage, OneSidedLightsAreOnlySeenFromTheFrontAndTexturedOnesAreNot
   EXPECT_FALSE(EmitterCoverage(scenes::Scene{}).usable());
 }
 
+// A double-sided light made of a quad and its copy wound the other way covers a texel once.
+TEST(EmitterCoverage, TwinTrianglesOfADoubleSidedLightCountOnce) {
+  scenes::Scene single;
+  test::add_quad(single, glm::vec3(-0.3f, 2.6f, -0.3f), glm::vec3(0.6f, 0, 0), glm::vec3(0, 0, 0.6f),
+                 test::add_material(single, test::make_emitter(glm::vec3(5.0f), true)), "light");
+  scenes::Scene twinned = single;
+  scenes::Mesh twin = single.meshes[0];
+  for (glm::uvec3& t : twin.triangles) std::swap(t.y, t.z);
+  test::add_mesh(twinned, std::move(twin));
+  EXPECT_EQ(light_triangles(twinned).size(), 2u);
+  const glm::vec3 origin(0.05f, 0.0f, 0.02f);
+  const EmitterCoverage::View one = EmitterCoverage(single).view(origin);
+  const EmitterCoverage::View two = EmitterCoverage(twinned).view(origin);
+  ASSERT_TRUE(one.valid() && two.valid());
+  int covered = 0;
+  for (int row = 0; row < kH; ++row)
+    for (int col = 0; col < kW; ++col) {
+      EXPECT_EQ(two.texel_mean(row, col, kH, kW), one.texel_mean(row, col, kH, kW));
+      covered += one.texel_mean(row, col, kH, kW).x > 0.0f;
+    }
+  EXPECT_GT(covered, 0);
+}
+
 // A lamp shade of thousands of small glowing triangles (real furniture's lamps at night):
 // no coverage is traced, so a probe inside it does not trace every triangle it sees.
 TEST(EmitterCoverage, ScenesWithThousandsOfLightTrianglesAreNotTraced) {

@@ -260,6 +260,56 @@ TEST(EmitterSampler, OneSidedEmitterIsDarkFromBehind) {
   }
 }
 
+// A copy of mesh `m` wound the other way, at the same place: a twin sheet.
+int add_twin(scenes::Scene& scene, int m) {
+  scenes::Mesh twin = scene.meshes[size_t(m)];
+  twin.name += " twin";
+  for (glm::uvec3& t : twin.triangles) std::swap(t.y, t.z);
+  for (glm::vec3& n : twin.normals) n = -n;
+  return test::add_mesh(scene, std::move(twin));
+}
+
+// Irradiance at `reference` (facing up) estimated by light sampling alone.
+MeanAndError light_sampled_irradiance(const EmitterSampler& sampler, const glm::vec3& reference, uint64_t seed) {
+  Rng rng(seed, 3);
+  return monte_carlo(100000, [&](int) {
+    EmitterSample s;
+    if (!sampler.sample(reference, rng.next_float(), rng.next_2d(), &s) || !(s.pdf > 0.0f)) return 0.0;
+    return double(luminance(s.radiance)) * std::max(0.0f, s.wi.y) / double(s.pdf);
+  });
+}
+
+TEST(EmitterSampler, TwinTrianglesAreOneSheet) {
+  const glm::vec3 below(0.3f, 0.0f, 0.1f);
+  for (const bool double_sided : {true, false}) {
+    scenes::Scene single, twinned;
+    const int light = add_ceiling_light(single, add_material(single, make_emitter(glm::vec3(2.0f), double_sided)));
+    add_ceiling_light(twinned, add_material(twinned, make_emitter(glm::vec3(2.0f), double_sided)));
+    const int twin = add_twin(twinned, light);
+    const EmitterSampler one(single), two(twinned);
+    const MeanAndError expected = light_sampled_irradiance(one, below, 5);
+    const MeanAndError got = light_sampled_irradiance(two, below, 5);
+    if (double_sided) {
+      // The twin is left out: the same triangles, so the same estimate bit for bit, and a
+      // ray that hits the twin gets the kept triangle's density for MIS.
+      EXPECT_EQ(two.emissive_triangle_count(), 2u);
+      EXPECT_EQ(two.twin_triangle_count(), 2u);
+      EXPECT_EQ(got.mean, expected.mean);
+      const glm::vec3 point(0.1f, 2.0f, 0.05f);
+      for (int t = 0; t < 2; ++t)
+        EXPECT_EQ(two.pdf(below, twin, t, point), two.pdf(below, light, t, point)) << "triangle " << t;
+      EXPECT_GT(two.pdf(below, twin, 0, point) + two.pdf(below, twin, 1, point), 0.0f);
+    } else {
+      // One-sided twins light opposite sides: both kept, each counted from its own side only.
+      EXPECT_EQ(two.emissive_triangle_count(), 4u);
+      EXPECT_EQ(two.twin_triangle_count(), 0u);
+      EXPECT_NEAR(got.mean, expected.mean, 4.0 * std::hypot(got.standard_error, expected.standard_error));
+    }
+    std::cout << (double_sided ? "double" : "one") << "-sided twins: irradiance " << got.mean << " +- "
+              << got.standard_error << ", single sheet " << expected.mean << "\n";
+  }
+}
+
 TEST(EmitterSampler, TexturedEmitterRadianceFollowsTheTexture) {
   // Left half (u < 0.5) red, right half blue, nearest filtering, emission 4, strength 0.5.
   scenes::Scene scene;

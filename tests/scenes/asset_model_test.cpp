@@ -210,5 +210,17 @@ TEST(AssetModel, BrokenModelsFailOrWarnClearly) {
   EXPECT_EQ(load_error(moved), moved.archive.string() + ": no such file");
 }
 
+// A sheet made double-sided by a copy of each triangle wound the other way loads as one
+// sheet (every material is double-sided); a copy in another material stays.
+TEST(AssetModel, TwinTrianglesOfOneMaterialAreDropped) {
+  const AssetLibrary library = AssetLibrary::open(kAssets / "broken" / "broken_models.sh3f");
+  const AssetModel twins = load_model(library.at("Broken#twins"));
+  EXPECT_FALSE(has_warning(twins, "dropped"));  // a way of modelling, not a fault
+  ASSERT_EQ(twins.meshes.size(), 2u);
+  EXPECT_EQ(twins.meshes[0].indices.size(), 6u);  // material a: the quad once
+  EXPECT_EQ(twins.meshes[1].indices.size(), 3u);  // material b: its own triangle
+  EXPECT_EQ(twins.triangle_count(), 3u);
+}
+
 }  // namespace
 }  // namespace phyir::scenes

@@ -201,6 +201,7 @@ RenderReport run_render_job(const RenderJob& job) {
                   scene.materials.size(),
                   render_scene.emitters().emissive_triangle_count(),
                   render_scene.emitters().enclosed_triangle_count(),
+                  render_scene.emitters().twin_triangle_count(),
                   scene.warnings};
   const DeltaLights& lights = render_scene.emitters().delta_lights();
   report.scene.point_lights = lights.count(scenes::PunctualLight::Type::Point);
@@ -248,6 +249,7 @@ nlohmann::json RenderReport::to_json() const {
                      {"materials", scene.materials},
                      {"emissive_triangles", scene.emissive_triangles},
                      {"enclosed_emissive_triangles", scene.enclosed_emissive_triangles},
+                     {"twin_emissive_triangles", scene.twin_emissive_triangles},
                      {"punctual_lights",
                       {{"point", scene.point_lights},
                        {"spot", scene.spot_lights},

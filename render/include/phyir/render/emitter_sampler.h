@@ -64,6 +64,9 @@ class EmitterSampler {
   size_t emissive_triangle_count() const { return triangles_.size(); }
   // Emissive triangles left out because they light only the inside of closed geometry.
   size_t enclosed_triangle_count() const { return enclosed_; }
+  // Coincident copies of a double-sided emissive triangle (scenes/triangle_corners.h), left
+  // out: light sampling picks the sheet once, and a ray hitting a copy gets the kept one's pdf.
+  size_t twin_triangle_count() const { return twins_; }
   size_t cluster_count() const { return clusters_.size(); }
   float total_power() const { return distribution_.total(); }
 
@@ -104,6 +107,8 @@ class EmitterSampler {
     glm::vec3 normal{0.0f};
     float plane_offset = 0.0f;     // dot(normal, point on the plane)
   };
+  // Triangle t of mesh m with its area, normal and bounds; false when it has no area.
+  static bool make_triangle(const scenes::Mesh& mesh, int m, int t, EmissiveTriangle* e);
   void build_clusters(const std::vector<float>& weights);
   // Selection weights seen from `reference` of every cluster, then of every punctual light;
   // returns their sum.
@@ -123,7 +128,8 @@ class EmitterSampler {
   const scenes::Scene* scene_;
   std::vector<EmissiveTriangle> triangles_;
   // (mesh, triangle) -> index in triangles_: lookup_[first_of_mesh_[mesh] + triangle],
-  // -1 for triangles that are never sampled (zero area, zero power). first_of_mesh_ is -1
+  // -1 for triangles that are never sampled (zero area, zero power); a left-out twin maps to
+  // the triangle kept in its place. first_of_mesh_ is -1
   // for meshes without emitters.
   std::vector<int> first_of_mesh_;
   std::vector<int> lookup_;
@@ -134,6 +140,7 @@ class EmitterSampler {
   float triangle_share_ = 1.0f;        // fallback selection: probability of the triangles
   bool spatial_ = false;               // clusters and punctual lights chosen by selection_weights
   size_t enclosed_ = 0;
+  size_t twins_ = 0;
 };
 
 }  // namespace phyir::render

@@ -1,7 +1,8 @@
 #pragma once
 // The emissive triangles of a scene as the probe renderer's light helpers see them
 // (EmitterFootprints: which texels a light may cover; EmitterCoverage: how much of them).
-// Triangles without area (or with non-finite vertices) are left out: nothing hits them.
+// Triangles without area (or with non-finite vertices) are left out: nothing hits them; so
+// are coincident twins of a double-sided light's triangles (scenes/triangle_corners.h).
 #include <glm/glm.hpp>
 
 #include <vector>

@@ -49,6 +49,7 @@ struct RenderReport {
     size_t meshes = 0, triangles = 0, materials = 0;
     size_t emissive_triangles = 0;
     size_t enclosed_emissive_triangles = 0;  // emit only into closed geometry: never sampled
+    size_t twin_emissive_triangles = 0;      // coincident copies of double-sided emitters: sampled once
     std::vector<std::string> warnings;       // what the loader skipped or approximated
     int point_lights = 0, spot_lights = 0, directional_lights = 0;  // KHR_lights_punctual
   };
