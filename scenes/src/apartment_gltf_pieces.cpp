@@ -8,6 +8,7 @@
 #include <set>
 
 #include "apartment_gltf.h"
+#include "phyir/scenes/lamp_light.h"
 
 namespace phyir::scenes {
 
@@ -76,7 +77,7 @@ class PieceWriter {
       out.attributions.push_back({{"name", piece.entry->name}, {"id", piece.entry->id}, {"library", piece.entry->library},
                                   {"creator", piece.entry->creator}, {"licence", piece.entry->licence}});
     if (piece.lamp_on) {
-      add_lights(piece, index, glow > 0.0f);
+      add_lights(piece, model, index, glow > 0.0f);
       ++out.lamps_lit;
     }
   }
@@ -205,15 +206,19 @@ class PieceWriter {
   }
 
   // The point lights carry the flux the shades do not.
-  void add_lights(const PlacedAsset& piece, size_t index, bool shaded) {
+  void add_lights(const PlacedAsset& piece, const AssetModel& model, size_t index, bool shaded) {
     const auto& sources = piece.entry->light_sources;
     const float share = shaded ? 1.0f - kShadeShare : 1.0f;
     const float watts = share * lamp_lumens(piece.role) / kLumensPerWatt / float(sources.size());
+    std::vector<const AssetMesh*> surfaces;  // what the lamp keeps: its light must clear them
+    for (const AssetMesh& mesh : model.meshes)
+      if (part_of(piece, model, mesh) != Part::LeftOut) surfaces.push_back(&mesh);
     for (size_t s = 0; s < sources.size(); ++s) {
       GltfLight light;
       light.name = fmt::format("{}_{}_light_{}", piece.role, index, s);
       light.type = PunctualLight::Type::Point;
-      light.position = glm::vec3(piece.model_to_world() * glm::vec4(sources[s].position(piece.entry->size_m), 1.0f));
+      const glm::vec3 at = clear_of_surfaces(surfaces, sources[s].position(piece.entry->size_m), 0.5f * sources[s].diameter_m);
+      light.position = glm::vec3(piece.model_to_world() * glm::vec4(at, 1.0f));
       light.set_radiometric(light_tint(sources[s].colour) * (watts / (4.0f * 3.14159265f)));  // isotropic: W / 4 pi sr
       doc_.lights.push_back(std::move(light));
     }
