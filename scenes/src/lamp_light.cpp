@@ -48,7 +48,7 @@ glm::vec3 clear_of_surfaces(const std::vector<const AssetMesh*>& meshes, glm::ve
   // A step can bring the light nearer another surface (inside a narrow shade): a few more.
   constexpr int kMaxSteps = 4;
   for (int step = 0; step < kMaxSteps; ++step) {
-    glm::vec3 nearest;
+    glm::vec3 nearest(0.0f);
     if (!nearest_surface_point(meshes, at, &nearest)) break;
     const glm::vec3 away = at - nearest;
     const float distance = glm::length(away);

@@ -23,6 +23,7 @@ nlohmann::json ProbeStats::to_json() const {
           {"rays_per_second", total_seconds > 0 ? double(rays()) / total_seconds : 0.0},
           {"counts", counts_json()},
           {"supersampled_texels", supersampled_texels},
+          {"deep_texels", deep_texels},
           {"shared_texels", shared_texels},
           {"light_texels", light_texels},
           {"light_edge_texels", light_edge_texels},
@@ -90,6 +91,7 @@ ProbeStats& ProbeStats::operator+=(const ProbeStats& o) {
   probes += o.probes, valid += o.valid, nothing += o.nothing, emitter += o.emitter, transparent += o.transparent;
   computed_probes += o.computed_probes;
   supersampled_texels += o.supersampled_texels;
+  deep_texels += o.deep_texels;
   shared_texels += o.shared_texels;
   light_texels += o.light_texels;
   light_edge_texels += o.light_edge_texels;

@@ -91,6 +91,9 @@ class ProbeView {
   void finish_texel(TileProbe& probe, int t, Worker* w);
   // The value of a texel whose first samples are in: them, or hard_spp fresh ones.
   glm::vec3 settle(TileProbe& probe, int t, Worker* w);
+  // A hard texel's value from hard_spp fresh samples, or from kDeepSppFactor x as many more
+  // where those still spread very widely (a rare bright part).
+  glm::vec3 hard_estimate(TexelState& s, Worker* w);
   // The largest difference between a plain texel's first value and its neighbours' (luminance).
   float neighbour_step(const TileProbe& probe, int t) const;
   // A lit texel's emission seen directly; true (and its value final) where a light's
