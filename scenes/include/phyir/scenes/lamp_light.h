@@ -16,7 +16,4 @@ namespace phyir::scenes {
 // (same frame); unchanged when it already is.
 glm::vec3 clear_of_surfaces(const std::vector<const AssetMesh*>& meshes, glm::vec3 at, float radius);
 
-// The point of triangle (a, b, c) nearest to p (Ericson, Real-Time Collision Detection 5.1.5).
-glm::vec3 closest_point_on_triangle(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
-
 }  // namespace phyir::scenes
