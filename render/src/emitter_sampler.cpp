@@ -5,13 +5,12 @@
 #include <algorithm>
 #include <limits>
 #include <cmath>
-#include <unordered_map>
 
 #include "phyir/core/safe_math.h"
 #include "phyir/render/emitter_visibility.h"
+#include "phyir/render/light_triangles.h"
 #include "phyir/render/material_eval.h"
 #include "phyir/render/spherical_triangle.h"
-#include "phyir/scenes/triangle_corners.h"
 
 namespace phyir::render {
 
@@ -118,8 +117,7 @@ EmitterSampler::EmitterSampler(const scenes::Scene& scene, const Accelerator* oc
     : scene_(&scene), delta_(scene.lights, scene.lights.empty() ? 1.0f : bounding_radius(scene)) {
   first_of_mesh_.assign(scene.meshes.size(), -1);
   std::vector<float> weights;
-  // Kept triangles of double-sided emitters by their corners: a coincident twin adds no light.
-  std::unordered_map<scenes::TriangleCorners, int, scenes::TriangleCornersHash> double_sided_kept;
+  EmitterTwins twins;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const scenes::Mesh& mesh = scene.meshes[m];
     if (mesh.material < 0 || static_cast<size_t>(mesh.material) >= scene.materials.size()) continue;
@@ -136,8 +134,8 @@ EmitterSampler::EmitterSampler(const scenes::Scene& scene, const Accelerator* oc
       const float weight = e.area * power_density;
       if (!(weight > 0.0f) || !std::isfinite(weight)) continue;
       const scenes::TriangleCorners corners(e.p0, e.p1, e.p2);
-      if (const auto twin = double_sided_kept.find(corners); twin != double_sided_kept.end()) {
-        lookup_.back() = twin->second;  // a ray hitting this twin hit the kept triangle's sheet
+      if (const int kept = twins.kept(corners); kept >= 0) {
+        lookup_.back() = kept;  // a ray hitting this twin hit the kept triangle's sheet
         ++twins_;
         continue;
       }
@@ -146,7 +144,7 @@ EmitterSampler::EmitterSampler(const scenes::Scene& scene, const Accelerator* oc
         continue;
       }
       lookup_.back() = static_cast<int>(triangles_.size());
-      if (material.double_sided) double_sided_kept.emplace(corners, lookup_.back());
+      twins.keep(corners, lookup_.back(), material.double_sided);
       triangles_.push_back(e);
       weights.push_back(weight);
     }

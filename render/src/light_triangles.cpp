@@ -1,16 +1,12 @@
 #include "phyir/render/light_triangles.h"
 
-#include <unordered_set>
-
 #include "phyir/core/safe_math.h"
-#include "phyir/scenes/triangle_corners.h"
 
 namespace phyir::render {
 
 std::vector<LightTriangle> light_triangles(const scenes::Scene& scene) {
   std::vector<LightTriangle> out;
-  // A coincident twin of a double-sided light adds no light (emitter_sampler.h).
-  std::unordered_set<scenes::TriangleCorners, scenes::TriangleCornersHash> double_sided_kept;
+  EmitterTwins twins;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const scenes::Mesh& mesh = scene.meshes[m];
     if (mesh.material < 0 || size_t(mesh.material) >= scene.materials.size()) continue;
@@ -32,8 +28,8 @@ std::vector<LightTriangle> light_triangles(const scenes::Scene& scene) {
       tri.two_sided = material.double_sided;
       tri.uniform = uniform;
       const scenes::TriangleCorners corners(tri.p[0], tri.p[1], tri.p[2]);
-      if (double_sided_kept.count(corners) > 0) continue;
-      if (tri.two_sided) double_sided_kept.insert(corners);
+      if (twins.kept(corners) >= 0) continue;
+      twins.keep(corners, int(out.size()), tri.two_sided);
       out.push_back(tri);
     }
   }

@@ -64,7 +64,7 @@ class EmitterSampler {
   size_t emissive_triangle_count() const { return triangles_.size(); }
   // Emissive triangles left out because they light only the inside of closed geometry.
   size_t enclosed_triangle_count() const { return enclosed_; }
-  // Coincident copies of a double-sided emissive triangle (scenes/triangle_corners.h), left
+  // Coincident copies of a double-sided emissive triangle (EmitterTwins, light_triangles.h), left
   // out: light sampling picks the sheet once, and a ray hitting a copy gets the kept one's pdf.
   size_t twin_triangle_count() const { return twins_; }
   size_t cluster_count() const { return clusters_.size(); }

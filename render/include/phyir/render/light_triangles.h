@@ -5,9 +5,11 @@
 // are coincident twins of a double-sided light's triangles (scenes/triangle_corners.h).
 #include <glm/glm.hpp>
 
+#include <unordered_map>
 #include <vector>
 
 #include "phyir/scenes/scene.h"
+#include "phyir/scenes/triangle_corners.h"
 
 namespace phyir::render {
 
@@ -28,5 +30,23 @@ struct LightTriangle {
 };
 
 std::vector<LightTriangle> light_triangles(const scenes::Scene& scene);
+
+// The rule both light lists (light_triangles, EmitterSampler) use for twin triangles: a
+// coincident copy (either winding) of a double-sided emitter's triangle already kept adds
+// no light and is left out. A one-sided triangle's twin lights the other side: both stay.
+class EmitterTwins {
+ public:
+  // The index the first triangle at these corners was kept under, or -1 (not a twin).
+  int kept(const scenes::TriangleCorners& corners) const {
+    const auto it = kept_.find(corners);
+    return it == kept_.end() ? -1 : it->second;
+  }
+  void keep(const scenes::TriangleCorners& corners, int index, bool double_sided) {
+    if (double_sided) kept_.emplace(corners, index);
+  }
+
+ private:
+  std::unordered_map<scenes::TriangleCorners, int, scenes::TriangleCornersHash> kept_;
+};
 
 }  // namespace phyir::render
