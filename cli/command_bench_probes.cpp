@@ -252,10 +252,14 @@ void log_breakdown(const std::string& config, const nlohmann::json& b) {
                  j["mean_error_of_own_mean"].get<double>());
   };
   for (const auto& [name, j] : b["classes"].items()) line(name, j);
-  for (const auto& j : b["probes"])
-    line("probe " + std::to_string(j["index"].get<int>()) + " (light " +
-             std::to_string(int(100 * j["nearest_light_m"].get<float>())) + " cm)",
-         j);
+  for (const auto& j : b["probes"]) {
+    // A scene without emissive triangles or punctual lights at a distance (the sun) has none.
+    const float light_m = j["nearest_light_m"].is_number() ? j["nearest_light_m"].get<float>() : -1.0f;
+    const std::string light = std::isfinite(light_m) && light_m >= 0.0f
+                                  ? "light " + std::to_string(int(100.0f * light_m)) + " cm"
+                                  : "no light near";
+    line("probe " + std::to_string(j["index"].get<int>()) + " (" + light + ")", j);
+  }
 }
 
 void run_bench_probes(const BenchProbeFlags& f) {
