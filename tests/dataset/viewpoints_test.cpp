@@ -20,13 +20,11 @@ namespace {
 
 using ::testing::HasSubstr;
 
-const auto closest_on_triangle = closest_point_on_triangle;
-
 float distance_to_scene(const scenes::Scene& scene, const glm::vec3& p) {
   float best = std::numeric_limits<float>::infinity();
   for (const scenes::Mesh& m : scene.meshes)
     for (const glm::uvec3& t : m.triangles)
-      best = std::min(best, glm::distance(p, closest_on_triangle(p, m.positions[t.x], m.positions[t.y], m.positions[t.z])));
+      best = std::min(best, glm::distance(p, closest_point_on_triangle(p, m.positions[t.x], m.positions[t.y], m.positions[t.z])));
   return best;
 }
 

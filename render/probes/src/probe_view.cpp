@@ -36,7 +36,7 @@ double seconds_since(Clock::time_point start) {
 // A hard texel whose hard samples spread over more than kDeepSpreadRatio x (their mean + the
 // floor) holds a part far brighter than the rest that only some of them found (a lamp's halo
 // on the ceiling, the sun in a polished surface): it is estimated once more from
-// kDeepSppFactor x hard_spp fresh samples. Measured on the suite (docs/probes.md): the night
+// kDeepSppFactor x hard_spp fresh samples. Measured on the suite, 32x64 grid (docs/probes.md): the night
 // apartment's error 0.55 -> 0.41-0.50 for 20% more CPU, the hard room's 7.5% -> 6.8%, the
 // others within their seed-to-seed noise for 1-11% more CPU.
 constexpr int kDeepSppFactor = 4;
