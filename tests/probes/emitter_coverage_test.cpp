@@ -25,7 +25,7 @@ struct Case {
 };
 
 // Lights seen from the side, across the phi seam (-Z... +Z behind: phi = +-pi at +Z),
-// surrounding the zenith, with an edge passing 1 mm from the zenith, and very close.
+// surrounding the zenith, with an edge passing 1 mm from the zenith, very close, and small.
 const Case kCases[] = {
     {"wall light", glm::vec3(0.0f), glm::vec3(1.0f, -0.83f, -0.71f), glm::vec3(0, 1.9f, 0), glm::vec3(0, 0, 1.7f)},
     {"across the seam", glm::vec3(0.0f), glm::vec3(-0.4f, -0.3f, 1.2f), glm::vec3(0.9f, 0, 0), glm::vec3(0, 0.8f, 0)},
@@ -35,6 +35,8 @@ const Case kCases[] = {
      glm::vec3(0.6f, 0, 0)},
     {"7 cm from the light", glm::vec3(0.37f, 2.55f, 0.0f), glm::vec3(-0.3f, 2.6f, -0.3f), glm::vec3(0, 0, 0.6f),
      glm::vec3(0.6f, 0, 0)},
+    // Two degrees across: its edges are traced with few points (emitter_coverage.cpp).
+    {"small and far", glm::vec3(0.0f), glm::vec3(2.0f, 0.3f, -3.0f), glm::vec3(0.12f, 0, 0), glm::vec3(0, 0.1f, 0)},
 };
 
 TEST(EmitterCoverage, TexelMeansMatchDenseSamplingAndSumToTheLightsSolidAngle) {

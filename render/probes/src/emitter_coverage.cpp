@@ -9,9 +9,15 @@ namespace phyir::render {
 
 namespace {
 
-// Points per triangle edge on the traced outline, at least: the chords between them put the
-// light's total solid angle within ~1e-4 of the exact value (emitter_coverage_test.cpp).
+// Points on the traced outline of a triangle edge spanning pi: the chords between them put
+// the light's total solid angle within ~1e-4 of the exact value (emitter_coverage_test.cpp).
+// A chord's area error relative to the triangle's goes as (edge angle) / points^2 times the
+// map's distortion, which grows as 1 / sin(theta) towards the poles; so an edge of angle a
+// takes kArcPoints x sqrt(a / pi) / sin(theta) points (theta: its end nearer a pole), at
+// least kMinArcPoints, at most kArcPoints: a lamp's 2-degree triangle on the horizon gets
+// 10 (the outline's length sets the cost of every texel the light touches).
 constexpr int kArcPoints = 96;
+constexpr int kMinArcPoints = 4;
 // Largest phi step between two outline points: near a pole an arc turns fast in phi, and
 // its steps are halved until they are below this (unwrapping stays unambiguous).
 constexpr double kMaxPhiStep = 0.05;
@@ -27,13 +33,26 @@ constexpr size_t kMaxTracedTriangles = 4096;
 // phi of the equirectangular map (equirect.cpp): 0 towards -Z, increasing towards +X.
 double phi_of(const glm::dvec3& d) { return std::atan2(d.x, -d.z); }
 
+// Whether unit u is off the poles' axis, where phi is defined (squared: hypot's overflow
+// guards took 8% of the hard room's probe time here).
+bool off_pole_axis(const glm::dvec3& u) { return u.x * u.x + u.z * u.z > 1e-24; }
+
+// Outline points for the arc from a to b (kArcPoints).
+int arc_points(const glm::dvec3& a, const glm::dvec3& b) {
+  const double angle = std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
+  const glm::dvec3 ua = glm::normalize(a), ub = glm::normalize(b);
+  const double sin_theta = std::sqrt(std::min(ua.x * ua.x + ua.z * ua.z, ub.x * ub.x + ub.z * ub.z));
+  const double points = kArcPoints * std::sqrt(std::max(angle, 0.0) / kPi) / std::max(sin_theta, 1e-3);
+  return int(std::clamp(std::ceil(points), double(kMinArcPoints), double(kArcPoints)));
+}
+
 // Appends the outline points of the arc from a (already in `out`, at unwrapped `phi_a`) to
 // b, b included, halving steps that turn more than kMaxPhiStep. False if the arc passes
 // through a pole (phi undefined there).
 bool append_arc(const glm::dvec3& a, double phi_a, const glm::dvec3& b, int depth, std::vector<glm::dvec2>* out,
                 double* phi_end) {
   const glm::dvec3 u = glm::normalize(b);
-  if (!(std::hypot(u.x, u.z) > 1e-12)) return false;
+  if (!(off_pole_axis(u))) return false;
   double phi = phi_of(u);
   phi += kTwoPi * std::round((phi_a - phi) / kTwoPi);
   if (out->size() >= kMaxOutlinePoints) return false;
@@ -114,7 +133,7 @@ EmitterCoverage::View EmitterCoverage::view(const glm::vec3& origin) const {
     s.plane_normal = tri.normal;
     // The outline in (phi unwrapped, cos theta), from d[0] round to d[0] again.
     const glm::dvec3 u0 = glm::normalize(d[0]);
-    if (!(std::hypot(u0.x, u0.z) > 1e-12)) {
+    if (!off_pole_axis(u0)) {
       v.valid_ = false;
       return v;
     }
@@ -122,9 +141,10 @@ EmitterCoverage::View EmitterCoverage::view(const glm::vec3& origin) const {
     s.outline.push_back({start, u0.y});
     double phi = start;
     for (int e = 0; e < 3; ++e) {
-      for (int k = 1; k <= kArcPoints; ++k) {
-        const glm::dvec3 a = glm::mix(d[e], d[(e + 1) % 3], double(k - 1) / kArcPoints);
-        const glm::dvec3 b = glm::mix(d[e], d[(e + 1) % 3], double(k) / kArcPoints);
+      const int points = arc_points(d[e], d[(e + 1) % 3]);
+      for (int k = 1; k <= points; ++k) {
+        const glm::dvec3 a = glm::mix(d[e], d[(e + 1) % 3], double(k - 1) / points);
+        const glm::dvec3 b = glm::mix(d[e], d[(e + 1) % 3], double(k) / points);
         if (!append_arc(a, phi, b, 0, &s.outline, &phi)) {
           v.valid_ = false;
           return v;
