@@ -3,8 +3,9 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <limits>
+#include <atomic>
 #include <cmath>
+#include <limits>
 
 #include "phyir/core/safe_math.h"
 #include "phyir/render/emitter_visibility.h"
@@ -15,6 +16,16 @@
 namespace phyir::render {
 
 namespace {
+
+std::atomic<uint64_t> next_sampler_id{1};
+
+// One thread's last selection weights (EmitterSampler::selection_weights_at).
+struct SelectionMemo {
+  uint64_t sampler = 0;  // no sampler has id 0
+  glm::vec3 reference{0.0f};
+  float total = 0.0f;
+  float weights[EmitterSampler::kMaxSpatialClusters];
+};
 
 struct Geometry {
   glm::vec3 wi{0.0f};
@@ -114,7 +125,9 @@ bool EmitterSampler::make_triangle(const scenes::Mesh& mesh, int m, int t, Emiss
 }
 
 EmitterSampler::EmitterSampler(const scenes::Scene& scene, const Accelerator* occluders)
-    : scene_(&scene), delta_(scene.lights, scene.lights.empty() ? 1.0f : bounding_radius(scene)) {
+    : scene_(&scene),
+      delta_(scene.lights, scene.lights.empty() ? 1.0f : bounding_radius(scene)),
+      id_(next_sampler_id.fetch_add(1)) {
   first_of_mesh_.assign(scene.meshes.size(), -1);
   std::vector<float> weights;
   EmitterTwins twins;
@@ -264,6 +277,17 @@ float EmitterSampler::selection_weights(const glm::vec3& reference, float* weigh
   return total;
 }
 
+const float* EmitterSampler::selection_weights_at(const glm::vec3& reference, float* total) const {
+  thread_local SelectionMemo memo;
+  if (memo.sampler != id_ || memo.reference != reference) {
+    memo.total = selection_weights(reference, memo.weights);
+    memo.sampler = id_;
+    memo.reference = reference;
+  }
+  *total = memo.total;
+  return memo.weights;
+}
+
 float EmitterSampler::distance_bound(const glm::vec3& point) const {
   float nearest2 = std::numeric_limits<float>::infinity();
   for (const Cluster& c : clusters_) {
@@ -275,16 +299,16 @@ float EmitterSampler::distance_bound(const glm::vec3& point) const {
 
 float EmitterSampler::selection_pmf(const glm::vec3& reference, int index) const {
   if (!spatial_) return distribution_.pmf(index) * triangle_share_;
-  float weights[kMaxSpatialClusters];
-  const float total = selection_weights(reference, weights);
+  float total = 0.0f;
+  const float* weights = selection_weights_at(reference, &total);
   const EmissiveTriangle& e = triangles_[index];
   return total > 0.0f ? weights[e.cluster] / total * e.pmf_in_cluster : 0.0f;
 }
 
 bool EmitterSampler::choose_spatially(const glm::vec3& reference, float u_select, int* entry, float* entry_pmf,
                                       float* remapped) const {
-  float weights[kMaxSpatialClusters];
-  const float total = selection_weights(reference, weights);
+  float total = 0.0f;
+  const float* weights = selection_weights_at(reference, &total);
   if (!(total > 0.0f)) return false;
   // Invert the cumulative weights; u_select is reused inside the chosen cluster.
   const size_t entries = clusters_.size() + size_t(delta_.size());

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <utility>
 #include <vector>
 
 #include "phyir/core/safe_math.h"
@@ -197,6 +198,28 @@ TEST(EmitterSampler, NearerAndFacingLightsArePickedMore) {
   EXPECT_NEAR(fraction_picking_mesh(sampler, far_light, n, {0, 0, 0}), 1.0 - p_near, 4.0 * std::sqrt(0.1 / n));
   // Above every light only the up-facing one can light the point.
   EXPECT_EQ(fraction_picking_mesh(sampler, up_light, n, {0, 5.0f, 3.5f}), 1.0);
+}
+
+// Selection weights are kept per thread for the last point asked about: samplers of two
+// scenes asked about the same point in turn must each get their own, and a new point new ones.
+TEST(EmitterSampler, EachSamplerGetsItsOwnSelectionAtTheSamePoint) {
+  scenes::Scene two, one;
+  const int mat_two = add_material(two, make_emitter(glm::vec3(1.0f)));
+  const int near_two = add_quad(two, {-0.5f, 2, -0.5f}, {1, 0, 0}, {0, 0, 1}, mat_two);
+  add_quad(two, {3.5f, 4, -0.5f}, {1, 0, 0}, {0, 0, 1}, mat_two);
+  const int near_one = add_quad(one, {-0.5f, 2, -0.5f}, {1, 0, 0}, {0, 0, 1}, add_material(one, make_emitter(glm::vec3(1.0f))));
+  add_quad(one, {3.5f, 40, -0.5f}, {1, 0, 0}, {0, 0, 1}, add_material(one, make_emitter(glm::vec3(1.0f))));
+  const EmitterSampler sampler_two(two), sampler_one(one);
+  const glm::vec3 at(0.0f), light_point(0.0f, 2.0f, 0.0f);
+  auto pdfs = [&] {
+    return std::make_pair(sampler_two.pdf(at, near_two, 0, light_point), sampler_one.pdf(at, near_one, 0, light_point));
+  };
+  const auto first = pdfs();
+  EXPECT_GT(first.second, first.first);  // the other light is 10 times further in `one`
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(pdfs(), first);
+  // Another point in between, then the first again: the same values.
+  EXPECT_NE(sampler_two.pdf(glm::vec3(3.5f, 0, 0), near_two, 0, light_point), first.first);
+  EXPECT_EQ(sampler_two.pdf(at, near_two, 0, light_point), first.first);
 }
 
 // The edge of a ceiling fixture seen from the ceiling beside it: a 60 cm x 2 mm strip

@@ -26,6 +26,7 @@
 // geometry (emitter_visibility.h) are left out: never sampled, pdf 0.
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <vector>
 
 #include "phyir/render/accelerator.h"
@@ -113,6 +114,10 @@ class EmitterSampler {
   // Selection weights seen from `reference` of every cluster, then of every punctual light;
   // returns their sum.
   float selection_weights(const glm::vec3& reference, float* weights) const;
+  // The same, computed once per point and kept per thread: a shading point asks for them at
+  // each of its light samples (8 near a light in the probes) and again for the MIS weight of
+  // its BRDF ray. Valid until this thread's next call.
+  const float* selection_weights_at(const glm::vec3& reference, float* total) const;
   // The spatial choice of a cluster or punctual light: its index in selection_weights' order.
   bool choose_spatially(const glm::vec3& reference, float u_select, int* entry, float* entry_pmf,
                         float* remapped) const;
@@ -141,6 +146,7 @@ class EmitterSampler {
   bool spatial_ = false;               // clusters and punctual lights chosen by selection_weights
   size_t enclosed_ = 0;
   size_t twins_ = 0;
+  uint64_t id_;  // tells this sampler's weights from another's in the per-thread memo
 };
 
 }  // namespace phyir::render
