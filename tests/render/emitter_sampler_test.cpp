@@ -207,8 +207,9 @@ TEST(EmitterSampler, EachSamplerGetsItsOwnSelectionAtTheSamePoint) {
   const int mat_two = add_material(two, make_emitter(glm::vec3(1.0f)));
   const int near_two = add_quad(two, {-0.5f, 2, -0.5f}, {1, 0, 0}, {0, 0, 1}, mat_two);
   add_quad(two, {3.5f, 4, -0.5f}, {1, 0, 0}, {0, 0, 1}, mat_two);
-  const int near_one = add_quad(one, {-0.5f, 2, -0.5f}, {1, 0, 0}, {0, 0, 1}, add_material(one, make_emitter(glm::vec3(1.0f))));
-  add_quad(one, {3.5f, 40, -0.5f}, {1, 0, 0}, {0, 0, 1}, add_material(one, make_emitter(glm::vec3(1.0f))));
+  const int mat_one = add_material(one, make_emitter(glm::vec3(1.0f)));
+  const int near_one = add_quad(one, {-0.5f, 2, -0.5f}, {1, 0, 0}, {0, 0, 1}, mat_one);
+  add_quad(one, {3.5f, 40, -0.5f}, {1, 0, 0}, {0, 0, 1}, mat_one);
   const EmitterSampler sampler_two(two), sampler_one(one);
   const glm::vec3 at(0.0f), light_point(0.0f, 2.0f, 0.0f);
   auto pdfs = [&] {

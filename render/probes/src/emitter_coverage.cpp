@@ -15,7 +15,7 @@ namespace {
 // map's distortion, which grows as 1 / sin(theta) towards the poles; so an edge of angle a
 // takes kArcPoints x sqrt(a / pi) / sin(theta) points (theta: its end nearer a pole), at
 // least kMinArcPoints, at most kArcPoints: a lamp's 2-degree triangle on the horizon gets
-// 10 (the outline's length sets the cost of every texel the light touches).
+// 11 (the outline's length sets the cost of every texel the light touches).
 constexpr int kArcPoints = 96;
 constexpr int kMinArcPoints = 4;
 // Largest phi step between two outline points: near a pole an arc turns fast in phi, and
