@@ -24,7 +24,7 @@ struct SelectionMemo {
   uint64_t sampler = 0;  // no sampler has id 0
   glm::vec3 reference{0.0f};
   float total = 0.0f;
-  float weights[EmitterSampler::kMaxSpatialClusters];
+  float weights[EmitterSampler::kMaxSpatialClusters] = {};  // every member initialised: constant-initialised, no per-call TLS guard
 };
 
 struct Geometry {

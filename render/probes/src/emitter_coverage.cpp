@@ -52,7 +52,7 @@ int arc_points(const glm::dvec3& a, const glm::dvec3& b) {
 bool append_arc(const glm::dvec3& a, double phi_a, const glm::dvec3& b, int depth, std::vector<glm::dvec2>* out,
                 double* phi_end) {
   const glm::dvec3 u = glm::normalize(b);
-  if (!(off_pole_axis(u))) return false;
+  if (!off_pole_axis(u)) return false;
   double phi = phi_of(u);
   phi += kTwoPi * std::round((phi_a - phi) / kTwoPi);
   if (out->size() >= kMaxOutlinePoints) return false;
