@@ -24,7 +24,8 @@ struct SelectionMemo {
   uint64_t sampler = 0;  // no sampler has id 0
   glm::vec3 reference{0.0f};
   float total = 0.0f;
-  float weights[EmitterSampler::kMaxSpatialClusters] = {};  // every member initialised: constant-initialised, no per-call TLS guard
+  // Every member initialised: the thread_local is constant-initialised, no guard per call.
+  float weights[EmitterSampler::kMaxSpatialClusters] = {};
 };
 
 struct Geometry {
