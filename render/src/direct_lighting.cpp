@@ -54,8 +54,8 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
                                const DirectLightOptions& options, const glm::vec3& throughput, Rng* roulette,
                                PathCounters* counters) {
   EmitterSample ls;
-  if (!scene.emitters().sample(x.position, u.select, u.point, &ls) || !(ls.pdf > 0.0f) ||
-      !(max_component(ls.radiance) > 0.0f) || (ls.delta && !options.punctual))
+  if (!scene.emitters().sample(x.position, u.select, u.point, &ls, options.punctual) || !(ls.pdf > 0.0f) ||
+      !(max_component(ls.radiance) > 0.0f))
     return glm::vec3(0.0f);
   const glm::vec3 wi = x.frame.to_local(ls.wi);
   const glm::vec3 f = lobe_eval(x, options.lobes, wi);
@@ -84,6 +84,26 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
   return visible() ? contribution / keep : glm::vec3(0.0f);
 }
 
+glm::vec3 punctual_light(const RenderScene& scene, const ShadingPoint& x, Lobes lobes, PathCounters* counters) {
+  const DeltaLights& lights = scene.emitters().delta_lights();
+  glm::vec3 sum(0.0f);
+  for (int light = 0; light < lights.size(); ++light) {
+    DeltaIllumination seen;
+    if (!lights.illuminate(light, x.position, &seen)) continue;
+    const glm::vec3 wi = x.frame.to_local(seen.wi);
+    const glm::vec3 f = lobe_eval(x, lobes, wi);
+    if (!(wi.z > 0.0f) || !(glm::dot(seen.wi, x.geometric_normal) > 0.0f) || !(max_component(f) > 0.0f)) continue;
+    EmitterSample ls;
+    ls.position = seen.position;
+    ls.normal = -seen.wi;
+    ls.wi = seen.wi;
+    ls.distance = seen.distance;
+    ++counters->rays;
+    if (!scene.accelerator().occluded(shadow_ray(x, ls))) sum += f * seen.irradiance * wi.z;
+  }
+  return is_finite(sum) ? sum : glm::vec3(0.0f);
+}
+
 glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint& x, const glm::vec3& u,
                                    const glm::vec3& throughput, PathCounters* counters, Lobes lobes) {
   const EnvironmentLight* environment = scene.environment();
@@ -102,8 +122,9 @@ glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint&
 }
 
 float emitter_hit_weight(const RenderScene& scene, const glm::vec3& from, float brdf_pdf, const SurfaceInteraction& hit,
-                         int light_samples) {
-  return power_heuristic(brdf_pdf, float(light_samples) * scene.emitters().pdf(from, hit.mesh, hit.triangle, hit.position));
+                         int light_samples, bool punctual) {
+  return power_heuristic(brdf_pdf, float(light_samples) *
+                                       scene.emitters().pdf(from, hit.mesh, hit.triangle, hit.position, punctual));
 }
 
 float environment_hit_weight(const RenderScene& scene, float brdf_pdf, const glm::vec3& direction) {

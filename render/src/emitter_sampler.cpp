@@ -23,7 +23,8 @@ std::atomic<uint64_t> next_sampler_id{1};
 struct SelectionMemo {
   uint64_t sampler = 0;  // no sampler has id 0
   glm::vec3 reference{0.0f};
-  float total = 0.0f;
+  float total = 0.0f;           // of every entry
+  float triangle_total = 0.0f;  // of the clusters alone
   // Every member initialised: the thread_local is constant-initialised, no guard per call.
   float weights[EmitterSampler::kMaxSpatialClusters] = {};
 };
@@ -246,7 +247,7 @@ void EmitterSampler::build_clusters(const std::vector<float>& weights) {
   spatial_ = entries > 1 && entries <= size_t(kMaxSpatialClusters);
 }
 
-float EmitterSampler::selection_weights(const glm::vec3& reference, float* weights) const {
+float EmitterSampler::selection_weights(const glm::vec3& reference, float* weights, float* triangle_total) const {
   float total = 0.0f;
   for (size_t i = 0; i < clusters_.size(); ++i) {
     const Cluster& c = clusters_[i];
@@ -270,6 +271,7 @@ float EmitterSampler::selection_weights(const glm::vec3& reference, float* weigh
     weights[i] = std::isfinite(w) ? w : 0.0f;
     total += weights[i];
   }
+  *triangle_total = total;
   for (int j = 0; j < delta_.size(); ++j) {
     float& w = weights[clusters_.size() + size_t(j)];
     w = delta_.weight(j, reference);
@@ -278,14 +280,14 @@ float EmitterSampler::selection_weights(const glm::vec3& reference, float* weigh
   return total;
 }
 
-const float* EmitterSampler::selection_weights_at(const glm::vec3& reference, float* total) const {
+const float* EmitterSampler::selection_weights_at(const glm::vec3& reference, bool punctual, float* total) const {
   thread_local SelectionMemo memo;
   if (memo.sampler != id_ || memo.reference != reference) {
-    memo.total = selection_weights(reference, memo.weights);
+    memo.total = selection_weights(reference, memo.weights, &memo.triangle_total);
     memo.sampler = id_;
     memo.reference = reference;
   }
-  *total = memo.total;
+  *total = punctual ? memo.total : memo.triangle_total;
   return memo.weights;
 }
 
@@ -298,21 +300,21 @@ float EmitterSampler::distance_bound(const glm::vec3& point) const {
   return std::min(std::sqrt(nearest2), delta_.distance_bound(point));
 }
 
-float EmitterSampler::selection_pmf(const glm::vec3& reference, int index) const {
-  if (!spatial_) return distribution_.pmf(index) * triangle_share_;
+float EmitterSampler::selection_pmf(const glm::vec3& reference, int index, bool punctual) const {
+  if (!spatial_) return distribution_.pmf(index) * (punctual ? triangle_share_ : 1.0f);
   float total = 0.0f;
-  const float* weights = selection_weights_at(reference, &total);
+  const float* weights = selection_weights_at(reference, punctual, &total);
   const EmissiveTriangle& e = triangles_[index];
   return total > 0.0f ? weights[e.cluster] / total * e.pmf_in_cluster : 0.0f;
 }
 
-bool EmitterSampler::choose_spatially(const glm::vec3& reference, float u_select, int* entry, float* entry_pmf,
-                                      float* remapped) const {
+bool EmitterSampler::choose_spatially(const glm::vec3& reference, float u_select, bool punctual, int* entry,
+                                      float* entry_pmf, float* remapped) const {
   float total = 0.0f;
-  const float* weights = selection_weights_at(reference, &total);
+  const float* weights = selection_weights_at(reference, punctual, &total);
   if (!(total > 0.0f)) return false;
   // Invert the cumulative weights; u_select is reused inside the chosen cluster.
-  const size_t entries = clusters_.size() + size_t(delta_.size());
+  const size_t entries = clusters_.size() + (punctual ? size_t(delta_.size()) : 0);
   float target = u_select * total, acc = 0.0f;
   int chosen = -1;
   for (size_t i = 0; i < entries; ++i) {
@@ -353,14 +355,15 @@ bool EmitterSampler::sample_delta(int light, float pmf, const glm::vec3& referen
   return true;
 }
 
-bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const glm::vec2& u_point,
-                            EmitterSample* out) const {
+bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const glm::vec2& u_point, EmitterSample* out,
+                            bool punctual) const {
+  if (!punctual && triangles_.empty()) return false;
   float pmf = 0.0f;
   int index = -1;
   if (spatial_) {
     int entry;
     float entry_pmf, remapped;
-    if (!choose_spatially(reference, u_select, &entry, &entry_pmf, &remapped)) return false;
+    if (!choose_spatially(reference, u_select, punctual, &entry, &entry_pmf, &remapped)) return false;
     if (size_t(entry) >= clusters_.size()) return sample_delta(entry - int(clusters_.size()), entry_pmf, reference, out);
     const Cluster& c = clusters_[size_t(entry)];
     const int k = c.distribution.sample(remapped);
@@ -370,9 +373,10 @@ bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const gl
   } else {
     int light = -1;
     float light_pmf = 0.0f;
-    if (!chooses_triangles(&u_select, &light, &light_pmf)) return sample_delta(light, light_pmf, reference, out);
+    if (punctual && !chooses_triangles(&u_select, &light, &light_pmf))
+      return sample_delta(light, light_pmf, reference, out);
     index = distribution_.sample(u_select, &pmf);
-    pmf *= triangle_share_;
+    if (punctual) pmf *= triangle_share_;
   }
   if (index < 0) return false;
   const EmissiveTriangle& e = triangles_[index];
@@ -419,13 +423,14 @@ bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const gl
   return true;
 }
 
-float EmitterSampler::pdf(const glm::vec3& reference, int mesh, int triangle, const glm::vec3& point) const {
+float EmitterSampler::pdf(const glm::vec3& reference, int mesh, int triangle, const glm::vec3& point,
+                          bool punctual) const {
   if (mesh < 0 || static_cast<size_t>(mesh) >= first_of_mesh_.size() || first_of_mesh_[mesh] < 0) return 0.0f;
   if (triangle < 0 || static_cast<size_t>(triangle) >= scene_->meshes[mesh].triangles.size()) return 0.0f;
   const int index = lookup_[first_of_mesh_[mesh] + triangle];
   if (index < 0) return 0.0f;
   const EmissiveTriangle& e = triangles_[index];
-  const float pmf = selection_pmf(reference, index);
+  const float pmf = selection_pmf(reference, index, punctual);
   SphericalTriangle seen;
   if (by_solid_angle(e, reference) && seen.set(reference, e.p0, e.p1, e.p2))
     return solid_angle_sampled(pmf, seen.solid_angle(), e.normal, reference, point).pdf;

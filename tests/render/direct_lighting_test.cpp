@@ -5,7 +5,9 @@
 //            emitter_hit_weight() give it too (the two weights sum to one per direction);
 //   multi    `light_samples` counts in both weights: n light samples against one ray;
 //   weak     the shadow-ray roulette leaves the mean unchanged;
-//   shadows  an occluder takes the light away, and the shadow ray is counted.
+//   shadows  an occluder takes the light away, and the shadow ray is counted;
+//   punctual punctual_light() gives a point light's f E cos exactly (one shadow ray per light
+//            in front), and light samples with `punctual = false` the triangles' light alone.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -68,13 +70,13 @@ double light_sample(const RenderScene& rs, const DirectLightOptions& options, Rn
 
 // One cosine-distributed ray's irradiance estimate: pi L w where it reaches the light (w = 1
 // when not `weighted`).
-double cosine_ray(const RenderScene& rs, int light_samples, Rng& rng, bool weighted = true) {
+double cosine_ray(const RenderScene& rs, int light_samples, Rng& rng, bool weighted = true, bool punctual = true) {
   const ShadingPoint x = floor_point();
   const glm::vec3 local = sample_cosine_hemisphere(rng.next_2d());
   const Ray ray{x.position + 1e-4f * x.geometric_normal, x.frame.to_world(local)};
   SurfaceInteraction si;
   if (!rs.trace(ray, &si) || !si.emits) return 0.0;
-  const float w = weighted ? emitter_hit_weight(rs, x.position, local.z * kInvPi, si, light_samples) : 1.0f;
+  const float w = weighted ? emitter_hit_weight(rs, x.position, local.z * kInvPi, si, light_samples, punctual) : 1.0f;
   return kPi * si.emission.x * w;
 }
 
@@ -118,6 +120,32 @@ TEST(DirectLighting, MisWeightsOfLightSamplesAndCosineRaysSumToOne) {
   EXPECT_GT(both.mean, 1.8 * expected);
 }
 
+// Beside a bright bulb (a point light most light samples would choose), light samples that
+// never choose it and cosine rays weighted against those samples give the panel's
+// irradiance; weighted against samples that may choose it, the rays' share is too large.
+TEST(DirectLighting, MisOfTheTrianglesAloneSumsToOneBesideAPunctualLight) {
+  scenes::Scene scene = lit_floor(false);
+  scenes::PunctualLight bulb;
+  bulb.type = scenes::PunctualLight::Type::Point;
+  bulb.intensity = 50.0f * scenes::PunctualLight::kLumensPerWatt;
+  bulb.position = kPoint + glm::vec3(0.2f, 0.3f, 0.0f);
+  scene.lights = {bulb};
+  const RenderScene rs(scene);
+  const double expected = lambert_irradiance();
+  DirectLightOptions triangles = irradiance_options(true, 4);
+  triangles.punctual = false;
+  for (const bool matched : {true, false}) {
+    PathCounters c;
+    const test::MeanAndError m = mean_of(40000, 11, [&](Rng& rng) {
+      double sum = 0.0;
+      for (int k = 0; k < 4; ++k) sum += light_sample(rs, triangles, rng, &c);
+      return sum / 4 + cosine_ray(rs, 4, rng, true, !matched);
+    });
+    if (matched) EXPECT_NEAR(m.mean, expected, 4.0 * m.standard_error + 1e-3 * expected);
+    else EXPECT_GT(m.mean, expected + 6.0 * m.standard_error) << "the test tells the matched weight from the other";
+  }
+}
+
 TEST(DirectLighting, WeakShadowRayRouletteKeepsTheMean) {
   const scenes::Scene scene = lit_floor(false);
   const RenderScene rs(scene);
@@ -137,6 +165,48 @@ TEST(DirectLighting, AnOccluderTakesTheLightAway) {
   const test::MeanAndError m = mean_of(1000, 6, [&](Rng& rng) { return light_sample(rs, irradiance_options(false), rng, &c); });
   EXPECT_EQ(m.mean, 0.0);
   EXPECT_EQ(c.rays, 1000u);
+}
+
+// A point light over the floor beside the panel, coloured, and a sun under the floor (which
+// can never light it): the expected irradiance from the light's definition, I / d^2 cos.
+TEST(DirectLighting, PunctualLightsAreExactAndLeftOutOfTheSampledTrianglesOnRequest) {
+  for (const bool occluded : {false, true}) {
+    scenes::Scene scene = lit_floor(occluded);
+    scenes::PunctualLight point;
+    point.type = scenes::PunctualLight::Type::Point;
+    point.intensity = 2.0f * scenes::PunctualLight::kLumensPerWatt;
+    point.color = glm::vec3(1.0f, 0.5f, 0.25f);
+    point.position = glm::vec3(1.1f, 0.8f, -0.4f);  // above the slab of lit_floor(true)
+    scenes::PunctualLight sun;
+    sun.type = scenes::PunctualLight::Type::Directional;
+    sun.intensity = 5.0f * scenes::PunctualLight::kLumensPerWatt;
+    sun.direction = glm::vec3(0.0f, 1.0f, 0.0f);  // shining upwards
+    scene.lights = {point, sun};
+    const RenderScene rs(scene);
+    ShadingPoint x = floor_point();
+    x.wo = glm::normalize(glm::vec3(0.3f, 0.2f, 0.9f));
+    x.brdf = BrdfParams{glm::vec3(0.6f), 0.4f, 0.3f};
+    const glm::vec3 d = point.position - kPoint;
+    const glm::vec3 wi = x.frame.to_local(glm::normalize(d));
+    const glm::vec3 E = occluded ? glm::vec3(0.0f) : point.color * 2.0f * wi.z / glm::dot(d, d);
+    PathCounters c;
+    const glm::vec3 irradiance = punctual_light(rs, x, Lobes::kCosine, &c);
+    const glm::vec3 reflected = punctual_light(rs, x, Lobes::kAll, &c);
+    const glm::vec3 f = brdf_eval(x.brdf, x.wo, wi);
+    for (int ch = 0; ch < 3; ++ch) {
+      EXPECT_NEAR(irradiance[ch], E[ch], 1e-5f * E.x) << "occluded " << occluded;
+      EXPECT_NEAR(reflected[ch], f[ch] * E[ch], 1e-5f * E.x) << "occluded " << occluded;
+    }
+    EXPECT_EQ(c.rays, 2u) << "one shadow ray per call for the point light, none for the sun below";
+    if (occluded) continue;
+    // Light samples: the panel and the point light, or the panel alone with punctual = false.
+    DirectLightOptions both = irradiance_options(false), triangles = both;
+    triangles.punctual = false;
+    const test::MeanAndError all = mean_of(40000, 7, [&](Rng& rng) { return light_sample(rs, both, rng, &c); });
+    const test::MeanAndError panel = mean_of(40000, 7, [&](Rng& rng) { return light_sample(rs, triangles, rng, &c); });
+    EXPECT_NEAR(all.mean, lambert_irradiance() + E.x, 4.0 * all.standard_error + 1e-3 * E.x);
+    EXPECT_NEAR(panel.mean, lambert_irradiance(), 4.0 * panel.standard_error + 1e-3 * lambert_irradiance());
+  }
 }
 
 }  // namespace

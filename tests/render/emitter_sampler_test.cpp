@@ -71,8 +71,9 @@ TEST(EmitterSampler, ExpectedInversePdfIsTheAnalyticSolidAngle) {
   }
 }
 
-// Lights of several kinds: two quads, an emissive sphere and a textured quad.
-scenes::Scene mixed_lights() {
+// Lights of several kinds: two quads, an emissive sphere and a textured quad, and a point
+// light if asked.
+scenes::Scene mixed_lights(bool point_light = false) {
   scenes::Scene scene;
   add_ceiling_light(scene, add_material(scene, make_emitter(glm::vec3(5.0f))));
   add_quad(scene, {2.0f, 0.5f, -1.0f}, {0.0f, 0.0f, 2.0f}, {0.0f, 1.0f, 0.0f}, add_material(scene, make_emitter({1, 2, 3})),
@@ -82,37 +83,52 @@ scenes::Scene mixed_lights() {
   textured.emissive_texture.texture = add_texture(scene, 2, 1, {{1, 0, 0, 1}, {0, 0, 1, 1}});
   add_quad(scene, {-1.0f, 0.5f, -2.0f}, {2.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, add_material(scene, textured),
            "textured light");  // faces +Z, double-sided
+  if (point_light) {
+    scenes::PunctualLight point;
+    point.type = scenes::PunctualLight::Type::Point;
+    point.intensity = 4.0f * scenes::PunctualLight::kLumensPerWatt;
+    point.position = glm::vec3(0.3f, 1.2f, 0.2f);
+    scene.lights = {point};
+  }
   return scene;
 }
 
+// With a point light too, choosing among the punctual lights or (punctual = false) not: that
+// sampler never returns the point light, and pdf() asked the same way agrees.
 TEST(EmitterSampler, SamplePdfEqualsPdfForTheSamePoint) {
-  const scenes::Scene scene = mixed_lights();
+  for (const bool punctual : {true, false}) {
+  const scenes::Scene scene = mixed_lights(!punctual);
   const EmitterSampler sampler(scene);
   Rng rng(23, 1);
   int mismatches = 0, samples = 0;
   for (int i = 0; i < 100000; ++i) {
     const glm::vec3 ref(3.0f * rng.next_float() - 1.5f, 1.8f * rng.next_float(), 3.0f * rng.next_float() - 1.5f);
     EmitterSample s;
-    if (!sampler.sample(ref, rng.next_float(), rng.next_2d(), &s)) continue;
+    if (!sampler.sample(ref, rng.next_float(), rng.next_2d(), &s, punctual)) continue;
     ++samples;
-    const float p = sampler.pdf(ref, s.mesh, s.triangle, s.position);
+    if (s.delta) ++mismatches;
+    const float p = sampler.pdf(ref, s.mesh, s.triangle, s.position, punctual);
     if (!(std::abs(p - s.pdf) <= 1e-6f * s.pdf)) ++mismatches;
     // The sample's geometry is self-consistent.
     if (std::abs(glm::length(s.position - ref) - s.distance) > 1e-5f * s.distance) ++mismatches;
     if (glm::length(s.wi - (s.position - ref) / s.distance) > 1e-5f) ++mismatches;
   }
-  EXPECT_EQ(mismatches, 0);
-  EXPECT_GT(samples, 99000);
+  EXPECT_EQ(mismatches, 0) << "punctual " << punctual;
+  EXPECT_GT(samples, 99000) << "punctual " << punctual;
   // Non-emissive or unknown triangles have pdf 0.
-  EXPECT_EQ(sampler.pdf({0, 0, 0}, 99, 0, {0, 2, 0}), 0.0f);
-  EXPECT_EQ(sampler.pdf({0, 0, 0}, 0, 7, {0, 2, 0}), 0.0f);
+  EXPECT_EQ(sampler.pdf({0, 0, 0}, 99, 0, {0, 2, 0}, punctual), 0.0f);
+  EXPECT_EQ(sampler.pdf({0, 0, 0}, 0, 7, {0, 2, 0}, punctual), 0.0f);
+  }
 }
 
 TEST(EmitterSampler, PdfIntegratesToOneOverTheSphere) {
   // Uniform directions from a reference point; every emitter point along each ray (all
   // surfaces, not just the first: the sampler also picks the far side of the sphere)
-  // contributes pdf / (1 / 4 pi). The mean must be 1.
-  const scenes::Scene scene = mixed_lights();
+  // contributes pdf / (1 / 4 pi). The mean must be 1, also with a point light in the scene
+  // when the sampler leaves the punctual lights out (punctual = false); with them, 1 less
+  // the point light's share.
+  for (const bool point_light : {false, true}) {
+  const scenes::Scene scene = mixed_lights(point_light);
   const RenderScene rs(scene);
   const glm::vec3 ref(0.2f, 0.8f, -0.3f);
   Rng rng(31, 7);
@@ -122,14 +138,28 @@ TEST(EmitterSampler, PdfIntegratesToOneOverTheSphere) {
     Ray ray{ref, d};
     SurfaceInteraction si;
     for (int bounce = 0; bounce < 8 && rs.trace(ray, &si); ++bounce) {
-      sum += rs.emitters().pdf(ref, si.mesh, si.triangle, si.position);
+      sum += rs.emitters().pdf(ref, si.mesh, si.triangle, si.position, !point_light);
       ray.origin = spawn_origin(si.position, si.geometric_normal, d);
     }
     return sum / double(uniform_sphere_pdf());
   });
-  std::cout << "integral of the emitter pdf over the sphere: " << est.mean << " +- " << est.standard_error << "\n";
+  std::cout << "integral of the emitter pdf over the sphere (point light " << point_light << "): " << est.mean
+            << " +- " << est.standard_error << "\n";
   EXPECT_NEAR(est.mean, 1.0, 4.0 * est.standard_error);
   EXPECT_NEAR(est.mean, 1.0, 0.02);
+  if (!point_light) continue;
+  // The same sampler choosing among the point light too: its triangles' pdf integrates to
+  // less, by the point light's probability of being chosen.
+  Rng again(31, 7);
+  const MeanAndError with_light = monte_carlo(100000, [&](int) {
+    const glm::vec3 d = sample_uniform_sphere(again.next_2d());
+    SurfaceInteraction si;
+    return rs.trace(Ray{ref, d}, &si) ? double(rs.emitters().pdf(ref, si.mesh, si.triangle, si.position)) /
+                                            double(rs.emitters().pdf(ref, si.mesh, si.triangle, si.position, false))
+                                      : 1.0;
+  });
+  EXPECT_LT(with_light.mean, 0.99);
+  }
 }
 
 double fraction_picking_mesh(const EmitterSampler& sampler, int mesh, int n, const glm::vec3& reference) {

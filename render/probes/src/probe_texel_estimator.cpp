@@ -108,7 +108,7 @@ glm::vec3 TexelEstimator::reflected(const SurfaceInteraction& si, const glm::vec
   // hit (near a light the texel's noise is mostly this estimate's), one deeper.
   DirectLightOptions nee;
   nee.light_samples = depth == 0 ? near_light_samples(si, x) : 1;
-  if (has_lights(scene_)) L += direct_light(x, nee, depth, key, c);
+  L += near_light(x, &nee, depth, key, c);
 
   // The control variate of reflected_split(), for every sample of a rough surface (the
   // roulette below depends on the sample, so it cannot be the condition).
@@ -133,7 +133,7 @@ glm::vec3 TexelEstimator::reflected(const SurfaceInteraction& si, const glm::vec
   if (!scene_.trace(ray, &y)) return L + weight_specular * (miss(wi_world) - uniform);  // the diffuse share is in E
   if (y.emits) {
     const bool weighted = has_lights(scene_) && !bs.delta;
-    L += bs.weight * y.emission * (weighted ? emitter_hit_weight(scene_, si.position, bs.pdf, y, nee.light_samples) : 1.0f);
+    L += bs.weight * y.emission * (weighted ? emitter_hit_weight(scene_, si.position, bs.pdf, y, nee.light_samples, nee.punctual) : 1.0f);
   }
   if (next >= settings_.path.max_bounces || !(max_component(weight_specular) > 0.0f)) return L;
   const float share = safe_div(luminance(weight_specular), luminance(bs.weight));
@@ -218,7 +218,7 @@ glm::vec3 TexelEstimator::terminal(const SurfaceInteraction& si, const glm::vec3
   // Light sampling alone: no BRDF-sampled ray at a chain's end competes for the emitters.
   DirectLightOptions nee;
   nee.mis = false;
-  if (has_lights(scene_)) L += direct_light(x, nee, depth, key, c);
+  L += near_light(x, &nee, depth, key, c);
   return L + lobe * E.indirect;
 }
 
@@ -231,6 +231,15 @@ int TexelEstimator::near_light_samples(const SurfaceInteraction& si, const Shadi
 glm::vec3 TexelEstimator::punctual_at(const ShadingPoint& x, const CachedIrradiance& E, PathCounters* c) const {
   if (!exact_punctual_) return E.punctual;
   return punctual_irradiance(scene_, x.position, x.frame.n, x.geometric_normal, &c->rays);
+}
+
+glm::vec3 TexelEstimator::near_light(const ShadingPoint& x, DirectLightOptions* nee, int depth, uint64_t key,
+                                     PathCounters* c) const {
+  if (!has_lights(scene_)) return glm::vec3(0.0f);
+  nee->punctual = !exact_punctual_;
+  glm::vec3 L = direct_light(x, *nee, depth, key, c);
+  if (exact_punctual_) L += punctual_light(scene_, x, Lobes::kAll, c);
+  return L;
 }
 
 glm::vec3 TexelEstimator::direct_light(const ShadingPoint& x, const DirectLightOptions& options, int depth,

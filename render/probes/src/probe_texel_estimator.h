@@ -101,6 +101,13 @@ class TexelEstimator {
   CachedIrradiance lookup(const SurfaceInteraction& si, const ShadingPoint& x, int depth, uint64_t key,
                           PathCounters* c) const;
 
+  // The direct light at x where the cache does not hold it: a next-event estimate on the
+  // emissive triangles (`nee`'s samples) and the punctual lights exactly (punctual_light:
+  // one shadow ray each) in scenes of few of them, else sampled with the triangles. Chosen
+  // among thousands of a lamp shade's triangles in a few samples, a bulb beside its
+  // fixture lit the ceiling round it with the noise of that choice.
+  glm::vec3 near_light(const ShadingPoint& x, DirectLightOptions* nee, int depth, uint64_t key, PathCounters* c) const;
+
   // A next-event estimate on the emitters (direct_lighting.h), the mean of
   // options.light_samples samples, each from its own stream.
   glm::vec3 direct_light(const ShadingPoint& x, const DirectLightOptions& options, int depth, uint64_t key,

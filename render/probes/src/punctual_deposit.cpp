@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "phyir/core/safe_math.h"
+#include "phyir/render/direct_lighting.h"
 #include "phyir/render/equirect.h"
 #include "phyir/render/ray_offset.h"
 
@@ -44,16 +45,14 @@ bool punctual_texel(const RenderScene& scene, int light, const glm::vec3& origin
 
 glm::vec3 punctual_irradiance(const RenderScene& scene, const glm::vec3& position, const glm::vec3& n,
                               const glm::vec3& ng, uint64_t* rays) {
-  const DeltaLights& lights = scene.emitters().delta_lights();
-  glm::vec3 sum(0.0f);
-  for (int light = 0; light < lights.size(); ++light) {
-    DeltaIllumination seen;
-    if (!lights.illuminate(light, position, &seen)) continue;
-    const float cosine = glm::dot(n, seen.wi);
-    if (!(cosine > 0.0f) || !(glm::dot(ng, seen.wi) > 0.0f)) continue;
-    if (unoccluded(scene, spawn_origin(position, ng, seen.wi), seen, rays)) sum += seen.irradiance * cosine;
-  }
-  return is_finite(sum) ? sum : glm::vec3(0.0f);
+  ShadingPoint x;
+  x.position = position;
+  x.geometric_normal = ng;
+  x.frame = Frame(n);
+  PathCounters counters;
+  const glm::vec3 E = punctual_light(scene, x, Lobes::kCosine, &counters);
+  *rays += counters.rays;
+  return E;
 }
 
 uint64_t deposit_punctual_lights(const RenderScene& scene, const ProbeLayout& layout,

@@ -404,7 +404,7 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
   } else {
     const glm::vec3 Le = si.emits ? si.emission : glm::vec3(0.0f);
     if (direct && si.emits) {
-      const float w = emitter_hit_weight(scene, point.position, local.z * kInvPi, si);
+      const float w = emitter_hit_weight(scene, point.position, local.z * kInvPi, si, 1, false);
       const glm::vec3 D = kPi * Le * w;
       if (is_finite(D)) out.direct += D;
       else ++counters->nonfinite_samples;

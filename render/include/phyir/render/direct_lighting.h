@@ -63,9 +63,9 @@ struct DirectLightOptions {
   // A sample whose unoccluded value (luminance) is below this traces its shadow ray with
   // probability value / weak, drawn from *roulette, and is divided by it (unbiased; 0: never).
   float weak = 0.0f;
-  // false: a sample that chooses a punctual light gives 0 (the emissive triangles' estimate
-  // alone, still unbiased: each sample's pdf includes its choice), for callers that add the
-  // punctual lights exactly themselves.
+  // false: the punctual lights are never chosen and every sample goes to the emissive
+  // triangles, for callers that add the punctual lights exactly themselves
+  // (punctual_light); the competing ray's emitter_hit_weight must be told the same.
   bool punctual = true;
 };
 
@@ -75,6 +75,13 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
                                const DirectLightOptions& options, const glm::vec3& throughput, Rng* roulette,
                                PathCounters* counters);
 
+// The light the punctual lights (delta_lights.h) send through `lobes` at x, exactly: the sum
+// over the lights in front of x of throughput-free f(wo, wi) E cos, one shadow ray each
+// (counted in counters->rays), no random numbers. For estimators that take it apart from a
+// next-event estimate with DirectLightOptions::punctual = false: a light chosen among many
+// emissive triangles in a few samples is noisy; its exact value is not.
+glm::vec3 punctual_light(const RenderScene& scene, const ShadingPoint& x, Lobes lobes, PathCounters* counters);
+
 // The same towards the environment, through `lobes` (the path tracer: kAll; the radiance
 // cache's fill: kCosine, irradiance).
 glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint& x, const glm::vec3& u,
@@ -82,9 +89,10 @@ glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint&
 
 // The MIS weight of a BRDF-sampled ray from `from` with density `brdf_pdf` (solid angle,
 // the probability of tracing it included) that hits the emitter at `hit`, against
-// `light_samples` next-event samples of the same scattering event.
+// `light_samples` next-event samples of the same scattering event, which chose among the
+// punctual lights too or (punctual = false) not.
 float emitter_hit_weight(const RenderScene& scene, const glm::vec3& from, float brdf_pdf, const SurfaceInteraction& hit,
-                         int light_samples = 1);
+                         int light_samples = 1, bool punctual = true);
 
 // The same for a ray that leaves the scene and sees the environment in `direction`.
 float environment_hit_weight(const RenderScene& scene, float brdf_pdf, const glm::vec3& direction);

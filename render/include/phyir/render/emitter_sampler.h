@@ -76,14 +76,17 @@ class EmitterSampler {
   // (directional lights are infinitely far). Cost: one box test per cluster and light.
   float distance_bound(const glm::vec3& point) const;
 
-  bool sample(const glm::vec3& reference, float u_select, const glm::vec2& u_point,
-              EmitterSample* out) const;
+  // punctual = false: the punctual lights are never chosen, every sample goes to the
+  // emissive triangles (for callers that add the punctual lights exactly); pdf() must then
+  // be asked the same.
+  bool sample(const glm::vec3& reference, float u_select, const glm::vec2& u_point, EmitterSample* out,
+              bool punctual = true) const;
 
   // Solid-angle pdf of having sampled `point` on (mesh, triangle) from `reference`:
   // pmf(triangle) / area * d^2 / |cos at the emitter|. Bit-identical to sample()'s pdf for
   // the same point. Zero for non-emissive triangles, and for grazing points
   // (|cos| < kMinCosine), which sample() rejects (returns false), keeping MIS consistent.
-  float pdf(const glm::vec3& reference, int mesh, int triangle, const glm::vec3& point) const;
+  float pdf(const glm::vec3& reference, int mesh, int triangle, const glm::vec3& point, bool punctual = true) const;
 
  private:
   struct EmissiveTriangle {
@@ -112,21 +115,22 @@ class EmitterSampler {
   static bool make_triangle(const scenes::Mesh& mesh, int m, int t, EmissiveTriangle* e);
   void build_clusters(const std::vector<float>& weights);
   // Selection weights seen from `reference` of every cluster, then of every punctual light;
-  // returns their sum.
-  float selection_weights(const glm::vec3& reference, float* weights) const;
+  // returns their sum, and the clusters' alone in *triangle_total.
+  float selection_weights(const glm::vec3& reference, float* weights, float* triangle_total) const;
   // The same, computed once per point and kept per thread: a shading point asks for them at
   // each of its light samples (8 near a light in the probes) and again for the MIS weight of
   // its BRDF ray. Valid until this thread's next call.
-  const float* selection_weights_at(const glm::vec3& reference, float* total) const;
+  // *total is the sum over the entries a choice with or without the punctual lights sees.
+  const float* selection_weights_at(const glm::vec3& reference, bool punctual, float* total) const;
   // The spatial choice of a cluster or punctual light: its index in selection_weights' order.
-  bool choose_spatially(const glm::vec3& reference, float u_select, int* entry, float* entry_pmf,
+  bool choose_spatially(const glm::vec3& reference, float u_select, bool punctual, int* entry, float* entry_pmf,
                         float* remapped) const;
   // The power-only choice between the triangles (as a whole) and each punctual light: false
   // when a punctual light was chosen (*light, *pmf); true for the triangles, with u_select
   // remapped to choose among them.
   bool chooses_triangles(float* u_select, int* light, float* pmf) const;
   bool sample_delta(int light, float pmf, const glm::vec3& reference, EmitterSample* out) const;
-  float selection_pmf(const glm::vec3& reference, int index) const;
+  float selection_pmf(const glm::vec3& reference, int index, bool punctual) const;
   // Whether points on `e` are sampled uniformly in solid angle from `reference` (step 2).
   static bool by_solid_angle(const EmissiveTriangle& e, const glm::vec3& reference);
   static glm::vec2 barycentrics_of(const EmissiveTriangle& e, const glm::vec3& point);
