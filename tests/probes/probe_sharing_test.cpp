@@ -3,6 +3,7 @@
 // neighbours on the same surface whose texel parallax is small, and nothing else.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -80,6 +81,7 @@ struct Grid {
         for (int ch = 0; ch < 3; ++ch) mosaic.at(p % 3, (p / 3) * 2 + t, ch) = float((p + 1) * (p + 1) * (t + 1));
         records.distance.push_back(t == 0 ? up_distance : 0.01f);
         records.samples.push_back(4.0f);
+        records.variance.push_back(1e4f);  // noisy: the values' differences are noise
       }
     }
     computed.assign(9, 1);
@@ -125,6 +127,18 @@ TEST(ProbeSharing, WeightsAreSampleCountsAndOtherSurfacesOccludersAndInvalidProb
   EXPECT_FLOAT_EQ(grid.centre(0, out), 67.0f / 11.0f);
   // The emitter probe is not shared into, and is written unchanged.
   EXPECT_FLOAT_EQ(out.at(2, 2 * 2 + 0, 0), 81.0f);
+}
+
+// Values further apart than three standard errors of their difference (from the records'
+// variances) are left out: a moved edge, not noise.
+TEST(ProbeSharing, ValuesFurtherApartThanTheirNoiseAreNotShared) {
+  Grid grid(3.0f);
+  std::fill(grid.records.variance.begin(), grid.records.variance.end(), 1.0f);
+  // The centre's 25 against its neighbours' 1 to 81: at least 9 apart, 3 sqrt(2) allowed.
+  EXPECT_FLOAT_EQ(grid.centre(0, grid.share()), 25.0f);
+  // 3 sqrt(20) = 13.4: the neighbours 16 and 36 join, 9 (16 apart) and 49 (24) do not.
+  std::fill(grid.records.variance.begin(), grid.records.variance.end(), 10.0f);
+  EXPECT_FLOAT_EQ(grid.centre(0, grid.share()), (16.0f + 25.0f + 36.0f) / 3.0f);
 }
 
 TEST(ProbeSharing, RadiusZeroChangesNothing) {

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cmath>
 
+#include "phyir/core/error.h"
 #include "phyir/core/safe_math.h"
 
 namespace phyir::render {
@@ -28,6 +29,16 @@ bool one_surface(const ProbeSite& a, const ProbeSite& b, float max_baseline) {
   return std::abs(glm::dot(a.normal, d)) <= slack && std::abs(glm::dot(b.normal, d)) <= slack;
 }
 
+// Two texels' values further apart than this many standard errors of their difference
+// (from their directions' spread) see different light: parallax has moved an edge or a
+// halo across one of them, and averaging would blur it.
+constexpr double kConsistentErrors = 3.0;
+
+bool consistent(const glm::dvec3& a, const glm::dvec3& b, float variance_a, float variance_b) {
+  const double d = double(luminance(glm::vec3(a))) - double(luminance(glm::vec3(b)));
+  return d * d <= kConsistentErrors * kConsistentErrors * (double(variance_a) + double(variance_b));
+}
+
 bool similar_distances(float a, float b) {
   if (std::isinf(a) || std::isinf(b)) return std::isinf(a) && std::isinf(b);
   return std::max(a, b) <= kMaxDistanceRatio * std::min(a, b);
@@ -45,6 +56,10 @@ Image share_between_neighbours(const Image& mosaic, const ProbeLayout& layout, c
                                const ProbeSharing& sharing, uint64_t* shared_texels) {
   Image out = mosaic;
   if (sharing.radius <= 0) return out;
+  const size_t records_needed = size_t(layout.probe_count()) * size_t(layout.texels_per_probe());
+  if (records.distance.size() != records_needed || records.samples.size() != records_needed ||
+      records.variance.size() != records_needed)
+    fail("texel records of {} texels given for sharing {}", records.samples.size(), records_needed);
   const int h = layout.res_height, w = layout.res_width, texels = layout.texels_per_probe();
   // Per texel: its centre direction and the largest parallax angle accepted there, a
   // fraction of the texel's smaller extent (texels narrow towards the poles).
@@ -93,8 +108,12 @@ Image share_between_neighbours(const Image& mosaic, const ProbeLayout& layout, c
             const glm::vec3& dir = centre[size_t(t)];
             const glm::vec3 across = baseline - glm::dot(baseline, dir) * dir;
             if (!(std::sqrt(glm::dot(across, across)) <= max_angle[size_t(t)] * std::min(dp, dq))) continue;
+            const glm::dvec3 value = texel(q, t);
+            if (!consistent(texel(p, t), value, records.variance[base_p + size_t(t)],
+                            records.variance[base_q + size_t(t)]))
+              continue;
             const double n = records.samples[base_q + size_t(t)];
-            sum[size_t(t)] += n * texel(q, t);
+            sum[size_t(t)] += n * value;
             weight[size_t(t)] += n;
             took[size_t(t)] = 1;
           }

@@ -13,7 +13,10 @@
 //    direction is below parallax_texels times the texel's smaller extent (its height pi/h,
 //    or its width at its centre row near the poles) seen from the nearer of the two
 //    probes' hit distances in that texel, and those distances agree within a factor of 2
-//    (else one probe sees an occluder the other does not).
+//    (else one probe sees an occluder the other does not);
+//  - the two values agree within kConsistentErrors (3) standard errors of their difference,
+//    from each texel's variance: a halo or an edge moved across one of them by parallax
+//    differs by more than its noise, and averaging would blur it.
 // The window's probes draw interleaved strata (sub_stratum), so their average is a
 // stratified estimate over (2r+1)^2 times as many strata as one probe's.
 #include <cstdint>
@@ -33,10 +36,12 @@ namespace phyir::render {
 glm::ivec2 sub_stratum(int i, int j, const ProbeSharing& sharing);
 
 // What shading records per texel (index probe * texels_per_probe + texel): the nearest hit
-// distance among its directions (infinity where all missed) and its sample count.
+// distance among its directions (infinity where all missed), its sample count and the
+// variance of its value's luminance (its directions' sample variance over their count).
 struct TexelRecords {
   std::vector<float> distance;
   std::vector<float> samples;
+  std::vector<float> variance;  // of its value's luminance, from its samples' spread
 };
 
 // The mosaic with each valid computed probe's texels averaged over its neighbours as above.

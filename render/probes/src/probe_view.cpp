@@ -125,6 +125,7 @@ ProbeOutput ProbeView::run() {
   if (share_) {
     records_.distance.assign(size_t(layout_.probe_count()) * size_t(texels_), std::numeric_limits<float>::infinity());
     records_.samples.assign(size_t(layout_.probe_count()) * size_t(texels_), 0.0f);
+    records_.variance.assign(size_t(layout_.probe_count()) * size_t(texels_), 0.0f);
   }
   feet_.assign(correct_foot_ ? todo_.size() : 0, FootCorrection());
   Progress progress("probes", todo_.size() * (correct_foot_ ? 2 : 1), correct_foot_ ? "probe halves" : "probes",
@@ -404,6 +405,7 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* s
   stratified_square(count, permutation, &w->strata, probe.interleave);
   const glm::vec3 origin = out_.sites[size_t(probe.p)].origin;
   glm::dvec3 sum(0.0), sum_cos(0.0), sum_emitted_cos(0.0);
+  double sum_y = 0.0, sum_y2 = 0.0;
   float lo = std::numeric_limits<float>::infinity(), hi = 0.0f;
   for (int s = 0; s < count; ++s) {
     const uint64_t key = sample_key(probe_seed_, id, uint64_t(first + s));
@@ -420,9 +422,12 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* s
       sum_cos += glm::dvec3(L) * cosine;
       sum_emitted_cos += glm::dvec3(emitted) * cosine;
     }
-    lo = std::min(lo, luminance(L));
-    hi = std::max(hi, luminance(L));
+    const float y = luminance(L);
+    sum_y += y, sum_y2 += double(y) * y;
+    lo = std::min(lo, y);
+    hi = std::max(hi, y);
   }
+  x.variance = count > 1 ? float(std::max(sum_y2 - sum_y * sum_y / count, 0.0) / (double(count) * (count - 1))) : 0.0f;
   if (spread) *spread = count > 0 ? hi - lo : 0.0f;
   x.cos_all = glm::vec3(sum_cos / double(count));
   x.cos_emitted = glm::vec3(sum_emitted_cos / double(count));
@@ -441,6 +446,7 @@ void ProbeView::store_texel(const Texel& x, glm::vec3 value, const glm::vec3& se
   if (share_) {
     records_.distance[size_t(id)] = x.distance;
     records_.samples[size_t(id)] = float(x.samples);
+    records_.variance[size_t(id)] = x.variance;
     // Emission seen directly is not shared: a light's edge moves across a texel with the
     // slightest parallax, and its own directions already resolve it.
     if (x.probe->lit[size_t(x.t)]) w->emission_seen.push_back({id, seen_emission});

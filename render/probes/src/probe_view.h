@@ -65,6 +65,7 @@ class ProbeView {
     float distance = 0.0f;              // its nearest hit
     glm::vec3 cos_all{0.0f}, cos_emitted{0.0f};
     int samples = 0;          // directions its value (apart from the emission seen directly) took
+    float variance = 0.0f;    // of that value's luminance, from its directions' spread
   };
   using Part = TexelEstimator::Part;
   // A texel between its first samples and its final value.
