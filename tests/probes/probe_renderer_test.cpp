@@ -455,13 +455,7 @@ TEST(ProbeCache, NearAndFarFromALightMatchesThePathMode) {
   // A pillar whose top is 20 cm under the light: cells there hold no direct light.
   test::add_box(scene, glm::vec3(-0.4f, 0.0f, -0.4f), glm::vec3(0.4f, 2.4f, 0.4f),
                 test::add_material(scene, test::make_material(glm::vec3(0.6f), 0.4f, 0.0f)));
-  if (bulb) {
-    scenes::PunctualLight point;
-    point.type = scenes::PunctualLight::Type::Point;
-    point.intensity = 1.5f * scenes::PunctualLight::kLumensPerWatt;
-    point.position = glm::vec3(0.35f, 2.5f, 0.1f);
-    scene.lights = {point};
-  }
+  if (bulb) scene.lights = {test::make_point_light(1.5f, glm::vec3(0.35f, 2.5f, 0.1f))};
   const struct {
     const char* name;
     glm::vec3 origin;

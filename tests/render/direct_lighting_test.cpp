@@ -125,11 +125,7 @@ TEST(DirectLighting, MisWeightsOfLightSamplesAndCosineRaysSumToOne) {
 // irradiance; weighted against samples that may choose it, the rays' share is too large.
 TEST(DirectLighting, MisOfTheTrianglesAloneSumsToOneBesideAPunctualLight) {
   scenes::Scene scene = lit_floor(false);
-  scenes::PunctualLight bulb;
-  bulb.type = scenes::PunctualLight::Type::Point;
-  bulb.intensity = 50.0f * scenes::PunctualLight::kLumensPerWatt;
-  bulb.position = kPoint + glm::vec3(0.2f, 0.3f, 0.0f);
-  scene.lights = {bulb};
+  scene.lights = {test::make_point_light(50.0f, kPoint + glm::vec3(0.2f, 0.3f, 0.0f))};
   const RenderScene rs(scene);
   const double expected = lambert_irradiance();
   DirectLightOptions triangles = irradiance_options(true, 4);
@@ -172,11 +168,8 @@ TEST(DirectLighting, AnOccluderTakesTheLightAway) {
 TEST(DirectLighting, PunctualLightsAreExactAndLeftOutOfTheSampledTrianglesOnRequest) {
   for (const bool occluded : {false, true}) {
     scenes::Scene scene = lit_floor(occluded);
-    scenes::PunctualLight point;
-    point.type = scenes::PunctualLight::Type::Point;
-    point.intensity = 2.0f * scenes::PunctualLight::kLumensPerWatt;
-    point.color = glm::vec3(1.0f, 0.5f, 0.25f);
-    point.position = glm::vec3(1.1f, 0.8f, -0.4f);  // above the slab of lit_floor(true)
+    // Above the slab of lit_floor(true).
+    const scenes::PunctualLight point = test::make_point_light(2.0f, glm::vec3(1.1f, 0.8f, -0.4f), {1.0f, 0.5f, 0.25f});
     scenes::PunctualLight sun;
     sun.type = scenes::PunctualLight::Type::Directional;
     sun.intensity = 5.0f * scenes::PunctualLight::kLumensPerWatt;

@@ -83,13 +83,7 @@ scenes::Scene mixed_lights(bool point_light = false) {
   textured.emissive_texture.texture = add_texture(scene, 2, 1, {{1, 0, 0, 1}, {0, 0, 1, 1}});
   add_quad(scene, {-1.0f, 0.5f, -2.0f}, {2.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, add_material(scene, textured),
            "textured light");  // faces +Z, double-sided
-  if (point_light) {
-    scenes::PunctualLight point;
-    point.type = scenes::PunctualLight::Type::Point;
-    point.intensity = 4.0f * scenes::PunctualLight::kLumensPerWatt;
-    point.position = glm::vec3(0.3f, 1.2f, 0.2f);
-    scene.lights = {point};
-  }
+  if (point_light) scene.lights = {test::make_point_light(4.0f, glm::vec3(0.3f, 1.2f, 0.2f))};
   return scene;
 }
 

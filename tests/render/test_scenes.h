@@ -35,6 +35,17 @@ inline scenes::Material make_emitter(const glm::vec3& emission, bool double_side
   return m;
 }
 
+// A point light whose radiometric intensity is `watts` W/sr (glTF candela: x kLumensPerWatt).
+inline scenes::PunctualLight make_point_light(float watts, const glm::vec3& position,
+                                              const glm::vec3& color = glm::vec3(1.0f)) {
+  scenes::PunctualLight light;
+  light.type = scenes::PunctualLight::Type::Point;
+  light.intensity = watts * scenes::PunctualLight::kLumensPerWatt;
+  light.color = color;
+  light.position = position;
+  return light;
+}
+
 inline int add_material(scenes::Scene& scene, const scenes::Material& material) {
   scene.materials.push_back(material);
   return static_cast<int>(scene.materials.size()) - 1;
