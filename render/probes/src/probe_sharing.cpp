@@ -59,7 +59,7 @@ Image share_between_neighbours(const Image& mosaic, const ProbeLayout& layout, c
   const size_t records_needed = size_t(layout.probe_count()) * size_t(layout.texels_per_probe());
   if (records.distance.size() != records_needed || records.samples.size() != records_needed ||
       records.variance.size() != records_needed)
-    fail("texel records of {} texels given for sharing {}", records.samples.size(), records_needed);
+    fail("sharing needs texel records of {} texels, {} given", records_needed, records.samples.size());
   const int h = layout.res_height, w = layout.res_width, texels = layout.texels_per_probe();
   // Per texel: its centre direction and the largest parallax angle accepted there, a
   // fraction of the texel's smaller extent (texels narrow towards the poles).

@@ -47,7 +47,8 @@ class TexelEstimator {
   // Radiance the (opaque) surface at si reflects towards wo_world; `depth` = its scattering
   // event's index counted from the probe's first hit (so it is only called for depth <
   // max_bounces). Direct light is sampled here for every sample: next-event estimation and
-  // one BRDF-sampled ray (the integrator's own sampling), combined by the power heuristic.
+  // one BRDF-sampled ray (the integrator's own sampling), combined by the power heuristic,
+  // the punctual lights exact (near_light).
   // Indirect light: diffuse from the cache, f_d E(x); specular through the same BRDF-sampled
   // ray (f_s cos / pdf of it times the light its hit y reflects, Russian-rouletted by the
   // specular share of the sample's weight).
