@@ -230,7 +230,7 @@ int TexelEstimator::near_light_samples(const SurfaceInteraction& si, const Shadi
 
 glm::vec3 TexelEstimator::punctual_at(const ShadingPoint& x, const CachedIrradiance& E, PathCounters* c) const {
   if (!exact_punctual_) return E.punctual;
-  return punctual_irradiance(scene_, x.position, x.frame.n, x.geometric_normal, &c->rays);
+  return punctual_light(scene_, x, Lobes::kCosine, c);
 }
 
 glm::vec3 TexelEstimator::near_light(const ShadingPoint& x, DirectLightOptions* nee, int depth, uint64_t key,

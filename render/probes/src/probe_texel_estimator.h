@@ -95,7 +95,7 @@ class TexelEstimator {
   int near_light_samples(const SurfaceInteraction& si, const ShadingPoint& x) const;
 
   // The punctual lights' irradiance at x where the cache holds the direct light: exact at x
-  // (punctual_irradiance) in scenes of few punctual lights, else the cache's.
+  // (punctual_light through the cosine lobe) in scenes of few punctual lights, else the cache's.
   glm::vec3 punctual_at(const ShadingPoint& x, const CachedIrradiance& E, PathCounters* c) const;
 
   // The cache's irradiance at the surface of x (si's hit), keyed for its fallback.
