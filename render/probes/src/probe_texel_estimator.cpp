@@ -9,7 +9,6 @@
 #include "phyir/render/direct_lighting.h"
 #include "phyir/render/streams.h"
 #include "phyir/render/sampling.h"
-#include "punctual_deposit.h"
 
 namespace phyir::render {
 
