@@ -8,7 +8,8 @@
 # metrics.json are there; a missing prediction file fails with its name; the metrics beat
 # the constant-mean baseline where the expectations say they must (the others are listed).
 #   $1 = phyir binary, $2 = scratch folder (emptied).
-#   PHYIR_EVAL_REFRESH=1: rewrite the expectations instead (scripts/refresh_eval_expectations.sh).
+#   PHYIR_EVAL_REFRESH=1: rewrite the expectations instead (scripts/refresh_eval_expectations.sh);
+#   PHYIR_EVAL_REFRESH=cpu: add this CPU's own expectations beside the others' (--this-cpu).
 set -euo pipefail
 phyir=$(realpath "$1")
 work=$2
@@ -41,8 +42,9 @@ ls report/figures/*.png > /dev/null || die "no side-by-side PNG"
 grep -q "Relighting (layout of Table 5)" report/report.md || die "report.md has no Table 5"
 grep -q "| Method | Base color (MSE)" eval.log || die "the command did not print the main table"
 
-if [ "${PHYIR_EVAL_REFRESH:-0}" = 1 ]; then
-  /usr/bin/python3 "$root/tests/eval/compare_metrics.py" report/metrics.json "$expected" --write
+if [ "${PHYIR_EVAL_REFRESH:-0}" = 1 ] || [ "${PHYIR_EVAL_REFRESH:-0}" = cpu ]; then
+  write=--write; [ "$PHYIR_EVAL_REFRESH" = cpu ] && write=--write-this-cpu
+  /usr/bin/python3 "$root/tests/eval/compare_metrics.py" report/metrics.json "$expected" $write
   cat report/report.md
   exit 0
 fi
