@@ -138,8 +138,8 @@ torch::Tensor sum_of(const GMOutput& o) {
 std::string peak_memory_method() {
   return "peak resident memory (VmHWM of /proc/self/status, reset through /proc/self/clear_refs) "
          "above the resident memory just before the module runs (its inputs and weights excluded); "
-         "malloc's mmap threshold fixed at 1 MiB and malloc_trim before each module, so freed "
-         "tensors leave the resident set";
+         "malloc_trim before each module, so memory freed before it leaves the resident set "
+         "(the commands keep freed memory for reuse: host_memory.h)";
 }
 
 std::vector<ModuleCost> benchmark_modules(const ModelBenchOptions& o,
@@ -150,9 +150,7 @@ std::vector<ModuleCost> benchmark_modules(const ModelBenchOptions& o,
   for (const std::string& head : o.lnet_heads)
     if (head != "paper" && head != "light") fail("bench model: LNet head '{}': paper or light", head);
   if (o.threads < 1 || o.repeats < 0) fail("bench model: threads {} and repeats {}: at least 1 and 0", o.threads, o.repeats);
-  set_threads(o.threads);
-  // Large tensors always from mmap, returned on free: the resident set then tracks live tensors.
-  mallopt(M_MMAP_THRESHOLD, 1 << 20);
+  set_threads(o.threads);  // with the commands' memory policy (host_memory.h): timed as `phyir infer` runs
   std::vector<ModuleCost> out;
   auto report = [&](ModuleCost c) {
     out.push_back(c);

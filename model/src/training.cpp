@@ -8,6 +8,7 @@
 
 #include "phyir/core/error.h"
 #include "phyir/core/log.h"
+#include "host_memory.h"
 #include "trainer.h"
 
 namespace phyir::model {
@@ -60,6 +61,7 @@ StageDefaults stage_defaults(Stage s) {
 void set_threads(int threads) {
   if (threads == 0) threads = int(std::thread::hardware_concurrency());
   torch::set_num_threads(std::max(1, threads));
+  retain_freed_memory();
 }
 
 TrainSummary train(const TrainOptions& options) {
