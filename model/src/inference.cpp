@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "host_memory.h"
 #include "checkpoint.h"
 #include "data.h"
 #include "device.h"
@@ -81,6 +82,7 @@ json radiance_record(const Panorama& p, bool absolute, bool trained_absolute) {
 void infer(const InferOptions& o) {
   init_logging();
   set_threads(o.threads);
+  retain_freed_memory();
   torch::manual_seed(o.seed);
   const torch::Device device = parse_device(o.device);
   const ModelConfig cfg = read_checkpoint_config(o.checkpoint);

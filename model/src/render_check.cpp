@@ -3,6 +3,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "host_memory.h"
 #include "data.h"
 #include "phyir/core/error.h"
 #include "phyir/core/image_io.h"
@@ -74,6 +75,7 @@ void write_check(const RenderCheckOptions& o, const ModelConfig& c, const Render
 RenderCheckResult check_render_layer(const RenderCheckOptions& o) {
   init_logging();
   set_threads(o.threads);
+  retain_freed_memory();
   torch::manual_seed(o.seed);
   torch::NoGradGuard no_grad;
   const ModelConfig c = view_config(o.view_dir);

@@ -61,12 +61,12 @@ StageDefaults stage_defaults(Stage s) {
 void set_threads(int threads) {
   if (threads == 0) threads = int(std::thread::hardware_concurrency());
   torch::set_num_threads(std::max(1, threads));
-  retain_freed_memory();
 }
 
 TrainSummary train(const TrainOptions& options) {
   init_logging();
   set_threads(options.threads);
+  retain_freed_memory();
   return Trainer(options).run();
 }
 

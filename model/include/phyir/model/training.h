@@ -193,7 +193,6 @@ struct RenderCheckResult {
 RenderCheckResult check_render_layer(const RenderCheckOptions& options);
 
 // Sets torch's intra-op thread count (commands call it before any work); 0: every core.
-// Also keeps freed host memory in the process for the next tensors (host_memory.h).
 void set_threads(int threads);
 
 }  // namespace phyir::model
