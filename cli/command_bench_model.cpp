@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "commands.h"
+#include "torch_handoff.h"
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/log.h"
 
@@ -143,13 +144,12 @@ void add_bench_model_command(CLI::App& bench) {
 
 #else
 
+// `phyir` lists the command in --help. With the network built, main() hands the command to
+// phyir-torch before parsing (torch_handoff.h); without it, the callback says it was not built.
 void add_bench_model_command(CLI::App& bench) {
-  auto* cmd = bench.add_subcommand("model", "time and memory of the network's modules (not built: PHYIR_BUILD_MODEL=OFF)");
+  auto* cmd = bench.add_subcommand("model", "time and memory of the network's modules" + torch_build_note());
   cmd->allow_extras();
-  cmd->callback([] {
-    std::fprintf(stderr, "phyir bench model: not available in this build (configured with -DPHYIR_BUILD_MODEL=OFF)\n");
-    std::exit(3);
-  });
+  cmd->callback([] { run_in_torch_cli("bench model"); });
 }
 
 #endif

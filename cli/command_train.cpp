@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "torch_handoff.h"
 
 #ifdef PHYIR_HAVE_MODEL
 #include "local_ranks.h"
@@ -58,13 +59,12 @@ void add_train_command(CLI::App& app) {
 
 #else
 
+// `phyir` lists the command in --help. With the network built, main() hands the command to
+// phyir-torch before parsing (torch_handoff.h); without it, the callback says it was not built.
 void add_train_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("train", "Train the PhyIR network (not built: PHYIR_BUILD_MODEL=OFF)");
+  auto* cmd = app.add_subcommand("train", "Train the PhyIR network" + torch_build_note());
   cmd->allow_extras();
-  cmd->callback([] {
-    std::fprintf(stderr, "phyir train: not available in this build (configured with -DPHYIR_BUILD_MODEL=OFF)\n");
-    std::exit(3);
-  });
+  cmd->callback([] { run_in_torch_cli("train"); });
 }
 
 #endif

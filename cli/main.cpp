@@ -6,6 +6,7 @@
 #include "commands.h"
 #include "phyir/core/error.h"
 #include "phyir/core/log.h"
+#include "torch_handoff.h"
 
 namespace phyir::cli {
 
@@ -34,6 +35,11 @@ std::filesystem::path this_executable() {
 int main(int argc, char** argv) {
   phyir::init_logging();
   phyir::cli::set_command_line(argc, argv);
+#if defined(PHYIR_TORCH_CLI) && !defined(PHYIR_HAVE_MODEL)
+  // The network's commands, --help included, are phyir-torch's (torch_handoff.h).
+  const std::string torch_command = phyir::cli::torch_command(argc, argv);
+  if (!torch_command.empty()) phyir::cli::run_in_torch_cli(torch_command);
+#endif
   CLI::App app{"phyir: physically based inverse rendering of indoor panoramas.\n"
                "Scenes in (glTF 2.0), HDR panoramas, AOVs and light probes out, the PhyIR "
                "network trained and evaluated on them."};

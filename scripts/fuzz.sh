@@ -18,8 +18,10 @@ start=$(date +%s)
 
 command -v clang++ >/dev/null || { echo "fuzz: clang++ not found (scripts/install_deps.sh installs clang)" >&2; exit 1; }
 # Only core/ and scenes/ are needed: no tests, benchmarks or network. ccache applies as in
-# scripts/build.sh (CMAKE_CXX_COMPILER_LAUNCHER).
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+# scripts/build.sh (CMAKE_CXX_COMPILER_LAUNCHER). -O1, as in scripts/sanitize.sh: the
+# sanitizers make -O2 several times slower to compile.
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+  -DCMAKE_CXX_COMPILER=clang++ \
   -DPHYIR_BUILD_FUZZ=ON -DPHYIR_BUILD_TESTS=OFF -DPHYIR_BUILD_BENCH=OFF -DPHYIR_BUILD_MODEL=OFF >/dev/null
 cmake --build "$build" -j "$jobs" --target gltf_loader_fuzz
 built=$(date +%s)

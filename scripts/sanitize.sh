@@ -18,12 +18,10 @@ build="${PHYIR_ASAN_BUILD_DIR:-$root/build-asan}"
 jobs="${PHYIR_JOBS:-$(nproc)}"
 start=$(date +%s)
 
-flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DPHYIR_BUILD_MODEL=OFF -DPHYIR_BUILD_BENCH=OFF -DPHYIR_BUILD_TESTS=ON \
-  -DCMAKE_CXX_FLAGS="$flags" \
-  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
-  -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
+# -O1: the level the sanitizers' documentation recommends, and a third quicker to compile than
+# -O2 with their instrumentation (which makes a file 3-5 times slower to compile).
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+  -DPHYIR_SANITIZE=ON -DPHYIR_BUILD_MODEL=OFF -DPHYIR_BUILD_BENCH=OFF -DPHYIR_BUILD_TESTS=ON >/dev/null
 cmake --build "$build" -j "$jobs"
 built=$(date +%s)
 

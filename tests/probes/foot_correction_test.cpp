@@ -17,6 +17,7 @@
 #include "phyir/render/render_scene.h"
 #include "phyir/render/rng.h"
 #include "test_scenes.h"
+#include "sanitizer_skip.h"
 
 namespace phyir::render {
 namespace {
@@ -230,6 +231,7 @@ OwnFloorError own_floor_error(const scenes::Scene& scene) {
 }
 
 TEST(ProbeFootCorrection, WithANoisyCacheTheProbesOwnFloorIsFarCloserToAConvergedCache) {
+  PHYIR_SKIP_UNDER_SANITIZERS("FootCorrection.* and FootIrradiance.*");
   const scenes::Scene scene = small_lit_room();
   const OwnFloorError e = own_floor_error(scene);
   EXPECT_EQ(e.corrected, uint64_t(kProbes));
@@ -252,6 +254,7 @@ TEST(ProbeFootCorrection, WithANoisyCacheTheProbesOwnFloorIsFarCloserToAConverge
 // a cache whose direct light held the spot, the lit probes measured far less than their cache
 // and the rest, through the common difference, far more.)
 TEST(ProbeFootCorrection, APunctualLightOnPartOfTheFloorDoesNotSkewTheCorrection) {
+  PHYIR_SKIP_UNDER_SANITIZERS("FootCorrection.* and FootIrradiance.*");
   scenes::Scene scene = small_lit_room();
   scenes::PunctualLight spot;
   spot.type = scenes::PunctualLight::Type::Spot;

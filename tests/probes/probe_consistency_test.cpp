@@ -14,6 +14,7 @@
 #include "phyir/render/probe_renderer.h"
 #include "phyir/render/render_view.h"
 #include "test_scenes.h"
+#include "sanitizer_skip.h"
 
 namespace phyir::render {
 namespace {
@@ -67,6 +68,7 @@ glm::dvec3 integrate(const Image& probe, const glm::vec3& normal, const glm::vec
 }
 
 TEST(ProbeConsistency, IntegratingAPixelsProbeAgainstItsBrdfGivesItsColour) {
+  PHYIR_SKIP_UNDER_SANITIZERS("ProbeRobustness.* and StabilityMatrix.ProbesEveryMaterialAndMode");
   const scenes::Scene scene = consistency_room();
   const RenderScene rs(scene);
   const Effects effects = analyse_effects(scene, false);

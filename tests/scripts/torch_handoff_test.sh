@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# `phyir` does not load LibTorch; the network's commands (train, infer, bench model, eval
+# --model) run in phyir-torch beside it, with the same arguments (cli/torch_handoff.h).
+# Without the network built (PHYIR_BUILD_MODEL=OFF) they exit 3 and say so.
+#   $1 = phyir binary, $2 = scratch folder (emptied).
+set -euo pipefail
+phyir=$1
+work=$2
+rm -rf "$work"
+mkdir -p "$work"
+cd "$work"
+die() { echo "FAIL: $*" >&2; exit 1; }
+
+! ldd "$phyir" | grep -q "libtorch" || die "phyir links LibTorch: $(ldd "$phyir" | grep libtorch)"
+"$phyir" --help > help.log
+for command in train infer; do grep -qE "^ +$command " help.log || die "phyir --help does not list $command"; done
+
+torch_cli=$(dirname "$phyir")/phyir-torch
+if [ ! -x "$torch_cli" ]; then
+  "$phyir" train --help | grep -q "not built: PHYIR_BUILD_MODEL=OFF" || die "train --help without the network does not say so"
+  rc=0
+  "$phyir" infer --model x.pt > off.log 2>&1 || rc=$?
+  [ "$rc" -eq 3 ] && grep -q "PHYIR_BUILD_MODEL=OFF" off.log || die "infer without the network: exit $rc, $(cat off.log)"
+  echo "torch hand-off: phyir built without the network; its commands say so"
+  exit 0
+fi
+ldd "$torch_cli" | grep -q "libtorch" || die "phyir-torch does not link LibTorch"
+
+# The full help of each command comes from phyir-torch, global options first or not.
+"$phyir" train --help | grep -q -- "--stage" || die "phyir train --help is not the network's"
+"$phyir" --log-level warn infer --help | grep -q -- "--input" || die "phyir --log-level warn infer --help is not the network's"
+"$phyir" bench model --help | grep -q -- "--settings" || die "phyir bench model --help is not the network's"
+# Errors are phyir-torch's, and its exit status is phyir's.
+rc=0
+"$phyir" infer --model missing.pt --input missing.png --out out > infer.log 2>&1 || rc=$?
+[ "$rc" -ne 0 ] && [ "$rc" -lt 128 ] && grep -q "missing.pt" infer.log || die "infer with a missing checkpoint: exit $rc, $(cat infer.log)"
+# eval --model's hand-off runs in eval_regression_test.
+echo "torch hand-off: phyir is torch-free, train, infer and bench model run in phyir-torch"
