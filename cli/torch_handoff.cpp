@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -35,8 +36,11 @@ std::string torch_command(int argc, char** argv) {
 
 void run_in_torch_cli(const std::string& command) {
 #ifdef PHYIR_TORCH_CLI
-  const std::string torch_cli = (this_executable().parent_path() / PHYIR_TORCH_CLI).string();
-  std::vector<char*> args{const_cast<char*>(torch_cli.c_str())};
+  const std::filesystem::path self = this_executable();
+  const std::string torch_cli = (self.parent_path() / PHYIR_TORCH_CLI).string();
+  // argv[0] stays phyir's path: usage lines and messages name the command the user typed.
+  const std::string program = self.string();
+  std::vector<char*> args{const_cast<char*>(program.c_str())};
   for (const std::string& a : command_line()) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
   ::execv(torch_cli.c_str(), args.data());
