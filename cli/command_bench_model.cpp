@@ -148,7 +148,9 @@ void add_bench_model_command(CLI::App& bench) {
 // phyir-torch before parsing (torch_handoff.h); without it, the callback says it was not built.
 void add_bench_model_command(CLI::App& bench) {
   auto* cmd = bench.add_subcommand("model", "time and memory of the network's modules" + torch_build_note());
-  cmd->allow_extras();
+  // Every argument after the command is the network command's: kept here, not passed up to
+  // phyir (main() sets fallthrough, which would refuse them there).
+  cmd->fallthrough(false)->prefix_command();
   cmd->callback([] { run_in_torch_cli("bench model"); });
 }
 

@@ -63,7 +63,9 @@ void add_train_command(CLI::App& app) {
 // phyir-torch before parsing (torch_handoff.h); without it, the callback says it was not built.
 void add_train_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("train", "Train the PhyIR network" + torch_build_note());
-  cmd->allow_extras();
+  // Every argument after the command is the network command's: kept here, not passed up to
+  // phyir (main() sets fallthrough, which would refuse them there).
+  cmd->fallthrough(false)->prefix_command();
   cmd->callback([] { run_in_torch_cli("train"); });
 }
 

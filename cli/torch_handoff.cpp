@@ -48,7 +48,7 @@ void run_in_torch_cli(const std::string& command) {
                torch_cli.c_str(), std::strerror(errno));
   std::exit(1);
 #else
-  std::fprintf(stderr, "phyir %s: not available in this build (configured with -DPHYIR_BUILD_MODEL=OFF)\n",
+  std::fprintf(stderr, "phyir %s: not available in this build (not built: configured with -DPHYIR_BUILD_MODEL=OFF)\n",
                command.c_str());
   std::exit(3);
 #endif

@@ -267,7 +267,7 @@ Scene load_with_material(const json& material, const std::vector<std::string>& e
   const std::filesystem::path dir = test::fresh_test_dir();
   write_image(dir / "white.png", Image(1, 1, 3, 1.0f));
   b.add_triangles("tri", test::unit_triangle(), {0, 1, 2}, {}, {{"material", 0}});
-  b.doc["materials"] = {material};
+  b.doc["materials"] = json::array({material});  // not {material}: clang reads that as a copy (CWG 2137)
   b.doc["images"] = {{{"uri", "white.png"}}};
   b.doc["textures"] = {{{"source", 0}}};
   if (!extensions_used.empty()) b.doc["extensionsUsed"] = extensions_used;

@@ -46,7 +46,7 @@ Scene load_textured(const json& sampler, bool glb = false) {
     b.doc["images"] = {{{"uri", "two_texels.png"}}};
   }
   b.doc["textures"] = {{{"source", 0}, {"sampler", 0}}};
-  b.doc["samplers"] = {sampler};
+  b.doc["samplers"] = json::array({sampler});  // not {sampler}: clang reads that as a copy (CWG 2137)
   b.set_scene({b.add_node({{"mesh", 0}})});
   return load_gltf(glb ? b.write_glb(dir, "textured") : b.write_gltf(dir, "textured"));
 }
