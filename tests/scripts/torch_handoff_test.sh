@@ -3,13 +3,7 @@
 # --model) run in phyir-torch beside it, with the same arguments (cli/torch_handoff.h).
 # Without the network built (PHYIR_BUILD_MODEL=OFF) they exit 3 and say so.
 #   $1 = phyir binary, $2 = scratch folder (emptied).
-set -euo pipefail
-phyir=$1
-work=$2
-rm -rf "$work"
-mkdir -p "$work"
-cd "$work"
-die() { echo "FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/lib/prologue.sh"
 
 # Outputs go to files before grep -q: with pipefail, a writer cut off by grep's early exit
 # (SIGPIPE) would fail the pipeline.
