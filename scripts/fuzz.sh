@@ -1,28 +1,36 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer target for the glTF/GLB loader with clang (AddressSanitizer and
-# UndefinedBehaviorSanitizer on, coverage instrumentation of core/ and scenes/) in its own
-# folder (build-fuzz) and runs it for a bounded time on a copy of the checked-in seed corpus
+# UndefinedBehaviorSanitizer on, coverage instrumentation of core/ and scenes/), in
+# scripts/sanitize.sh's folder when that has built it (build-asan) or else in its own
+# (build-fuzz), and runs it for a bounded time on a copy of the checked-in seed corpus
 # (fuzz/corpus), with a glTF dictionary. Exits non-zero on any finding: a crash, a sanitizer
 # report, an exception other than phyir::Error, a single malloc above the RSS limit (an
 # unbounded allocation) or an input slower than the per-input timeout (a hang). The crashing
-# input is left in build-fuzz/findings/ for `gltf_loader_fuzz FILE` to reproduce.
+# input is left in findings/ of that folder, for `gltf_loader_fuzz FILE` to reproduce.
 # Called by .ci/run after scripts/sanitize.sh; docs/robustness.md.
 #
 # Usage: scripts/fuzz.sh [seconds]   (default 60; PHYIR_FUZZ_BUILD_DIR, PHYIR_JOBS override)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${PHYIR_FUZZ_BUILD_DIR:-$root/build-fuzz}"
+asan_build="${PHYIR_ASAN_BUILD_DIR:-$root/build-asan}"
+build="${PHYIR_FUZZ_BUILD_DIR:-}"
 jobs="${PHYIR_JOBS:-$(nproc)}"
 seconds="${1:-60}"
 start=$(date +%s)
 
 command -v clang++ >/dev/null || { echo "fuzz: clang++ not found (scripts/install_deps.sh installs clang)" >&2; exit 1; }
-# Only core/ and scenes/ are needed: no tests, benchmarks or network. ccache applies as in
-# scripts/build.sh (CMAKE_CXX_COMPILER_LAUNCHER). -O1, as in scripts/sanitize.sh: the
-# sanitizers make -O2 several times slower to compile.
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
-  -DCMAKE_CXX_COMPILER=clang++ \
-  -DPHYIR_BUILD_FUZZ=ON -DPHYIR_BUILD_TESTS=OFF -DPHYIR_BUILD_BENCH=OFF -DPHYIR_BUILD_MODEL=OFF >/dev/null
+# scripts/sanitize.sh builds the fuzz target with everything else (same compiler, level and
+# sanitizers): after it, as in .ci/run, its folder is used and nothing is compiled again.
+# Otherwise a folder of its own with only core/ and scenes/: no tests, benchmarks or network.
+if [ -z "$build" ] && grep -q "^PHYIR_BUILD_FUZZ:BOOL=ON" "$asan_build/CMakeCache.txt" 2>/dev/null; then
+  build="$asan_build"
+else
+  build="${build:-$root/build-fuzz}"
+  # ccache applies as in scripts/build.sh (CMAKE_CXX_COMPILER_LAUNCHER); -O1 as in sanitize.sh.
+  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+    -DCMAKE_CXX_COMPILER=clang++ \
+    -DPHYIR_BUILD_FUZZ=ON -DPHYIR_BUILD_TESTS=OFF -DPHYIR_BUILD_BENCH=OFF -DPHYIR_BUILD_MODEL=OFF >/dev/null
+fi
 cmake --build "$build" -j "$jobs" --target gltf_loader_fuzz
 built=$(date +%s)
 

@@ -22,11 +22,13 @@ jobs="${PHYIR_JOBS:-$(nproc)}"
 start=$(date +%s)
 
 # clang, at -O1 (the level the sanitizers' documentation recommends): GCC 12 took twice as
-# long to compile a file with ASan + UBSan, and -O2 another half again.
+# long to compile a file with ASan + UBSan, and -O2 another half again. PHYIR_BUILD_FUZZ: the
+# glTF loader's fuzz target is built here too, for scripts/fuzz.sh (core/ and scenes/ get
+# libFuzzer's coverage instrumentation; the sanitizer runtime serves its callbacks in tests).
 command -v clang++ >/dev/null || { echo "sanitize: clang++ not found (scripts/install_deps.sh installs clang)" >&2; exit 1; }
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
-  -DPHYIR_SANITIZE=ON -DPHYIR_BUILD_MODEL=OFF -DPHYIR_BUILD_BENCH=OFF -DPHYIR_BUILD_TESTS=ON >/dev/null
+  -DPHYIR_SANITIZE=ON -DPHYIR_BUILD_FUZZ=ON -DPHYIR_BUILD_MODEL=OFF -DPHYIR_BUILD_BENCH=OFF -DPHYIR_BUILD_TESTS=ON >/dev/null
 cmake --build "$build" -j "$jobs"
 built=$(date +%s)
 
