@@ -13,7 +13,10 @@ phyir="${PHYIR_BUILD_DIR:-$root/build}/cli/phyir"
 out="${PHYIR_EXAMPLE_DIR:-$root/example}"
 "$phyir" --version
 "$phyir" scenes generate --out "$out/apartment" --count 1 --seed 1 --preset apartment --rooms 3 --lighting day
-"$phyir" scenes info "$out/apartment/apartment_0.gltf" | head -8
+# To a file, then its head: piped into head, phyir would be cut off (SIGPIPE) and, with
+# pipefail, end this script.
+"$phyir" scenes info "$out/apartment/apartment_0.gltf" > "$out/scene_info.txt"
+head -8 "$out/scene_info.txt"
 "$phyir" render "$out/apartment/apartment_0.gltf" --out "$out/render" --width 512 --height 256 --spp 64 --seed 1 \
   --probes --probe-grid 32x64
 /usr/bin/python3 "$root/scripts/apartments/contact_sheet.py" --out "$out/contact_sheet.png" --width 320 --probes 4 \
