@@ -112,7 +112,7 @@ bool EmitterSampler::make_triangle(const scenes::Mesh& mesh, int m, int t, Emiss
   const size_t n = mesh.positions.size();
   if (tri.x >= n || tri.y >= n || tri.z >= n) return false;
   *e = EmissiveTriangle{m, t, mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z], glm::vec3(0.0f),
-                        0.0f, glm::vec3(0.0f), 0.0f, /*cluster=*/-1, /*pmf_in_cluster=*/0.0f};
+                        0.0f, glm::vec3(0.0f), 0.0f, /*cluster=*/-1, /*slot=*/-1, /*pmf_in_cluster=*/0.0f};
   const glm::vec3 c = glm::cross(e->p1 - e->p0, e->p2 - e->p0);
   const float len = glm::length(c);
   // Zero-area (or non-finite) triangles emit nothing and cannot be sampled uniformly.
@@ -222,10 +222,13 @@ void EmitterSampler::build_clusters(const std::vector<float>& weights) {
     }
     for (Cluster& c : planes) {
       scenes::Bounds bounds;
+      std::vector<EmitterTree::Item> items;
       std::vector<float> w;
       for (int i : c.triangles) {
         const EmissiveTriangle& e = triangles_[i];
         for (const glm::vec3& p : {e.p0, e.p1, e.p2}) bounds.extend(p);
+        const glm::vec3 lo = glm::min(e.p0, glm::min(e.p1, e.p2)), hi = glm::max(e.p0, glm::max(e.p1, e.p2));
+        items.push_back({lo, hi, e.area, weights[i], e.normal});
         w.push_back(weights[i]);
         c.power += weights[i];
       }
@@ -234,9 +237,11 @@ void EmitterSampler::build_clusters(const std::vector<float>& weights) {
       c.bounds_max = bounds.max;
       c.half_diagonal2 = 0.25f * glm::dot(bounds.max - bounds.min, bounds.max - bounds.min);
       c.distribution = Distribution1D(std::move(w));
+      c.tree = EmitterTree(items);
       const int cluster_index = static_cast<int>(clusters_.size());
       for (size_t k = 0; k < c.triangles.size(); ++k) {
         triangles_[c.triangles[k]].cluster = cluster_index;
+        triangles_[c.triangles[k]].slot = static_cast<int>(k);
         triangles_[c.triangles[k]].pmf_in_cluster = c.distribution.pmf(static_cast<int>(k));
       }
       clusters_.push_back(std::move(c));
@@ -244,7 +249,7 @@ void EmitterSampler::build_clusters(const std::vector<float>& weights) {
     begin = end;
   }
   const size_t entries = clusters_.size() + size_t(delta_.size());
-  spatial_ = entries > 1 && entries <= size_t(kMaxSpatialClusters);
+  spatial_ = entries >= 1 && entries <= size_t(kMaxSpatialClusters);
 }
 
 float EmitterSampler::selection_weights(const glm::vec3& reference, float* weights, float* triangle_total) const {
@@ -305,7 +310,11 @@ float EmitterSampler::selection_pmf(const glm::vec3& reference, int index, bool 
   float total = 0.0f;
   const float* weights = selection_weights_at(reference, punctual, &total);
   const EmissiveTriangle& e = triangles_[index];
-  return total > 0.0f ? weights[e.cluster] / total * e.pmf_in_cluster : 0.0f;
+  return total > 0.0f ? weights[e.cluster] / total * in_cluster_pmf(reference, e) : 0.0f;
+}
+
+float EmitterSampler::in_cluster_pmf(const glm::vec3& reference, const EmissiveTriangle& e) const {
+  return 0.5f * (e.pmf_in_cluster + clusters_[size_t(e.cluster)].tree.pmf(reference, e.slot));
 }
 
 bool EmitterSampler::choose_spatially(const glm::vec3& reference, float u_select, bool punctual, int* entry,
@@ -366,10 +375,17 @@ bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const gl
     if (!choose_spatially(reference, u_select, punctual, &entry, &entry_pmf, &remapped)) return false;
     if (size_t(entry) >= clusters_.size()) return sample_delta(entry - int(clusters_.size()), entry_pmf, reference, out);
     const Cluster& c = clusters_[size_t(entry)];
-    const int k = c.distribution.sample(remapped);
+    // Half the samples by power, half by the tree: the mixture's pmf (in_cluster_pmf).
+    int k;
+    if (remapped < 0.5f) {
+      float unused;
+      k = c.tree.sample(reference, std::min(2.0f * remapped, kOneMinusEpsilon), &unused);
+    } else {
+      k = c.distribution.sample(std::min(2.0f * remapped - 1.0f, kOneMinusEpsilon));
+    }
     if (k < 0) return false;
-    index = c.triangles[k];
-    pmf = entry_pmf * triangles_[index].pmf_in_cluster;
+    index = c.triangles[size_t(k)];
+    pmf = entry_pmf * in_cluster_pmf(reference, triangles_[size_t(index)]);
   } else {
     int light = -1;
     float light_pmf = 0.0f;

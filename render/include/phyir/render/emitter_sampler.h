@@ -5,8 +5,12 @@
 //     proportional to power x (an upper bound of the cosine at the emitter, for planar
 //     clusters) / distance^2 from the reference point; zero when a one-sided planar
 //     cluster faces away from it (it cannot light the point);
-//  2. a triangle of that cluster proportionally to its power (area x luminance of the
-//     emission x mean of the emissive texture), then a point on it: uniform in solid angle
+//  2. a triangle of that cluster, half of the samples by power (area x luminance of the
+//     emission x mean of the emissive texture), half by descending the cluster's tree
+//     (emitter_tree.h), which favours the triangles nearest the reference point; the pmf is
+//     the mixture's, so a triangle is never picked at under half its power share (the
+//     tree's bound can be loose inside a curved lamp); then a point on the triangle:
+//     uniform in solid angle
 //     (spherical_triangle.h) where the triangle is long for its distance (its longest edge
 //     more than kSolidAngleExtent x the distance to its centroid: a strip light seen from
 //     beside it, a panel from under it), where a uniform point on its area would leave the
@@ -31,6 +35,7 @@
 
 #include "phyir/render/accelerator.h"
 #include "phyir/render/delta_lights.h"
+#include "phyir/render/emitter_tree.h"
 #include "phyir/render/sampling.h"
 #include "phyir/scenes/scene.h"
 
@@ -97,11 +102,13 @@ class EmitterSampler {
     glm::vec3 centroid;
     float longest_edge2;   // squared
     int cluster;           // index in clusters_
-    float pmf_in_cluster;  // probability of this triangle once its cluster is picked
+    int slot;              // index in its cluster's `triangles` (and tree)
+    float pmf_in_cluster;  // its power share of the cluster
   };
   struct Cluster {
     std::vector<int> triangles;  // indices in triangles_
     Distribution1D distribution; // over `triangles`, by power
+    EmitterTree tree;            // over `triangles`, by a bound of the irradiance at the point
     glm::vec3 centre{0.0f};
     glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
     float half_diagonal2 = 0.0f; // (half the bounding-box diagonal)^2
@@ -131,6 +138,8 @@ class EmitterSampler {
   bool chooses_triangles(float* u_select, int* light, float* pmf) const;
   bool sample_delta(int light, float pmf, const glm::vec3& reference, EmitterSample* out) const;
   float selection_pmf(const glm::vec3& reference, int index, bool punctual) const;
+  // The probability of step 2 choosing `e` once its cluster is chosen.
+  float in_cluster_pmf(const glm::vec3& reference, const EmissiveTriangle& e) const;
   // Whether points on `e` are sampled uniformly in solid angle from `reference` (step 2).
   static bool by_solid_angle(const EmissiveTriangle& e, const glm::vec3& reference);
   static glm::vec2 barycentrics_of(const EmissiveTriangle& e, const glm::vec3& point);

@@ -1,0 +1,142 @@
+#include "phyir/render/emitter_tree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "phyir/core/safe_math.h"
+#include "phyir/render/sampling.h"
+
+namespace phyir::render {
+
+namespace {
+
+// A path from the root to a leaf: a median split halves the items, so 64 levels hold any mesh.
+constexpr int kMaxDepth = 64;
+
+// Normals this close (|cos| above it) count as parallel.
+constexpr float kParallel = 0.9999f;
+
+glm::vec3 centroid(const EmitterTree::Item& item) { return 0.5f * (item.lo + item.hi); }
+
+}  // namespace
+
+EmitterTree::EmitterTree(const std::vector<Item>& items) {
+  leaf_of_item_.assign(items.size(), -1);
+  std::vector<int> order;
+  for (size_t i = 0; i < items.size(); ++i)
+    if (items[i].power > 0.0f && std::isfinite(items[i].power)) order.push_back(int(i));
+  if (order.empty()) return;
+  nodes_.reserve(2 * order.size());
+  build(order, 0, order.size(), items, -1);
+}
+
+// Median split along the widest axis of the centroids; ties by index, so the tree depends
+// on the items alone.
+int EmitterTree::build(std::vector<int>& order, size_t begin, size_t end, const std::vector<Item>& items, int parent) {
+  const int index = int(nodes_.size());
+  nodes_.emplace_back();
+  glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
+  glm::vec3 c_lo = lo, c_hi = hi;
+  float power = 0.0f, area = 0.0f;
+  glm::vec3 normal_axis = items[size_t(order[begin])].normal;
+  for (size_t k = begin; k < end; ++k) {
+    const Item& item = items[size_t(order[k])];
+    lo = glm::min(lo, item.lo);
+    hi = glm::max(hi, item.hi);
+    c_lo = glm::min(c_lo, centroid(item));
+    c_hi = glm::max(c_hi, centroid(item));
+    power += item.power;
+    area += item.area;
+    if (!(std::abs(glm::dot(normal_axis, item.normal)) > kParallel)) normal_axis = glm::vec3(0.0f);
+  }
+  Node node;
+  node.lo = lo;
+  node.hi = hi;
+  node.power = power;
+  node.radiance = safe_div(power, area);
+  node.axis = normal_axis;
+  node.parent = parent;
+  if (end - begin == 1) {
+    node.item = order[begin];
+    leaf_of_item_[size_t(node.item)] = index;
+    nodes_[size_t(index)] = node;
+    return index;
+  }
+  const glm::vec3 extent = c_hi - c_lo;
+  const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+  const size_t mid = begin + (end - begin) / 2;
+  std::nth_element(order.begin() + long(begin), order.begin() + long(mid), order.begin() + long(end), [&](int a, int b) {
+    const float ca = centroid(items[size_t(a)])[axis], cb = centroid(items[size_t(b)])[axis];
+    return ca < cb || (ca == cb && a < b);
+  });
+  node.left = build(order, begin, mid, items, index);
+  node.right = build(order, mid, end, items, index);
+  nodes_[size_t(index)] = node;
+  return index;
+}
+
+float EmitterTree::importance(const Node& node, const glm::vec3& reference) const {
+  const glm::vec3 d = glm::clamp(reference, node.lo, node.hi) - reference;
+  const float d2 = glm::dot(d, d), hemisphere = kTwoPi * node.radiance;
+  const float bound = d2 * hemisphere > node.power ? node.power / d2 : hemisphere;  // inside its box: d2 = 0
+  if (node.axis == glm::vec3(0.0f) || !(d2 > 0.0f)) return bound;
+  // Parallel triangles: cos at the emitter <= h / d, h the largest height over the box's corners.
+  float h = 0.0f;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 q((corner & 1) ? node.hi.x : node.lo.x, (corner & 2) ? node.hi.y : node.lo.y,
+                      (corner & 4) ? node.hi.z : node.lo.z);
+    h = std::max(h, std::abs(glm::dot(node.axis, reference - q)));
+  }
+  return bound * std::min(1.0f, h / std::sqrt(d2));
+}
+
+float EmitterTree::left_probability(const Node& node, const glm::vec3& reference) const {
+  const Node& left = nodes_[size_t(node.left)];
+  const Node& right = nodes_[size_t(node.right)];
+  const float l = importance(left, reference), r = importance(right, reference);
+  const float total = l + r;
+  // Unreachable for finite scenes; then by power, which is always defined.
+  if (!(total > 0.0f) || !std::isfinite(total)) return safe_div(left.power, left.power + right.power);
+  return l / total;
+}
+
+int EmitterTree::sample(const glm::vec3& reference, float u, float* pmf) const {
+  *pmf = 0.0f;
+  if (nodes_.empty()) return -1;
+  float p = 1.0f;
+  int n = 0;
+  while (nodes_[size_t(n)].item < 0) {
+    const Node& node = nodes_[size_t(n)];
+    const float p_left = left_probability(node, reference);
+    if (u < p_left) {
+      p *= p_left;
+      u = u / p_left;
+      n = node.left;
+    } else {
+      p *= 1.0f - p_left;
+      u = safe_div(u - p_left, 1.0f - p_left);
+      n = node.right;
+    }
+    u = std::clamp(u, 0.0f, kOneMinusEpsilon);
+  }
+  *pmf = p;
+  return p > 0.0f ? nodes_[size_t(n)].item : -1;
+}
+
+float EmitterTree::pmf(const glm::vec3& reference, int item) const {
+  if (item < 0 || size_t(item) >= leaf_of_item_.size() || leaf_of_item_[size_t(item)] < 0) return 0.0f;
+  int path[kMaxDepth];
+  int depth = 0;
+  for (int n = leaf_of_item_[size_t(item)]; n >= 0 && depth < kMaxDepth; n = nodes_[size_t(n)].parent) path[depth++] = n;
+  // Multiplied from the root down, as sample() does, so the two agree bit for bit.
+  float p = 1.0f;
+  for (int k = depth - 1; k > 0; --k) {
+    const Node& node = nodes_[size_t(path[k])];
+    const float p_left = left_probability(node, reference);
+    p *= path[k - 1] == node.left ? p_left : 1.0f - p_left;
+  }
+  return p;
+}
+
+}  // namespace phyir::render
