@@ -313,8 +313,40 @@ float EmitterSampler::selection_pmf(const glm::vec3& reference, int index, bool 
   return total > 0.0f ? weights[e.cluster] / total * in_cluster_pmf(reference, e) : 0.0f;
 }
 
+bool EmitterSampler::near_cluster(const Cluster& c, const glm::vec3& reference) {
+  const glm::vec3 d = glm::clamp(reference, c.bounds_min, c.bounds_max) - reference;
+  return glm::dot(d, d) < 4.0f * c.half_diagonal2;
+}
+
 float EmitterSampler::in_cluster_pmf(const glm::vec3& reference, const EmissiveTriangle& e) const {
-  return 0.5f * (e.pmf_in_cluster + clusters_[size_t(e.cluster)].tree.pmf(reference, e.slot));
+  const Cluster& c = clusters_[size_t(e.cluster)];
+  if (!near_cluster(c, reference)) return e.pmf_in_cluster;
+  return 0.5f * (e.pmf_in_cluster + c.tree.pmf(reference, e.slot));
+}
+
+int EmitterSampler::choose_in_cluster(const Cluster& c, const glm::vec3& reference, float u, float* pmf) const {
+  *pmf = 0.0f;
+  if (!near_cluster(c, reference)) {
+    const int k = c.distribution.sample(u);
+    if (k < 0) return -1;
+    const int index = c.triangles[size_t(k)];
+    *pmf = triangles_[size_t(index)].pmf_in_cluster;
+    return index;
+  }
+  // Half the samples by the tree, half by power; the pmf is the mixture's. The tree's
+  // descent gives its own pmf, bit-identical to EmitterTree::pmf.
+  float tree_pmf = 0.0f;
+  int k;
+  if (u < 0.5f) {
+    k = c.tree.sample(reference, std::min(2.0f * u, kOneMinusEpsilon), &tree_pmf);
+  } else {
+    k = c.distribution.sample(std::min(2.0f * u - 1.0f, kOneMinusEpsilon));
+    if (k >= 0) tree_pmf = c.tree.pmf(reference, k);
+  }
+  if (k < 0) return -1;
+  const int index = c.triangles[size_t(k)];
+  *pmf = 0.5f * (triangles_[size_t(index)].pmf_in_cluster + tree_pmf);
+  return index;
 }
 
 bool EmitterSampler::choose_spatially(const glm::vec3& reference, float u_select, bool punctual, int* entry,
@@ -374,18 +406,10 @@ bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const gl
     float entry_pmf, remapped;
     if (!choose_spatially(reference, u_select, punctual, &entry, &entry_pmf, &remapped)) return false;
     if (size_t(entry) >= clusters_.size()) return sample_delta(entry - int(clusters_.size()), entry_pmf, reference, out);
-    const Cluster& c = clusters_[size_t(entry)];
-    // Half the samples by power, half by the tree: the mixture's pmf (in_cluster_pmf).
-    int k;
-    if (remapped < 0.5f) {
-      float unused;
-      k = c.tree.sample(reference, std::min(2.0f * remapped, kOneMinusEpsilon), &unused);
-    } else {
-      k = c.distribution.sample(std::min(2.0f * remapped - 1.0f, kOneMinusEpsilon));
-    }
-    if (k < 0) return false;
-    index = c.triangles[size_t(k)];
-    pmf = entry_pmf * in_cluster_pmf(reference, triangles_[size_t(index)]);
+    float in_cluster = 0.0f;
+    index = choose_in_cluster(clusters_[size_t(entry)], reference, remapped, &in_cluster);
+    if (index < 0) return false;
+    pmf = entry_pmf * in_cluster;
   } else {
     int light = -1;
     float light_pmf = 0.0f;

@@ -56,6 +56,12 @@ int EmitterTree::build(std::vector<int>& order, size_t begin, size_t end, const 
   node.power = power;
   node.radiance = safe_div(power, area);
   node.axis = normal_axis;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 q((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z);
+    const float offset = glm::dot(normal_axis, q);
+    node.offset_lo = corner == 0 ? offset : std::min(node.offset_lo, offset);
+    node.offset_hi = corner == 0 ? offset : std::max(node.offset_hi, offset);
+  }
   node.parent = parent;
   if (end - begin == 1) {
     node.item = order[begin];
@@ -81,13 +87,10 @@ float EmitterTree::importance(const Node& node, const glm::vec3& reference) cons
   const float d2 = glm::dot(d, d), hemisphere = kTwoPi * node.radiance;
   const float bound = d2 * hemisphere > node.power ? node.power / d2 : hemisphere;  // inside its box: d2 = 0
   if (node.axis == glm::vec3(0.0f) || !(d2 > 0.0f)) return bound;
-  // Parallel triangles: cos at the emitter <= h / d, h the largest height over the box's corners.
-  float h = 0.0f;
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::vec3 q((corner & 1) ? node.hi.x : node.lo.x, (corner & 2) ? node.hi.y : node.lo.y,
-                      (corner & 4) ? node.hi.z : node.lo.z);
-    h = std::max(h, std::abs(glm::dot(node.axis, reference - q)));
-  }
+  // Parallel triangles: cos at the emitter <= h / d, h the point's largest height over the
+  // planes through the box (its corners' offsets along the axis).
+  const float height = glm::dot(node.axis, reference);
+  const float h = std::max(std::abs(height - node.offset_lo), std::abs(height - node.offset_hi));
   return bound * std::min(1.0f, h / std::sqrt(d2));
 }
 

@@ -5,12 +5,14 @@
 //     proportional to power x (an upper bound of the cosine at the emitter, for planar
 //     clusters) / distance^2 from the reference point; zero when a one-sided planar
 //     cluster faces away from it (it cannot light the point);
-//  2. a triangle of that cluster, half of the samples by power (area x luminance of the
-//     emission x mean of the emissive texture), half by descending the cluster's tree
-//     (emitter_tree.h), which favours the triangles nearest the reference point; the pmf is
-//     the mixture's, so a triangle is never picked at under half its power share (the
-//     tree's bound can be loose inside a curved lamp); then a point on the triangle:
-//     uniform in solid angle
+//  2. a triangle of that cluster by power (area x luminance of the emission x mean of the
+//     emissive texture); within the cluster's own size of its bounds (its diagonal), half of
+//     the samples by power and half by descending the cluster's tree (emitter_tree.h), which
+//     favours the triangles nearest the reference point, with the mixture's pmf, so a
+//     triangle is never picked at under half its power share (the tree's bound can be loose
+//     inside a curved lamp). Farther away the tree would choose nearly by power anyway, and
+//     its descent costs (a third more time on the night apartment's probes when every
+//     sample took it). Then a point on the triangle: uniform in solid angle
 //     (spherical_triangle.h) where the triangle is long for its distance (its longest edge
 //     more than kSolidAngleExtent x the distance to its centroid: a strip light seen from
 //     beside it, a panel from under it), where a uniform point on its area would leave the
@@ -138,8 +140,12 @@ class EmitterSampler {
   bool chooses_triangles(float* u_select, int* light, float* pmf) const;
   bool sample_delta(int light, float pmf, const glm::vec3& reference, EmitterSample* out) const;
   float selection_pmf(const glm::vec3& reference, int index, bool punctual) const;
+  // Whether step 2 uses the cluster's tree at `reference` (within the cluster's diagonal of its bounds).
+  static bool near_cluster(const Cluster& c, const glm::vec3& reference);
   // The probability of step 2 choosing `e` once its cluster is chosen.
   float in_cluster_pmf(const glm::vec3& reference, const EmissiveTriangle& e) const;
+  // Step 2: a triangle (index into triangles_) and in *pmf its in_cluster_pmf; -1 if none.
+  int choose_in_cluster(const Cluster& c, const glm::vec3& reference, float u, float* pmf) const;
   // Whether points on `e` are sampled uniformly in solid angle from `reference` (step 2).
   static bool by_solid_angle(const EmissiveTriangle& e, const glm::vec3& reference);
   static glm::vec2 barycentrics_of(const EmissiveTriangle& e, const glm::vec3& point);

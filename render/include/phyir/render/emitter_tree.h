@@ -48,6 +48,7 @@ class EmitterTree {
     float power = 0.0f;
     float radiance = 0.0f;  // power / area: its mean emitted luminance
     glm::vec3 axis{0.0f};   // the triangles' common normal (up to sign) where they share one, else 0
+    float offset_lo = 0.0f, offset_hi = 0.0f;  // the range of dot(axis, q) over the box
     int left = -1, right = -1;  // children; both -1 for a leaf
     int item = -1;              // a leaf's item
     int parent = -1;
