@@ -31,43 +31,51 @@ EmitterTree::EmitterTree(const std::vector<Item>& items) {
   build(order, 0, order.size(), items, -1);
 }
 
+// What a subtree's importance needs of its items: bounds, power, mean radiance, and their
+// common normal where they are parallel, with the box's range of offsets along it.
+EmitterTree::Node EmitterTree::summary(const std::vector<int>& order, size_t begin, size_t end,
+                                       const std::vector<Item>& items) {
+  Node node;
+  node.lo = glm::vec3(std::numeric_limits<float>::infinity());
+  node.hi = -node.lo;
+  float area = 0.0f;
+  node.axis = items[size_t(order[begin])].normal;
+  for (size_t k = begin; k < end; ++k) {
+    const Item& item = items[size_t(order[k])];
+    node.lo = glm::min(node.lo, item.lo);
+    node.hi = glm::max(node.hi, item.hi);
+    node.power += item.power;
+    area += item.area;
+    if (!(std::abs(glm::dot(node.axis, item.normal)) > kParallel)) node.axis = glm::vec3(0.0f);
+  }
+  node.radiance = safe_div(node.power, area);
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 q((corner & 1) ? node.hi.x : node.lo.x, (corner & 2) ? node.hi.y : node.lo.y,
+                      (corner & 4) ? node.hi.z : node.lo.z);
+    const float offset = glm::dot(node.axis, q);
+    node.offset_lo = corner == 0 ? offset : std::min(node.offset_lo, offset);
+    node.offset_hi = corner == 0 ? offset : std::max(node.offset_hi, offset);
+  }
+  return node;
+}
+
 // Median split along the widest axis of the centroids; ties by index, so the tree depends
 // on the items alone.
 int EmitterTree::build(std::vector<int>& order, size_t begin, size_t end, const std::vector<Item>& items, int parent) {
   const int index = int(nodes_.size());
   nodes_.emplace_back();
-  glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
-  glm::vec3 c_lo = lo, c_hi = hi;
-  float power = 0.0f, area = 0.0f;
-  glm::vec3 normal_axis = items[size_t(order[begin])].normal;
-  for (size_t k = begin; k < end; ++k) {
-    const Item& item = items[size_t(order[k])];
-    lo = glm::min(lo, item.lo);
-    hi = glm::max(hi, item.hi);
-    c_lo = glm::min(c_lo, centroid(item));
-    c_hi = glm::max(c_hi, centroid(item));
-    power += item.power;
-    area += item.area;
-    if (!(std::abs(glm::dot(normal_axis, item.normal)) > kParallel)) normal_axis = glm::vec3(0.0f);
-  }
-  Node node;
-  node.lo = lo;
-  node.hi = hi;
-  node.power = power;
-  node.radiance = safe_div(power, area);
-  node.axis = normal_axis;
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::vec3 q((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z);
-    const float offset = glm::dot(normal_axis, q);
-    node.offset_lo = corner == 0 ? offset : std::min(node.offset_lo, offset);
-    node.offset_hi = corner == 0 ? offset : std::max(node.offset_hi, offset);
-  }
+  Node node = summary(order, begin, end, items);
   node.parent = parent;
   if (end - begin == 1) {
     node.item = order[begin];
     leaf_of_item_[size_t(node.item)] = index;
     nodes_[size_t(index)] = node;
     return index;
+  }
+  glm::vec3 c_lo(std::numeric_limits<float>::infinity()), c_hi = -c_lo;
+  for (size_t k = begin; k < end; ++k) {
+    c_lo = glm::min(c_lo, centroid(items[size_t(order[k])]));
+    c_hi = glm::max(c_hi, centroid(items[size_t(order[k])]));
   }
   const glm::vec3 extent = c_hi - c_lo;
   const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);

@@ -53,6 +53,7 @@ class EmitterTree {
     int item = -1;              // a leaf's item
     int parent = -1;
   };
+  static Node summary(const std::vector<int>& order, size_t begin, size_t end, const std::vector<Item>& items);
   int build(std::vector<int>& order, size_t begin, size_t end, const std::vector<Item>& items, int parent);
   float importance(const Node& node, const glm::vec3& reference) const;
   // The probability of taking the left child of `node` from `reference`.
