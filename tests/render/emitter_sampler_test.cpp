@@ -26,16 +26,8 @@ using test::add_material;
 using test::add_quad;
 using test::add_texture;
 using test::add_uv_sphere;
+using test::mesh_solid_angle;
 using test::make_emitter;
-
-double mesh_solid_angle(const scenes::Mesh& mesh, const glm::vec3& r) {
-  double sum = 0.0;
-  for (const glm::uvec3& t : mesh.triangles)
-    sum += test::triangle_solid_angle(glm::dvec3(mesh.positions[t.x]) - glm::dvec3(r),
-                                      glm::dvec3(mesh.positions[t.y]) - glm::dvec3(r),
-                                      glm::dvec3(mesh.positions[t.z]) - glm::dvec3(r));
-  return sum;
-}
 
 using test::MeanAndError;
 using test::monte_carlo;

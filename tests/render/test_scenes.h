@@ -202,4 +202,14 @@ inline double triangle_solid_angle(const glm::dvec3& a, const glm::dvec3& b, con
   return 2.0 * std::atan2(numerator, denominator);
 }
 
+// Solid angle of all of a mesh's triangles seen from r (overlaps counted twice).
+inline double mesh_solid_angle(const scenes::Mesh& mesh, const glm::vec3& r) {
+  double sum = 0.0;
+  for (const glm::uvec3& t : mesh.triangles)
+    sum += triangle_solid_angle(glm::dvec3(mesh.positions[t.x]) - glm::dvec3(r),
+                                glm::dvec3(mesh.positions[t.y]) - glm::dvec3(r),
+                                glm::dvec3(mesh.positions[t.z]) - glm::dvec3(r));
+  return sum;
+}
+
 }  // namespace phyir::test
