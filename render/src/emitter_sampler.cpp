@@ -249,7 +249,7 @@ void EmitterSampler::build_clusters(const std::vector<float>& weights) {
     begin = end;
   }
   const size_t entries = clusters_.size() + size_t(delta_.size());
-  spatial_ = entries >= 1 && entries <= size_t(kMaxSpatialClusters);
+  spatial_ = entries <= size_t(kMaxSpatialClusters);  // one cluster too: its tree chooses inside it
 }
 
 float EmitterSampler::selection_weights(const glm::vec3& reference, float* weights, float* triangle_total) const {

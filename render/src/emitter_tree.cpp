@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "phyir/core/safe_math.h"
 #include "phyir/render/sampling.h"
+#include "phyir/scenes/scene.h"
 
 namespace phyir::render {
 
@@ -36,18 +36,19 @@ EmitterTree::EmitterTree(const std::vector<Item>& items) {
 EmitterTree::Node EmitterTree::summary(const std::vector<int>& order, size_t begin, size_t end,
                                        const std::vector<Item>& items) {
   Node node;
-  node.lo = glm::vec3(std::numeric_limits<float>::infinity());
-  node.hi = -node.lo;
+  scenes::Bounds box;
   float area = 0.0f;
   node.axis = items[size_t(order[begin])].normal;
   for (size_t k = begin; k < end; ++k) {
     const Item& item = items[size_t(order[k])];
-    node.lo = glm::min(node.lo, item.lo);
-    node.hi = glm::max(node.hi, item.hi);
+    box.extend(item.lo);
+    box.extend(item.hi);
     node.power += item.power;
     area += item.area;
     if (!(std::abs(glm::dot(node.axis, item.normal)) > kParallel)) node.axis = glm::vec3(0.0f);
   }
+  node.lo = box.min;
+  node.hi = box.max;
   node.radiance = safe_div(node.power, area);
   for (int corner = 0; corner < 8; ++corner) {
     const glm::vec3 q((corner & 1) ? node.hi.x : node.lo.x, (corner & 2) ? node.hi.y : node.lo.y,
@@ -72,12 +73,9 @@ int EmitterTree::build(std::vector<int>& order, size_t begin, size_t end, const 
     nodes_[size_t(index)] = node;
     return index;
   }
-  glm::vec3 c_lo(std::numeric_limits<float>::infinity()), c_hi = -c_lo;
-  for (size_t k = begin; k < end; ++k) {
-    c_lo = glm::min(c_lo, centroid(items[size_t(order[k])]));
-    c_hi = glm::max(c_hi, centroid(items[size_t(order[k])]));
-  }
-  const glm::vec3 extent = c_hi - c_lo;
+  scenes::Bounds centroids;
+  for (size_t k = begin; k < end; ++k) centroids.extend(centroid(items[size_t(order[k])]));
+  const glm::vec3 extent = centroids.max - centroids.min;
   const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
   const size_t mid = begin + (end - begin) / 2;
   std::nth_element(order.begin() + long(begin), order.begin() + long(mid), order.begin() + long(end), [&](int a, int b) {
