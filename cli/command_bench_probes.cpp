@@ -60,6 +60,7 @@ struct BenchProbeFlags {
   int max_bounces = 8;
   uint64_t seed = 0;
   float offset = 0.01f;
+  int photons = render::ProbeSettings().photons_per_light;
   int width = 512;
   int height = 256;
 };
@@ -281,6 +282,7 @@ void run_bench_probes(const BenchProbeFlags& f) {
   base.path.max_bounces = f.max_bounces;
   base.progress = false;
   base.seed = f.seed;
+  base.photons_per_light = f.photons;
   // The punctual lights' texels are exact and the same in every mode: left out, so that the
   // error is that of the estimated light alone and not diluted by them.
   base.punctual_lights = false;
@@ -450,6 +452,8 @@ void add_bench_probes_command(CLI::App& bench) {
   cmd->add_option("--max-bounces", f->max_bounces, "path length")->capture_default_str();
   cmd->add_option("--seed", f->seed, "random seed")->capture_default_str();
   cmd->add_option("--offset", f->offset, "probe origin offset, metres")->capture_default_str();
+  cmd->add_option("--probe-photons", f->photons, "cache mode: photons per point or spot light, as phyir render's (0: none)")
+      ->capture_default_str();
   cmd->callback([f] {
     const int threads = f->threads > 0 ? f->threads : tbb::info::default_concurrency();
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);

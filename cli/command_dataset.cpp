@@ -35,7 +35,7 @@ struct SettingsFlags {
   int width = 0, height = 0, spp = 0, max_bounces = 0;
   bool probes = false, no_probes = false;
   std::string probe_grid, probe_res, probe_mode;
-  int probe_spp = 0, probe_cache_spp = 0, probe_share_radius = 0;
+  int probe_spp = 0, probe_cache_spp = 0, probe_share_radius = 0, probe_photons = 0;
   float probe_offset = 0, probe_cache_cell = 0, probe_cache_direct_cells = 0, probe_spread_threshold = 0;
   float probe_share_parallax = 0;
   std::string exposure = "auto";
@@ -106,6 +106,9 @@ void add_settings_options(CLI::App* cmd, SettingsFlags& f) {
                       "cache mode: average texels with same-surface probes up to this many grid cells away (0: off) [1]"));
   opt(cmd->add_option("--probe-share-parallax", f.probe_share_parallax,
                       "cache mode: largest parallax between shared probes, in texel extents [0.5]"));
+  opt(cmd->add_option("--probe-photons", f.probe_photons,
+                      "cache mode: photons from each point and spot light, which take the light it reflects where they "
+                      "land densely (0: none) [4096]"));
   opt(cmd->add_option("--exposure", f.exposure,
                       "input.png exposure: 'auto' (the 95th percentile of color.exr maps to --exposure-target) or "
                       "stops")
@@ -144,6 +147,7 @@ dataset::DatasetSettings resolve(const SettingsFlags& f) {
   if (f.given("--probe-spread-threshold")) s.probe.spread_threshold = f.probe_spread_threshold;
   if (f.given("--probe-share-radius")) s.probe.sharing.radius = f.probe_share_radius;
   if (f.given("--probe-share-parallax")) s.probe.sharing.parallax_texels = f.probe_share_parallax;
+  if (f.given("--probe-photons")) s.probe.photons_per_light = f.probe_photons;
   if (f.exposure == "auto") {
     s.input.auto_exposure = true;
   } else {

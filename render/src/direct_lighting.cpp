@@ -84,14 +84,18 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
   return visible() ? contribution / keep : glm::vec3(0.0f);
 }
 
-glm::vec3 punctual_light(const RenderScene& scene, const ShadingPoint& x, Lobes lobes, PathCounters* counters) {
+glm::vec3 punctual_light(const RenderScene& scene, const ShadingPoint& x, Lobes lobes, PathCounters* counters,
+                         const float* diffuse_elsewhere) {
   const DeltaLights& lights = scene.emitters().delta_lights();
   glm::vec3 sum(0.0f);
   for (int light = 0; light < lights.size(); ++light) {
+    const float elsewhere = diffuse_elsewhere && lobes != Lobes::kSpecular ? diffuse_elsewhere[light] : 0.0f;
     DeltaIllumination seen;
     if (!lights.illuminate(light, x.position, &seen)) continue;
     const glm::vec3 wi = x.frame.to_local(seen.wi);
-    const glm::vec3 f = lobe_eval(x, lobes, wi);
+    glm::vec3 f = lobe_eval(x, lobes, wi);
+    if (elsewhere > 0.0f)
+      f -= elsewhere * (lobes == Lobes::kAll ? Fd_Lambert(x.brdf.base_color, x.brdf.metalness) : f);
     if (!(wi.z > 0.0f) || !(glm::dot(seen.wi, x.geometric_normal) > 0.0f) || !(max_component(f) > 0.0f)) continue;
     EmitterSample ls;
     ls.position = seen.position;

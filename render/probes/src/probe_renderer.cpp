@@ -28,6 +28,7 @@ nlohmann::json ProbeStats::to_json() const {
           {"light_texels", light_texels},
           {"light_edge_texels", light_edge_texels},
           {"emission_rays", emission_rays},
+          {"photons", {{"photons", photons}, {"rays", photon_rays}, {"texels", photon_texels}}},
           {"negative_texels_clamped", negative_texels},
           {"foot_correction",
            {{"probes", foot_corrections},
@@ -96,6 +97,8 @@ ProbeStats& ProbeStats::operator+=(const ProbeStats& o) {
   light_texels += o.light_texels;
   light_edge_texels += o.light_edge_texels;
   emission_rays += o.emission_rays;
+  photon_rays += o.photon_rays;
+  photon_texels += o.photon_texels;
   negative_texels += o.negative_texels;
   foot_corrections += o.foot_corrections;
   return *this;

@@ -29,6 +29,9 @@ void ProbeSettings::validate() const {
   if (sharing.radius < 0 || sharing.radius > 4) fail("--probe-share-radius {} must be between 0 (off) and 4", sharing.radius);
   if (!(sharing.parallax_texels > 0.0f && sharing.parallax_texels <= 100.0f))
     fail("--probe-share-parallax {} must be above 0 and at most 100 texels", sharing.parallax_texels);
+  // A million photons from each light: far more than any texel's share needs.
+  if (photons_per_light < 0 || photons_per_light > 1 << 20)
+    fail("--probe-photons {} must be between 0 (none) and 2^20", photons_per_light);
 }
 
 nlohmann::json ProbeSettings::to_json() const {
@@ -51,6 +54,7 @@ nlohmann::json ProbeSettings::to_json() const {
     j["share_radius"] = sharing.radius;
     j["share_parallax_texels"] = sharing.parallax_texels;
     j["correct_foot"] = correct_foot;
+    j["photons_per_light"] = photons_per_light;
   }
   return j;
 }

@@ -48,15 +48,18 @@ CachePoint cache_point(const SurfaceInteraction& si, const glm::vec3& shading_no
 }
 
 TexelEstimator::TexelEstimator(const RenderScene& scene, const Effects& effects, const ProbeSettings& settings,
-                               const RadianceCache* cache)
+                               const RadianceCache* cache, const PunctualPhotons* photons)
     : scene_(scene),
       settings_(settings),
       cache_(cache),
       tracer_(scene, effects, settings.path),
-      exact_punctual_(scene.emitters().delta_lights().size() <= kMaxExactPunctualLights) {}
+      exact_punctual_(scene.emitters().delta_lights().size() <= kMaxExactPunctualLights),
+      // The photons stand in for exact punctual light only (punctual_at's, near_light's).
+      photons_(photons && !photons->empty() && exact_punctual_ ? photons : nullptr) {}
 
-glm::vec3 TexelEstimator::sample(const Ray& ray, uint64_t key, Part part, const FootCorrection& foot, bool* saw_hard,
-                                 float* distance, glm::vec3* emitted, PathCounters* c) const {
+glm::vec3 TexelEstimator::sample(const Ray& ray, uint64_t key, Part part, const FootCorrection& foot,
+                                 float texel_solid_angle, bool* saw_hard, float* distance, glm::vec3* emitted,
+                                 PathCounters* c) const {
   *emitted = glm::vec3(0.0f);
   if (settings_.mode == ProbeMode::kPath) return tracer_.radiance(ray, key, c);
   if (part == Part::kEmission) {  // most of these rays: a light texel's many directions
@@ -83,7 +86,12 @@ glm::vec3 TexelEstimator::sample(const Ray& ray, uint64_t key, Part part, const 
   if (settings_.path.max_bounces < 1) return L;
   if (si.transmission > 0.0f)  // glass: path traced from its hit
     return L + tracer_.continue_from(si, ray, key, settings_.path.max_bounces, c);
-  return L + reflected(si, -ray.direction, 0, key, c, &foot);
+  FirstHit first;
+  first.foot = &foot;
+  float shares[PunctualPhotons::kMaxLights];
+  if (photons_ && photons_->shares(ray.origin, si.position, si.geometric_normal, texel_solid_angle, shares))
+    first.photon_shares = shares;
+  return L + reflected(si, -ray.direction, 0, key, c, &first);
 }
 
 glm::vec3 TexelEstimator::miss(const glm::vec3& direction) const {
@@ -91,15 +99,16 @@ glm::vec3 TexelEstimator::miss(const glm::vec3& direction) const {
 }
 
 glm::vec3 TexelEstimator::reflected(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key,
-                                    PathCounters* c, const FootCorrection* foot) const {
+                                    PathCounters* c, const FirstHit* first) const {
   ShadingPoint x = shading_point(si, wo_world);
   if (!(x.wo.z >= kMinCosine)) return glm::vec3(0.0f);
   x.brdf = clamped(si.brdf);
   const BrdfParams& p = x.brdf;
   const glm::vec3 fd = Fd_Lambert(p.base_color, p.metalness);
   CachedIrradiance E = lookup(si, x, depth, key, c);
-  if (foot) foot->apply(si.position, x.frame.n, &E);
-  if (E.has_direct && !is_mirror(p.roughness)) return reflected_split(x, fd, E, depth, key, c);
+  const float* photon_shares = first ? first->photon_shares : nullptr;
+  if (first && first->foot) first->foot->apply(si.position, x.frame.n, &E);
+  if (E.has_direct && !is_mirror(p.roughness)) return reflected_split(x, fd, E, depth, key, c, photon_shares);
   glm::vec3 L(0.0f);
   if (max_component(fd) > 0.0f) L += fd * E.indirect;
 
@@ -107,7 +116,7 @@ glm::vec3 TexelEstimator::reflected(const SurfaceInteraction& si, const glm::vec
   // hit (near a light the texel's noise is mostly this estimate's), one deeper.
   DirectLightOptions nee;
   nee.light_samples = depth == 0 ? near_light_samples(si, x) : 1;
-  L += near_light(x, &nee, depth, key, c);
+  L += near_light(x, &nee, depth, key, c, photon_shares);
 
   // The control variate of reflected_split(), for every sample of a rough surface (the
   // roulette below depends on the sample, so it cannot be the condition).
@@ -159,9 +168,10 @@ glm::vec3 TexelEstimator::reflected_at(const Ray& ray, const SurfaceInteraction&
 }
 
 glm::vec3 TexelEstimator::reflected_split(const ShadingPoint& x, const glm::vec3& fd, const CachedIrradiance& E,
-                                          int depth, uint64_t key, PathCounters* c) const {
+                                          int depth, uint64_t key, PathCounters* c,
+                                          const float* photon_shares) const {
   const BrdfParams& p = x.brdf;
-  glm::vec3 L = fd * (E.indirect + E.direct + punctual_at(x, E, c));
+  glm::vec3 L = fd * (E.indirect + E.direct + punctual_at(x, E, c, photon_shares));
   const glm::vec3 albedo = specular_albedo(p, x.wo.z);
   const float albedo_s = luminance(albedo);
   const float share = safe_div(albedo_s, albedo_s + kPi * luminance(fd));
@@ -213,7 +223,7 @@ glm::vec3 TexelEstimator::terminal(const SurfaceInteraction& si, const glm::vec3
   // The whole lobe as if lit uniformly, the punctual lights' irradiance taken at y itself:
   // their hard shadows (a window's frame in the sun), blurred by the cache, are what a
   // polished surface reflects sharply.
-  if (E.has_direct) return lobe * (E.indirect + E.direct + punctual_at(x, E, c));
+  if (E.has_direct) return lobe * (E.indirect + E.direct + punctual_at(x, E, c, nullptr));
   // Light sampling alone: no BRDF-sampled ray at a chain's end competes for the emitters.
   DirectLightOptions nee;
   nee.mis = false;
@@ -227,17 +237,18 @@ int TexelEstimator::near_light_samples(const SurfaceInteraction& si, const Shadi
   return std::clamp(int(std::ceil(float(kNearLightSamples) * albedo)), 1, kNearLightSamples);
 }
 
-glm::vec3 TexelEstimator::punctual_at(const ShadingPoint& x, const CachedIrradiance& E, PathCounters* c) const {
+glm::vec3 TexelEstimator::punctual_at(const ShadingPoint& x, const CachedIrradiance& E, PathCounters* c,
+                                       const float* photon_shares) const {
   if (!exact_punctual_) return E.punctual;
-  return punctual_light(scene_, x, Lobes::kCosine, c);
+  return punctual_light(scene_, x, Lobes::kCosine, c, photon_shares);
 }
 
 glm::vec3 TexelEstimator::near_light(const ShadingPoint& x, DirectLightOptions* nee, int depth, uint64_t key,
-                                     PathCounters* c) const {
+                                     PathCounters* c, const float* photon_shares) const {
   if (!has_lights(scene_)) return glm::vec3(0.0f);
   nee->punctual = !exact_punctual_;
   glm::vec3 L = direct_light(x, *nee, depth, key, c);
-  if (exact_punctual_) L += punctual_light(scene_, x, Lobes::kAll, c);
+  if (exact_punctual_) L += punctual_light(scene_, x, Lobes::kAll, c, photon_shares);
   return L;
 }
 

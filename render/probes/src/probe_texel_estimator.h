@@ -11,6 +11,7 @@
 #include "phyir/render/direct_lighting.h"
 #include "phyir/render/effects.h"
 #include "foot_correction.h"
+#include "punctual_photons.h"
 #include "phyir/render/frame.h"
 #include "phyir/render/path_tracer.h"
 #include "phyir/render/probe_renderer.h"
@@ -26,8 +27,10 @@ class TexelEstimator {
   // (a mirror facing a mirror would otherwise recurse to max_bounces).
   static constexpr int kMaxSpecularDepth = 3;
 
+  // `photons` (may be null or empty) take the punctual lights' reflected light at first hits
+  // where they are dense (punctual_photons.h).
   TexelEstimator(const RenderScene& scene, const Effects& effects, const ProbeSettings& settings,
-                 const RadianceCache* cache);
+                 const RadianceCache* cache, const PunctualPhotons* photons = nullptr);
 
   // What sample() returns: all of the radiance, or the emission seen first (lights, and the
   // environment where nothing is hit) or everything else, for estimating the two with
@@ -38,10 +41,18 @@ class TexelEstimator {
   // *distance is lowered to the first hit's distance (cache mode; unchanged on a miss).
   // *emitted receives the part of the result a light seen first emits (cache mode; not the
   // environment's). Lookups at the first hit go through `foot` (foot_correction.h).
-  glm::vec3 sample(const Ray& ray, uint64_t key, Part part, const FootCorrection& foot, bool* saw_hard, float* distance,
-                   glm::vec3* emitted, PathCounters* c) const;
+  // `texel_solid_angle`: the texel's, for the photons' share of its first hits.
+  glm::vec3 sample(const Ray& ray, uint64_t key, Part part, const FootCorrection& foot, float texel_solid_angle,
+                   bool* saw_hard, float* distance, glm::vec3* emitted, PathCounters* c) const;
 
  private:
+  // What applies at a probe ray's own hit only: the foot correction of its cache lookup, and
+  // the share of each punctual light's value there that the photons take
+  // (PunctualPhotons::shares; null where they take none).
+  struct FirstHit {
+    const FootCorrection* foot = nullptr;
+    const float* photon_shares = nullptr;
+  };
   glm::vec3 miss(const glm::vec3& direction) const;
 
   // Radiance the (opaque) surface at si reflects towards wo_world; `depth` = its scattering
@@ -52,9 +63,10 @@ class TexelEstimator {
   // Indirect light: diffuse from the cache, f_d E(x); specular through the same BRDF-sampled
   // ray (f_s cos / pdf of it times the light its hit y reflects, Russian-rouletted by the
   // specular share of the sample's weight).
-  // `foot` (a probe ray's own hit only) corrects the lookup there.
+  // `first` (a probe ray's own hit only) corrects the lookup there and names the lights
+  // the photons take.
   glm::vec3 reflected(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key, PathCounters* c,
-                      const FootCorrection* foot = nullptr) const;
+                      const FirstHit* first = nullptr) const;
 
   bool glossy(const BrdfParams& p) const { return p.roughness < settings_.glossy_roughness; }
 
@@ -78,7 +90,7 @@ class TexelEstimator {
   // strategies stay unbiased under the power heuristic with the GGX ray's effective
   // density keep x pdf.
   glm::vec3 reflected_split(const ShadingPoint& x, const glm::vec3& fd, const CachedIrradiance& E, int depth,
-                            uint64_t key, PathCounters* c) const;
+                            uint64_t key, PathCounters* c, const float* photon_shares) const;
 
   // Where a specular chain ends in the cache: (f_d + specular albedo / pi) E, i.e. the
   // specular lobe treated as if the light arriving were uniform: all of E where the cache
@@ -95,8 +107,10 @@ class TexelEstimator {
   int near_light_samples(const SurfaceInteraction& si, const ShadingPoint& x) const;
 
   // The punctual lights' irradiance at x where the cache holds the direct light: exact at x
-  // (punctual_light through the cosine lobe) in scenes of few punctual lights, else the cache's.
-  glm::vec3 punctual_at(const ShadingPoint& x, const CachedIrradiance& E, PathCounters* c) const;
+  // (punctual_light through the cosine lobe) in scenes of few punctual lights, else the cache's;
+  // less the photons' shares (may be null).
+  glm::vec3 punctual_at(const ShadingPoint& x, const CachedIrradiance& E, PathCounters* c,
+                        const float* photon_shares) const;
 
   // The cache's irradiance at the surface of x (si's hit), keyed for its fallback.
   CachedIrradiance lookup(const SurfaceInteraction& si, const ShadingPoint& x, int depth, uint64_t key,
@@ -107,7 +121,9 @@ class TexelEstimator {
   // one shadow ray each) in scenes of few of them, else sampled with the triangles. Chosen
   // among thousands of a lamp shade's triangles in a few samples, a bulb beside its
   // fixture lit the ceiling round it with the noise of that choice.
-  glm::vec3 near_light(const ShadingPoint& x, DirectLightOptions* nee, int depth, uint64_t key, PathCounters* c) const;
+  // The punctual lights less the photons' shares (may be null).
+  glm::vec3 near_light(const ShadingPoint& x, DirectLightOptions* nee, int depth, uint64_t key, PathCounters* c,
+                       const float* photon_shares = nullptr) const;
 
   // A next-event estimate on the emitters (direct_lighting.h), the mean of
   // options.light_samples samples, each from its own stream.
@@ -119,6 +135,7 @@ class TexelEstimator {
   const RadianceCache* cache_;
   PathTracer tracer_;  // kPath, and glass
   bool exact_punctual_;  // punctual_at() traces its own shadow rays
+  const PunctualPhotons* photons_;  // null where none take any light
 };
 
 // The cache's view of a surface point: normals on the side it was seen from.

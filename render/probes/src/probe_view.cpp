@@ -121,7 +121,15 @@ ProbeOutput ProbeView::run() {
   tiles_ = probe_tiles(todo_, layout_.grid_width);
   if (settings_.mode == ProbeMode::kCache) build_cache();
   const auto shade_start = Clock::now();
-  estimator_ = std::make_unique<TexelEstimator>(scene_, effects_, settings_, cache_.get());
+  if (settings_.mode == ProbeMode::kCache && effects_.punctual_lights && settings_.path.max_bounces >= 1) {
+    uint64_t rays = 0;
+    photons_ = PunctualPhotons(scene_, settings_.photons_per_light, settings_.spp,
+                               stream_key(settings_.seed, Purpose::kProbePhoton), &rays);
+    out_.stats.photons = photons_.size();
+    out_.stats.photon_rays += rays;
+    out_.stats.counters.rays += rays;
+  }
+  estimator_ = std::make_unique<TexelEstimator>(scene_, effects_, settings_, cache_.get(), &photons_);
   if (share_) {
     records_.distance.assign(size_t(layout_.probe_count()) * size_t(texels_), std::numeric_limits<float>::infinity());
     records_.samples.assign(size_t(layout_.probe_count()) * size_t(texels_), 0.0f);
@@ -142,6 +150,7 @@ ProbeOutput ProbeView::run() {
   if (cache_) stats.cache_fallbacks = cache_->fallbacks();
   stats.shade_seconds = seconds_since(shade_start);
   if (share_) share_between_neighbours();
+  add_after_sharing(&Worker::photon_light);
   if (effects_.punctual_lights && settings_.punctual_lights)
     stats.counters.rays += deposit_punctual_lights(scene_, layout_, out_.sites, todo_, &out_.mosaic);
   stats.total_seconds = seconds_since(start);
@@ -231,6 +240,7 @@ void ProbeView::shade_tile(const std::vector<size_t>& tile, int pass, Worker* w)
     w->tile[m].k = tile[m];
     w->tile[m].p = todo_[tile[m]];
     prepare_probe(&w->tile[m], pass);
+    if (pass == 0 && !photons_.empty()) gather_photons(w->tile[m], w);
   }
   for (TileProbe& probe : w->tile) probe.texels.assign(size_t(texels_), TexelState());
   for (int t = 0; t < texels_; ++t)
@@ -404,6 +414,7 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* s
   probe.interleave.key = item_stream_key(probe_seed_, uint64_t(x.t), Purpose::kProbeInterleave, uint64_t(first));
   stratified_square(count, permutation, &w->strata, probe.interleave);
   const glm::vec3 origin = out_.sites[size_t(probe.p)].origin;
+  const float solid_angle = equirect_texel_solid_angle(x.row, layout_.res_width, layout_.res_height);
   glm::dvec3 sum(0.0), sum_cos(0.0), sum_emitted_cos(0.0);
   double sum_y = 0.0, sum_y2 = 0.0;
   float lo = std::numeric_limits<float>::infinity(), hi = 0.0f;
@@ -411,7 +422,8 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* s
     const uint64_t key = sample_key(probe_seed_, id, uint64_t(first + s));
     const Ray ray{origin, x.cone.direction(w->strata[size_t(s)])};
     glm::vec3 emitted;
-    glm::vec3 L = estimator_->sample(ray, key, part, probe.foot, saw_hard, &x.distance, &emitted, &w->stats.counters);
+    glm::vec3 L = estimator_->sample(ray, key, part, probe.foot, solid_angle, saw_hard, &x.distance, &emitted,
+                                     &w->stats.counters);
     if (!is_finite(L) || !is_finite(emitted)) {
       ++w->stats.counters.nonfinite_samples;
       L = emitted = glm::vec3(0.0f);
@@ -457,6 +469,34 @@ void ProbeView::store_texel(const Texel& x, glm::vec3 value, const glm::vec3& se
   for (int ch = 0; ch < 3; ++ch) out_.mosaic.at(at.x, at.y, ch) = value[ch];
 }
 
+void ProbeView::gather_photons(TileProbe& probe, Worker* w) {
+  const ProbeSite& site = out_.sites[size_t(probe.p)];
+  uint64_t rays = 0;
+  photons_.gather(site.origin, site.normal, layout_.res_height, layout_.res_width,
+                  item_stream_key(probe_seed_, uint64_t(probe.p), Purpose::kProbePhotonRoulette), &w->photon_radiance,
+                  &w->photon_radiance_cos, &rays);
+  w->stats.counters.rays += rays;
+  w->stats.photon_rays += rays;
+  for (int t = 0; t < texels_; ++t) {
+    const glm::vec3& value = w->photon_radiance[size_t(t)];
+    if (!(max_component(value) > 0.0f)) continue;
+    w->photon_light.push_back({texel_id(probe.p, t), value});
+    ++w->stats.photon_texels;
+    if (correct_foot_ && in_pass(probe, t, 0))
+      probe.measured.add_texel(w->photon_radiance_cos[size_t(t)], glm::vec3(0.0f),
+                               equirect_texel_solid_angle(t / layout_.res_width, layout_.res_width, layout_.res_height));
+  }
+}
+
+void ProbeView::add_after_sharing(const std::vector<std::pair<uint64_t, glm::vec3>> Worker::*list) {
+  for (const Worker& w : workers_) {
+    for (const auto& [id, value] : w.*list) {
+      const glm::ivec2 at = layout_.mosaic_pixel(int(id / uint64_t(texels_)), int(id % uint64_t(texels_)));
+      for (int ch = 0; ch < 3; ++ch) out_.mosaic.at(at.x, at.y, ch) += value[ch];
+    }
+  }
+}
+
 void ProbeView::correct_feet() {
   // The common difference is a mean over the probes: with few of them it would take most of
   // each probe's own difference with it, so then none is corrected.
@@ -474,12 +514,7 @@ void ProbeView::share_between_neighbours() {
   for (int p : todo_) computed[size_t(p)] = 1;
   out_.mosaic = render::share_between_neighbours(out_.mosaic, layout_, out_.sites, computed, records_,
                                                  settings_.sharing, &out_.stats.shared_texels);
-  for (const Worker& w : workers_) {
-    for (const auto& [id, emission] : w.emission_seen) {
-      const glm::ivec2 at = layout_.mosaic_pixel(int(id / uint64_t(texels_)), int(id % uint64_t(texels_)));
-      for (int ch = 0; ch < 3; ++ch) out_.mosaic.at(at.x, at.y, ch) += emission[ch];
-    }
-  }
+  add_after_sharing(&Worker::emission_seen);
   out_.stats.share_seconds = seconds_since(start);
 }
 

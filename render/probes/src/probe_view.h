@@ -24,6 +24,7 @@
 #include "phyir/render/probe_renderer.h"
 #include "probe_sharing.h"
 #include "probe_texel_estimator.h"
+#include "punctual_photons.h"
 #include "radiance_cache.h"
 
 namespace phyir::render {
@@ -55,6 +56,8 @@ class ProbeView {
     std::vector<EmitterCoverage::View::Piece> pieces;
     std::vector<TileProbe> tile;
     std::vector<std::pair<uint64_t, glm::vec3>> emission_seen;  // added after sharing
+    std::vector<std::pair<uint64_t, glm::vec3>> photon_light;   // the photons' estimates, added after sharing
+    std::vector<glm::vec3> photon_radiance, photon_radiance_cos;  // one probe's, PunctualPhotons::gather
   };
   // A texel being shaded.
   struct Texel {
@@ -102,6 +105,10 @@ class ProbeView {
   bool look_at_light(TexelState& s, Worker* w);
   glm::vec3 estimate(Texel& x, int first, int count, Part part, bool* saw_hard, float* spread, Worker* w);
   void store_texel(const Texel& x, glm::vec3 value, const glm::vec3& seen_emission, Worker* w);
+  // The photons' estimate of a probe's texels (punctual_photons.h), kept to be added after
+  // sharing; the texels of pass 0 go into the foot correction's measure now.
+  void gather_photons(TileProbe& probe, Worker* w);
+  void add_after_sharing(const std::vector<std::pair<uint64_t, glm::vec3>> Worker::*list);
   void correct_feet();
   void share_between_neighbours();
 
@@ -120,6 +127,7 @@ class ProbeView {
   std::vector<std::vector<size_t>> tiles_;
   std::unique_ptr<RadianceCache> cache_;
   std::unique_ptr<TexelEstimator> estimator_;
+  PunctualPhotons photons_;
   EmitterFootprints footprints_;
   EmitterCoverage coverage_;
   TexelCones cones_;

@@ -80,7 +80,11 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
 // (counted in counters->rays), no random numbers. For estimators that take it apart from a
 // next-event estimate with DirectLightOptions::punctual = false: a light chosen among many
 // emissive triangles in a few samples is noisy; its exact value is not.
-glm::vec3 punctual_light(const RenderScene& scene, const ShadingPoint& x, Lobes lobes, PathCounters* counters);
+// `diffuse_elsewhere` (if given, one value per light): the share of each light's diffuse
+// light at x (through the cosine lobe, or the BRDF's diffuse term) that another estimator
+// takes (the probes' photons, punctual_photons.h); the rest is returned.
+glm::vec3 punctual_light(const RenderScene& scene, const ShadingPoint& x, Lobes lobes, PathCounters* counters,
+                         const float* diffuse_elsewhere = nullptr);
 
 // The same towards the environment, through `lobes` (the path tracer: kAll; the radiance
 // cache's fill: kCosine, irradiance).

@@ -44,6 +44,8 @@ enum class Purpose : uint64_t {
   kProbeInterleave = 303,   // the strata interleaving shared by neighbouring probes (per texel)
   kProbeLightPart = 304,    // directions inside the lights' coverage of a texel
   kProbeCacheTieBreak = 305,  // which discovered points a cache cell keeps
+  kProbePhoton = 306,          // the jitter of a punctual light's photon directions
+  kProbePhotonRoulette = 307,  // which photons a probe joins, where many land in a texel
   // Pixels: the scrambling of a pixel's stratified first-bounce samples.
   kPixelScramble = 401,
   kPixelLightSelect = 402,

@@ -48,6 +48,9 @@ struct ProbeStats {
   uint64_t light_edge_texels = 0; // of those, texels a light's outline crosses (16x the emission directions)
   uint64_t emission_rays = 0;     // rays of those texels' emission seen directly (in counters.rays)
   uint64_t cache_rays = 0;        // rays of the cache's discovery and fill (in counters.rays)
+  uint64_t photons = 0;           // the punctual lights' photons (punctual_photons.h)
+  uint64_t photon_rays = 0;       // their rays and the probes' shadow rays to them (in counters.rays)
+  uint64_t photon_texels = 0;     // texels the photons added light to
   uint64_t negative_texels = 0;   // texel estimates below zero (the control variate's), clamped to 0
   uint64_t foot_corrections = 0;  // probes whose own-surface texels took the cache's error out (foot_correction.h)
   glm::vec3 foot_common_difference{0.0f};  // the difference common to all probes (the last bounce), W/m^2

@@ -1,0 +1,221 @@
+// Photons round point and spot lights (punctual_photons.h): they and a texel's own directions
+// split one integral, the lights' diffuse light at the texel's first hits, by the same rule.
+// The photons' share of a texel is checked against that share integrated here by brute force
+// (thousands of directions per texel through the estimator's own functions), and whole probes
+// against the path mode, with and without photons.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "phyir/core/safe_math.h"
+#include "phyir/render/direct_lighting.h"
+#include "phyir/render/effects.h"
+#include "phyir/render/equirect.h"
+#include "phyir/render/probe_renderer.h"
+#include "phyir/render/streams.h"
+#include "punctual_photons.h"
+#include "sanitizer_skip.h"
+#include "test_scenes.h"
+
+namespace phyir::render {
+namespace {
+
+constexpr int kH = 16, kW = 32;
+
+scenes::PunctualLight light(scenes::PunctualLight::Type type, float watts, const glm::vec3& position,
+                            const glm::vec3& direction) {
+  scenes::PunctualLight l;
+  l.type = type;
+  l.intensity = watts * scenes::PunctualLight::kLumensPerWatt;
+  l.color = glm::vec3(1.0f, 0.8f, 0.6f);
+  l.position = position;
+  l.direction = glm::normalize(direction);
+  l.inner_cone_angle = 0.4f;
+  l.outer_cone_angle = 0.6f;
+  return l;
+}
+
+// A grey room, a bulb 4 cm under its ceiling, a board 30 cm under it that hides part of the
+// ceiling's lit disc from the floor, and a spot lighting a wall from 30 cm.
+scenes::Scene bulb_room() {
+  scenes::Scene scene =
+      test::make_box_room({-2.0f, 0.0f, -1.5f}, {2.0f, 2.6f, 1.5f}, test::make_material(glm::vec3(0.6f), 0.6f, 0.0f));
+  const int board = test::add_material(scene, test::make_material(glm::vec3(0.3f), 0.8f, 0.0f));
+  test::add_quad(scene, glm::vec3(0.3f, 2.3f, -0.1f), glm::vec3(0.3f, 0, 0), glm::vec3(0, 0, 0.3f), board, "board");
+  using Type = scenes::PunctualLight::Type;
+  scene.lights = {light(Type::Point, 2.0f, glm::vec3(0.3f, 2.56f, 0.2f), glm::vec3(0, -1, 0)),
+                  light(Type::Spot, 4.0f, glm::vec3(-1.7f, 1.2f, -0.5f), glm::vec3(-1, 0.1f, 0))};
+  return scene;
+}
+
+// The lights' diffuse light at the first hit of `direction` from `origin`, the part the
+// photons take there: what TexelEstimator leaves out (punctual_light's diffuse share).
+glm::vec3 taken_part(const RenderScene& rs, const PunctualPhotons& photons, const glm::vec3& origin,
+                     const glm::vec3& direction, float solid_angle) {
+  SurfaceInteraction si;
+  if (!rs.trace(Ray{origin, direction}, &si)) return glm::vec3(0.0f);
+  float shares[PunctualPhotons::kMaxLights], rest[PunctualPhotons::kMaxLights];
+  if (!photons.shares(origin, si.position, si.geometric_normal, solid_angle, shares)) return glm::vec3(0.0f);
+  for (int i = 0; i < PunctualPhotons::kMaxLights; ++i) rest[i] = 1.0f - shares[i];
+  ShadingPoint x = shading_point(si, -direction);
+  if (!(x.wo.z >= kMinCosine)) return glm::vec3(0.0f);
+  x.brdf = clamped(si.brdf);
+  PathCounters c;
+  return Fd_Lambert(x.brdf.base_color, x.brdf.metalness) * punctual_light(rs, x, Lobes::kCosine, &c, rest);
+}
+
+TEST(PunctualPhotons, TheirShareOfEachTexelIsTheIntegralTheDirectionsLeaveOut) {
+  PHYIR_SKIP_UNDER_SANITIZERS("PunctualPhotons.TakeNothingWithoutPointOrSpotLights");
+  const scenes::Scene scene = bulb_room();
+  const RenderScene rs(scene);
+  uint64_t rays = 0;
+  const PunctualPhotons photons(rs, 65536, 4, 3, &rays);
+  ASSERT_GT(photons.size(), 60000u);
+  const struct {
+    const char* name;
+    glm::vec3 origin, normal;
+  } probes[] = {{"on the floor under the bulb", {0.0f, 0.01f, 0.0f}, {0, 1, 0}},
+                {"on the ceiling 20 cm from the bulb", {0.5f, 2.59f, 0.1f}, {0, -1, 0}},
+                {"on the wall the spot lights", {-1.99f, 1.0f, -0.2f}, {1, 0, 0}}};
+  for (const auto& probe : probes) {
+    // The photons' estimate is exact where nothing hides them; where the board's edge hides
+    // some, the sampling of the texel's photons is random: 16 draws of it, averaged.
+    std::vector<glm::vec3> radiance(kH * kW, glm::vec3(0.0f)), one, one_cos;
+    uint64_t shadow_rays = 0;
+    const int draws = 16;
+    for (uint64_t key = 0; key < draws; ++key) {
+      photons.gather(probe.origin, probe.normal, kH, kW, mix64(key), &one, &one_cos, &shadow_rays);
+      for (size_t t = 0; t < one.size(); ++t) radiance[t] += one[t] / float(draws);
+    }
+    shadow_rays /= draws;
+    double got_total = 0.0, want_total = 0.0, worst = 0.0, brightest = 0.0;
+    int texels_with_photons = 0;
+    for (int r = 0; r < kH; ++r) {
+      const float solid_angle = equirect_texel_solid_angle(r, kW, kH);
+      for (int c = 0; c < kW; ++c) {
+        // 48 x 48 stratified directions over the texel: the brute-force share.
+        glm::dvec3 sum(0.0);
+        const int n = 48;
+        for (int a = 0; a < n; ++a)
+          for (int b = 0; b < n; ++b) {
+            const glm::vec2 u((float(a) + 0.5f) / float(n), (float(b) + 0.5f) / float(n));
+            sum += glm::dvec3(taken_part(rs, photons, probe.origin, probe_texel_direction(r, c, kH, kW, u), solid_angle));
+          }
+        const double want = luminance(glm::vec3(sum / double(n * n)));
+        const double got = luminance(radiance[size_t(r * kW + c)]);
+        texels_with_photons += got > 0.0;
+        got_total += got * solid_angle, want_total += want * solid_angle;
+        brightest = std::max(brightest, want);
+        worst = std::max(worst, std::abs(got - want));
+      }
+    }
+    std::printf("[ %s ] photons' share %.5f, brute force %.5f (%+.2f%%); %d texels, %llu shadow rays a draw; worst "
+                "texel off by %.3f of the brightest\n",
+                probe.name, got_total, want_total, 100.0 * (got_total / want_total - 1.0), texels_with_photons,
+                static_cast<unsigned long long>(shadow_rays), worst / brightest);
+    ASSERT_GT(want_total, 0.0) << probe.name << ": the test must put photons to work";
+    EXPECT_NEAR(got_total / want_total, 1.0, 0.03) << probe.name;
+    EXPECT_LT(worst, 0.1 * brightest) << probe.name;
+  }
+}
+
+TEST(PunctualPhotons, TakeNothingWithoutPointOrSpotLights) {
+  scenes::Scene scene = bulb_room();
+  scene.lights = {light(scenes::PunctualLight::Type::Directional, 3.0f, glm::vec3(0.0f), glm::vec3(0.2f, -1, 0.1f))};
+  const RenderScene rs(scene);
+  uint64_t rays = 0;
+  EXPECT_TRUE(PunctualPhotons(rs, 4096, 4, 1, &rays).empty()) << "a directional light sends none";
+  EXPECT_EQ(rays, 0u);
+  const scenes::Scene bulb = bulb_room();
+  const RenderScene with_bulb(bulb);
+  EXPECT_TRUE(PunctualPhotons(with_bulb, 0, 4, 1, &rays).empty()) << "0 photons per light: off";
+  const PunctualPhotons photons(with_bulb, 4096, 4, 1, &rays);
+  EXPECT_FALSE(photons.empty());
+  // Next to the bulb they land densely and take nearly all of its light; across the room
+  // they take none, and never the spot's light where its cone does not reach.
+  const float texel = equirect_texel_solid_angle(4, kW, kH);
+  float shares[PunctualPhotons::kMaxLights];
+  ASSERT_TRUE(photons.shares({0.0f, 0.01f, 0.0f}, {0.32f, 2.6f, 0.2f}, {0, -1, 0}, texel, shares));
+  EXPECT_GT(shares[0], 0.9f);
+  EXPECT_EQ(shares[1], 0.0f);
+  EXPECT_FALSE(photons.shares({0.0f, 0.01f, 0.0f}, {1.9f, 2.6f, 1.4f}, {0, -1, 0}, texel, shares));
+}
+
+ProbeSettings cache_settings(int photons, uint64_t seed) {
+  ProbeSettings s;
+  s.mode = ProbeMode::kCache;
+  s.spp = 4;
+  s.layout.grid_height = s.layout.grid_width = 1;
+  s.layout.res_height = kH, s.layout.res_width = kW;
+  s.path.max_bounces = 3;
+  s.seed = seed;
+  s.progress = false;
+  s.punctual_lights = false;  // the lights' own texels are exact either way
+  s.photons_per_light = photons;
+  return s;
+}
+
+Image render_at(const RenderScene& rs, const Effects& effects, const ProbeSettings& s, const glm::vec3& origin) {
+  ProbeSite site;
+  site.surface = origin - glm::vec3(0.0f, 0.01f, 0.0f);
+  site.normal = glm::vec3(0, 1, 0);
+  site.origin = origin;
+  site.offset = 0.01f;
+  site.status = ProbeStatus::kValid;
+  const ProbeOutput out = ProbeRenderer(rs, effects, s).render_at({site});
+  EXPECT_EQ(out.stats.counters.nonfinite_samples, 0u);
+  return out.mosaic;
+}
+
+// The relative RMSE of the texels within 25 degrees of `towards` (the bulb's halo on the
+// ceiling, from the floor): the rest of the probe is the same with and without photons.
+double halo_rmse(const Image& a, const Image& reference, const glm::vec3& towards) {
+  double se = 0.0, sum = 0.0;
+  int n = 0;
+  for (int r = 0; r < kH; ++r)
+    for (int c = 0; c < kW; ++c) {
+      if (glm::dot(probe_texel_direction(r, c, kH, kW, glm::vec2(0.5f)), towards) < std::cos(0.44f)) continue;
+      ++n;
+      for (int ch = 0; ch < 3; ++ch) {
+        const double d = a.at(c, r, ch) - reference.at(c, r, ch);
+        se += d * d, sum += std::abs(reference.at(c, r, ch));
+      }
+    }
+  return std::sqrt(se / (3 * n)) / (sum / (3 * n));
+}
+
+// A floor probe under the bulb: the texels that see the bright disc round it on the ceiling
+// agree with the path mode better with photons, over seeds, and the probe's mean stays.
+TEST(PunctualPhotons, AFloorProbeUnderABulbSeesItsHaloBetter) {
+  PHYIR_SKIP_UNDER_SANITIZERS("PunctualPhotons.TakeNothingWithoutPointOrSpotLights");
+  const scenes::Scene scene = bulb_room();
+  const RenderScene rs(scene);
+  const Effects effects = analyse_effects(scene, false);
+  const glm::vec3 origin(-0.4f, 0.01f, 0.5f);
+  const glm::vec3 towards = glm::normalize(scene.lights[0].position - origin);
+  ProbeSettings path = cache_settings(0, 1);
+  path.mode = ProbeMode::kPath;
+  path.spp = 4096;
+  const Image reference = render_at(rs, effects, path, origin);
+  double with = 0.0, without = 0.0, mean_with = 0.0, mean_without = 0.0;
+  const int seeds = 3;
+  for (uint64_t seed = 10; seed < 10 + seeds; ++seed) {
+    const Image a = render_at(rs, effects, cache_settings(4096, seed), origin);
+    const Image b = render_at(rs, effects, cache_settings(0, seed), origin);
+    with += halo_rmse(a, reference, towards) / seeds, without += halo_rmse(b, reference, towards) / seeds;
+    for (int r = 0; r < kH; ++r)
+      for (int c = 0; c < kW; ++c) {
+        mean_with += luminance(glm::vec3(a.at(c, r, 0), a.at(c, r, 1), a.at(c, r, 2)));
+        mean_without += luminance(glm::vec3(b.at(c, r, 0), b.at(c, r, 1), b.at(c, r, 2)));
+      }
+  }
+  std::printf("the halo's texels against path mode: relative RMSE %.4f with photons, %.4f without; probe means "
+              "%.5f, %.5f\n", with, without, mean_with, mean_without);
+  EXPECT_LT(with, 0.8 * without);
+  EXPECT_NEAR(mean_with / mean_without, 1.0, 0.03);
+}
+
+}  // namespace
+}  // namespace phyir::render
