@@ -16,44 +16,12 @@
 #include "phyir/render/effects.h"
 #include "phyir/render/equirect.h"
 #include "phyir/render/probe_renderer.h"
+#include "single_probe.h"
 #include "test_scenes.h"
 #include "sanitizer_skip.h"
 
 namespace phyir::render {
 namespace {
-
-ProbeSettings settings_for(ProbeMode mode, int spp, int h, int w, int max_bounces = 8) {
-  ProbeSettings s;
-  s.mode = mode;
-  s.spp = spp;
-  s.layout.grid_height = 1;
-  s.layout.grid_width = 1;
-  s.layout.res_height = h;
-  s.layout.res_width = w;
-  s.path.max_bounces = max_bounces;
-  s.seed = 5;
-  s.progress = false;
-  s.cache.samples_per_cell = 64;
-  return s;
-}
-
-// One probe at `origin`, as if on a surface with normal +Y just below it.
-std::vector<ProbeSite> single_site(const glm::vec3& origin) {
-  ProbeSite s;
-  s.surface = origin - glm::vec3(0.0f, 0.01f, 0.0f);
-  s.normal = glm::vec3(0.0f, 1.0f, 0.0f);
-  s.origin = origin;
-  s.offset = 0.01f;
-  s.status = ProbeStatus::kValid;
-  return {s};
-}
-
-Image render_single(const scenes::Scene& scene, const glm::vec3& origin, const ProbeSettings& s) {
-  const RenderScene rs(scene);
-  const ProbeOutput out = ProbeRenderer(rs, analyse_effects(scene, false), s).render_at(single_site(origin));
-  EXPECT_EQ(out.stats.counters.nonfinite_samples, 0u);
-  return out.mosaic;
-}
 
 // The box [-1, 1]^3 seen from inside, every wall emitting 1 with base colour 0 (roughness 1).
 scenes::Scene enclosure() {
@@ -499,18 +467,9 @@ TEST(ProbeLights, PunctualLightsLightTheTexelsAsInThePathMode) {
   PHYIR_SKIP_UNDER_SANITIZERS("PunctualDeposit.* and StabilityMatrix.ProbesEveryMaterialAndMode");
   const glm::vec3 lo(-2.0f, 0.0f, -1.5f), hi(2.0f, 3.0f, 1.5f);
   scenes::Scene scene = test::make_box_room(lo, hi, test::make_material(glm::vec3(0.7f), 0.5f, 0.0f));
-  auto light = [](scenes::PunctualLight::Type type, float watts, const glm::vec3& position, const glm::vec3& direction) {
-    scenes::PunctualLight l;
-    l.type = type;
-    l.intensity = watts * scenes::PunctualLight::kLumensPerWatt;
-    l.position = position;
-    l.direction = glm::normalize(direction);
-    l.inner_cone_angle = 0.3f;
-    l.outer_cone_angle = 0.5f;
-    return l;
-  };
-  scene.lights = {light(scenes::PunctualLight::Type::Point, 3.0f, glm::vec3(0.5f, 2.2f, 0.0f), glm::vec3(0, -1, 0)),
-                  light(scenes::PunctualLight::Type::Spot, 8.0f, glm::vec3(-1.5f, 2.8f, 1.0f), glm::vec3(0.3f, -1, -0.3f))};
+  using Type = scenes::PunctualLight::Type;
+  scene.lights = {test::make_punctual_light(Type::Point, 3.0f, glm::vec3(0.5f, 2.2f, 0.0f), glm::vec3(0, -1, 0)),
+                  test::make_punctual_light(Type::Spot, 8.0f, glm::vec3(-1.5f, 2.8f, 1.0f), glm::vec3(0.3f, -1, -0.3f))};
   const Effects effects = analyse_effects(scene, false);
   ASSERT_TRUE(effects.punctual_lights && !effects.emitters);
   const struct {

@@ -18,19 +18,7 @@ namespace phyir::render {
 namespace {
 
 constexpr int kH = 16, kW = 32;
-
-scenes::PunctualLight make_light(scenes::PunctualLight::Type type, float watts, const glm::vec3& position,
-                                 const glm::vec3& direction) {
-  scenes::PunctualLight l;
-  l.type = type;
-  l.intensity = watts * scenes::PunctualLight::kLumensPerWatt;
-  l.color = glm::vec3(1.0f, 0.5f, 0.25f);
-  l.position = position;
-  l.direction = glm::normalize(direction);
-  l.inner_cone_angle = 0.3f;
-  l.outer_cone_angle = 0.5f;
-  return l;
-}
+const glm::vec3 kColor(1.0f, 0.5f, 0.25f);  // the lights' colour: channels differ
 
 // A floor, and a board at y = 1.5 over x in [1, 2], z in [-0.5, 0.5] that hides the point
 // light and the sun from the probe under it.
@@ -40,9 +28,9 @@ scenes::Scene deposit_scene() {
   test::add_quad(scene, glm::vec3(-5, 0, -5), glm::vec3(0, 0, 10), glm::vec3(10, 0, 0), m, "floor");
   test::add_quad(scene, glm::vec3(1, 1.5f, -0.5f), glm::vec3(1, 0, 0), glm::vec3(0, 0, 1), m, "board");
   using Type = scenes::PunctualLight::Type;
-  scene.lights = {make_light(Type::Point, 3.0f, glm::vec3(1.5f, 2.5f, 0.0f), glm::vec3(0, -1, 0)),
-                  make_light(Type::Spot, 8.0f, glm::vec3(-1.0f, 2.0f, -1.0f), glm::vec3(0, -1, 0)),
-                  make_light(Type::Directional, 2.0f, glm::vec3(0.0f), glm::vec3(0.3f, -1.0f, 0.2f))};
+  scene.lights = {test::make_punctual_light(Type::Point, 3.0f, glm::vec3(1.5f, 2.5f, 0.0f), glm::vec3(0, -1, 0), 0.3f, 0.5f, kColor),
+                  test::make_punctual_light(Type::Spot, 8.0f, glm::vec3(-1.0f, 2.0f, -1.0f), glm::vec3(0, -1, 0), 0.3f, 0.5f, kColor),
+                  test::make_punctual_light(Type::Directional, 2.0f, glm::vec3(0.0f), glm::vec3(0.3f, -1.0f, 0.2f), 0.3f, 0.5f, kColor)};
   return scene;
 }
 

@@ -17,25 +17,13 @@
 #include "phyir/render/streams.h"
 #include "punctual_photons.h"
 #include "sanitizer_skip.h"
+#include "single_probe.h"
 #include "test_scenes.h"
 
 namespace phyir::render {
 namespace {
 
 constexpr int kH = 16, kW = 32;
-
-scenes::PunctualLight light(scenes::PunctualLight::Type type, float watts, const glm::vec3& position,
-                            const glm::vec3& direction) {
-  scenes::PunctualLight l;
-  l.type = type;
-  l.intensity = watts * scenes::PunctualLight::kLumensPerWatt;
-  l.color = glm::vec3(1.0f, 0.8f, 0.6f);
-  l.position = position;
-  l.direction = glm::normalize(direction);
-  l.inner_cone_angle = 0.4f;
-  l.outer_cone_angle = 0.6f;
-  return l;
-}
 
 // A grey room, a bulb 4 cm under its ceiling, a board 30 cm under it that hides part of the
 // ceiling's lit disc from the floor, and a spot lighting a wall from 30 cm.
@@ -45,8 +33,9 @@ scenes::Scene bulb_room() {
   const int board = test::add_material(scene, test::make_material(glm::vec3(0.3f), 0.8f, 0.0f));
   test::add_quad(scene, glm::vec3(0.3f, 2.3f, -0.1f), glm::vec3(0.3f, 0, 0), glm::vec3(0, 0, 0.3f), board, "board");
   using Type = scenes::PunctualLight::Type;
-  scene.lights = {light(Type::Point, 2.0f, glm::vec3(0.3f, 2.56f, 0.2f), glm::vec3(0, -1, 0)),
-                  light(Type::Spot, 4.0f, glm::vec3(-1.7f, 1.2f, -0.5f), glm::vec3(-1, 0.1f, 0))};
+  const glm::vec3 warm(1.0f, 0.8f, 0.6f);
+  scene.lights = {test::make_punctual_light(Type::Point, 2.0f, glm::vec3(0.3f, 2.56f, 0.2f), glm::vec3(0, -1, 0), 0.4f, 0.6f, warm),
+                  test::make_punctual_light(Type::Spot, 4.0f, glm::vec3(-1.7f, 1.2f, -0.5f), glm::vec3(-1, 0.1f, 0), 0.4f, 0.6f, warm)};
   return scene;
 }
 
@@ -123,7 +112,8 @@ TEST(PunctualPhotons, TheirShareOfEachTexelIsTheIntegralTheDirectionsLeaveOut) {
 
 TEST(PunctualPhotons, TakeNothingWithoutPointOrSpotLights) {
   scenes::Scene scene = bulb_room();
-  scene.lights = {light(scenes::PunctualLight::Type::Directional, 3.0f, glm::vec3(0.0f), glm::vec3(0.2f, -1, 0.1f))};
+  scene.lights = {test::make_punctual_light(scenes::PunctualLight::Type::Directional, 3.0f, glm::vec3(0.0f),
+                                            glm::vec3(0.2f, -1, 0.1f))};
   const RenderScene rs(scene);
   uint64_t rays = 0;
   EXPECT_TRUE(PunctualPhotons(rs, 4096, 4, 1, &rays).empty()) << "a directional light sends none";
@@ -143,30 +133,14 @@ TEST(PunctualPhotons, TakeNothingWithoutPointOrSpotLights) {
   EXPECT_FALSE(photons.shares({0.0f, 0.01f, 0.0f}, {1.9f, 2.6f, 1.4f}, {0, -1, 0}, texel, shares));
 }
 
+// A floor probe's cache-mode settings, the lights' own texels left out (exact either way).
 ProbeSettings cache_settings(int photons, uint64_t seed) {
-  ProbeSettings s;
-  s.mode = ProbeMode::kCache;
-  s.spp = 4;
-  s.layout.grid_height = s.layout.grid_width = 1;
-  s.layout.res_height = kH, s.layout.res_width = kW;
-  s.path.max_bounces = 3;
+  ProbeSettings s = settings_for(ProbeMode::kCache, 4, kH, kW, 3);
   s.seed = seed;
-  s.progress = false;
-  s.punctual_lights = false;  // the lights' own texels are exact either way
+  s.cache.samples_per_cell = 128;
+  s.punctual_lights = false;
   s.photons_per_light = photons;
   return s;
-}
-
-Image render_at(const RenderScene& rs, const Effects& effects, const ProbeSettings& s, const glm::vec3& origin) {
-  ProbeSite site;
-  site.surface = origin - glm::vec3(0.0f, 0.01f, 0.0f);
-  site.normal = glm::vec3(0, 1, 0);
-  site.origin = origin;
-  site.offset = 0.01f;
-  site.status = ProbeStatus::kValid;
-  const ProbeOutput out = ProbeRenderer(rs, effects, s).render_at({site});
-  EXPECT_EQ(out.stats.counters.nonfinite_samples, 0u);
-  return out.mosaic;
 }
 
 // The relative RMSE of the texels within 25 degrees of `towards` (the bulb's halo on the
@@ -191,19 +165,17 @@ double halo_rmse(const Image& a, const Image& reference, const glm::vec3& toward
 TEST(PunctualPhotons, AFloorProbeUnderABulbSeesItsHaloBetter) {
   PHYIR_SKIP_UNDER_SANITIZERS("PunctualPhotons.TakeNothingWithoutPointOrSpotLights");
   const scenes::Scene scene = bulb_room();
-  const RenderScene rs(scene);
-  const Effects effects = analyse_effects(scene, false);
   const glm::vec3 origin(-0.4f, 0.01f, 0.5f);
   const glm::vec3 towards = glm::normalize(scene.lights[0].position - origin);
   ProbeSettings path = cache_settings(0, 1);
   path.mode = ProbeMode::kPath;
   path.spp = 4096;
-  const Image reference = render_at(rs, effects, path, origin);
+  const Image reference = render_single(scene, origin, path);
   double with = 0.0, without = 0.0, mean_with = 0.0, mean_without = 0.0;
   const int seeds = 3;
   for (uint64_t seed = 10; seed < 10 + seeds; ++seed) {
-    const Image a = render_at(rs, effects, cache_settings(4096, seed), origin);
-    const Image b = render_at(rs, effects, cache_settings(0, seed), origin);
+    const Image a = render_single(scene, origin, cache_settings(4096, seed));
+    const Image b = render_single(scene, origin, cache_settings(0, seed));
     with += halo_rmse(a, reference, towards) / seeds, without += halo_rmse(b, reference, towards) / seeds;
     for (int r = 0; r < kH; ++r)
       for (int c = 0; c < kW; ++c) {

@@ -298,7 +298,9 @@ TEST(EmitterSampler, OneSidedEmitterIsDarkFromBehind) {
       if (sampled != double_sided) ++wrong;
       if (double_sided && (above.radiance != glm::vec3(1.0f, 2.0f, 3.0f) || !(above.pdf > 0.0f))) ++wrong;
     }
-    if (!double_sided) EXPECT_EQ(sampler.pdf({0.1f, 3.5f, 0.0f}, 0, 0, {0.0f, 2.0f, 0.0f}), 0.0f);
+    if (!double_sided) {
+      EXPECT_EQ(sampler.pdf({0.1f, 3.5f, 0.0f}, 0, 0, {0.0f, 2.0f, 0.0f}), 0.0f);
+    }
     EXPECT_EQ(wrong, 0) << "double_sided " << double_sided;
   }
 }

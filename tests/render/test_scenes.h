@@ -127,6 +127,23 @@ inline int add_box(scenes::Scene& scene, const glm::vec3& min, const glm::vec3& 
   return add_mesh(scene, std::move(mesh));
 }
 
+// A punctual light of `watts` (W/sr on the axis for a point or spot, W/m^2 for a directional
+// light), in the file's units (KHR_lights_punctual: candela, lux).
+inline scenes::PunctualLight make_punctual_light(scenes::PunctualLight::Type type, float watts,
+                                                 const glm::vec3& position, const glm::vec3& direction,
+                                                 float inner_cone = 0.3f, float outer_cone = 0.5f,
+                                                 const glm::vec3& color = glm::vec3(1.0f)) {
+  scenes::PunctualLight l;
+  l.type = type;
+  l.intensity = watts * scenes::PunctualLight::kLumensPerWatt;
+  l.color = color;
+  l.position = position;
+  l.direction = glm::normalize(direction);
+  l.inner_cone_angle = inner_cone;
+  l.outer_cone_angle = outer_cone;
+  return l;
+}
+
 // The room [min, max] seen from inside: six walls, one mesh each, in the order
 // -X, +X, floor (-Y), ceiling (+Y), -Z, +Z, all facing into the room, material 0 = wall.
 inline scenes::Scene make_box_room(const glm::vec3& min, const glm::vec3& max,
