@@ -12,10 +12,10 @@ namespace phyir::render {
 // than anything else a floor probe sees, in a sliver of one texel: the texel's directions
 // find it by chance. Photons find it by construction: directions from the light, stratified
 // over its sphere (a spot's cone), traced to their first hit, each joined to a probe's
-// origin by one shadow ray. Both estimate the light reflected at the first hits of a texel's
-// directions, and are combined by multiple importance sampling: at a hit where N photons
-// land per texel solid angle, the photons take N / (16 spp + N) of each light's value and
-// the texel's spp directions the rest (the balance heuristic, a photon counted as a 16th of
+// origin by one shadow ray. Both estimate the diffuse light reflected at the first hits of a
+// texel's directions (highlights stay with the directions), and are combined by multiple
+// importance sampling: at a hit where N photons land per texel solid angle, the photons take
+// N / (16 spp + N) of each light's diffuse light and the texel's spp directions the rest (the balance heuristic, a photon counted as a 16th of
 // a direction; below 16 photons per texel the directions take it all).
 class PunctualPhotons {
  public:
@@ -30,7 +30,7 @@ class PunctualPhotons {
   bool empty() const { return photons_.empty(); }
   size_t size() const { return photons_.size(); }
 
-  // The share of each light's value (shares[light], kMaxLights of them) at `position`
+  // The share of each light's diffuse light (shares[light], kMaxLights of them) at `position`
   // (geometric normal `ng`), the first hit of a direction from `origin` inside a texel of
   // solid angle `texel_solid_angle`, that the photons take; false where they take none.
   bool shares(const glm::vec3& origin, const glm::vec3& position, const glm::vec3& ng, float texel_solid_angle,
@@ -63,9 +63,9 @@ class PunctualPhotons {
   glm::vec3 unoccluded(const Photon& p, const glm::vec3& origin, int height, int width, uint32_t* texel) const;
   // Whether nothing hides the photon's hit from `origin` (one shadow ray, counted).
   bool visible(const Photon& p, const glm::vec3& origin, uint64_t* rays) const;
-  // Photons landing per unit of a probe's solid angle round the direction to `position`.
-  // Their share there, given that density times the texel's solid angle.
+  // The photons' share of a hit where they land at this density times the texel's solid angle.
   float share(float photons_per_texel) const;
+  // Photons landing per unit of a probe's solid angle round the direction to `position`.
   float photons_per_steradian(const Source& s, const glm::vec3& origin, const glm::vec3& position,
                               const glm::vec3& ng) const;
 
