@@ -452,7 +452,7 @@ void add_bench_probes_command(CLI::App& bench) {
   cmd->add_option("--max-bounces", f->max_bounces, "path length")->capture_default_str();
   cmd->add_option("--seed", f->seed, "random seed")->capture_default_str();
   cmd->add_option("--offset", f->offset, "probe origin offset, metres")->capture_default_str();
-  cmd->add_option("--probe-photons", f->photons, "cache mode: photons per point or spot light, as phyir render's (0: none)")
+  cmd->add_option("--probe-photons", f->photons, "cache mode: photons per point or spot light and per square metre of the sun's beam, as phyir render's (0: none)")
       ->capture_default_str();
   cmd->callback([f] {
     const int threads = f->threads > 0 ? f->threads : tbb::info::default_concurrency();

@@ -107,8 +107,8 @@ void add_settings_options(CLI::App* cmd, SettingsFlags& f) {
   opt(cmd->add_option("--probe-share-parallax", f.probe_share_parallax,
                       "cache mode: largest parallax between shared probes, in texel extents [0.5]"));
   opt(cmd->add_option("--probe-photons", f.probe_photons,
-                      "cache mode: photons from each point and spot light, which take the light it reflects where they "
-                      "land densely (0: none) [4096]"));
+                      "cache mode: photons from each point and spot light, and per square metre of the sun's beam, as "
+                      "phyir render's (0: none) [4096]"));
   opt(cmd->add_option("--exposure", f.exposure,
                       "input.png exposure: 'auto' (the 95th percentile of color.exr maps to --exposure-target) or "
                       "stops")

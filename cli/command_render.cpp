@@ -85,8 +85,8 @@ void add_render_command(CLI::App& app) {
                   "cache mode: largest parallax between shared probes, in texel heights")
       ->capture_default_str();
   cmd->add_option("--probe-photons", job.probe.photons_per_light,
-                  "cache mode: photons from each point and spot light, which take the light it reflects where they land "
-                  "densely (0: none)")
+                  "cache mode: photons from each point and spot light, and per square metre of the sun's beam where it "
+                  "reaches the probes, which take the light they reflect where they land densely (0: none)")
       ->capture_default_str();
   cmd->add_flag("--no-probe-punctual-lights", flags->no_probe_punctual,
                 "leave the punctual lights out of the probes (to measure what they add; docs/probes.md)");

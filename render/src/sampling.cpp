@@ -30,14 +30,20 @@ glm::vec3 sample_cosine_hemisphere(const glm::vec2& u) {
 
 float cosine_hemisphere_pdf(float cos_theta) { return cos_theta > 0.0f ? cos_theta * kInvPi : 0.0f; }
 
-glm::vec3 sample_uniform_sphere(const glm::vec2& u) {
-  const float z = 1.0f - 2.0f * u.x;
+glm::vec3 sample_uniform_sphere(const glm::vec2& u) { return sample_uniform_cone(u, -1.0f); }
+
+float uniform_sphere_pdf() { return 1.0f / (4.0f * kPi); }
+
+glm::vec3 sample_uniform_cone(const glm::vec2& u, float cos_max) {
+  const float z = std::max(cos_max, 1.0f - u.x * (1.0f - cos_max));  // rounding never leaves the cone
   const float r = safe_sqrt(1.0f - z * z);
   const float phi = kTwoPi * u.y;
   return glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
 }
 
-float uniform_sphere_pdf() { return 1.0f / (4.0f * kPi); }
+float uniform_cone_pdf(float cos_theta, float cos_max) {
+  return cos_theta >= cos_max && cos_max < 1.0f ? 1.0f / (kTwoPi * (1.0f - cos_max)) : 0.0f;
+}
 
 glm::vec3 sample_ggx_half_vector(const glm::vec2& u, float alpha) {
   // Invert the GGX cdf in theta_h: tan^2 = alpha^2 u / (1 - u) (Walter et al. 2007),

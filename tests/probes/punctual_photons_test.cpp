@@ -1,5 +1,6 @@
-// Photons round point and spot lights (punctual_photons.h): they and a texel's own directions
-// split one integral, the lights' diffuse light at the texel's first hits, by the same rule.
+// Photons round point and spot lights and from the sun (punctual_photons.h): they and a
+// texel's own directions split one integral, the lights' diffuse light at the texel's first
+// hits, by the same rule.
 // The photons' share of a texel is checked against that share integrated here by brute force
 // (thousands of directions per texel through the estimator's own functions), and whole probes
 // against the path mode, with and without photons.
@@ -39,6 +40,25 @@ scenes::Scene bulb_room() {
   return scene;
 }
 
+// A grey room lit by the sun alone, through a 1 m square hole in its ceiling: a sun patch on
+// its floor, its rim sharp.
+scenes::Scene skylight_room() {
+  scenes::Scene scene =
+      test::make_box_room({-2.0f, 0.0f, -1.5f}, {2.0f, 2.6f, 1.5f}, test::make_material(glm::vec3(0.6f), 0.6f, 0.0f));
+  scenes::Mesh ceiling;  // facing down, round the hole x, z in [-0.5, 0.5]
+  ceiling.name = "ceiling";
+  const float y = 2.6f;
+  test::append_quad(ceiling, {-2.0f, y, -1.5f}, {4.0f, 0, 0}, {0, 0, 1.0f});
+  test::append_quad(ceiling, {-2.0f, y, 0.5f}, {4.0f, 0, 0}, {0, 0, 1.0f});
+  test::append_quad(ceiling, {-2.0f, y, -0.5f}, {1.5f, 0, 0}, {0, 0, 1.0f});
+  test::append_quad(ceiling, {0.5f, y, -0.5f}, {1.5f, 0, 0}, {0, 0, 1.0f});
+  ceiling.material = scene.meshes[3].material;
+  scene.meshes[3] = ceiling;
+  scene.lights = {test::make_punctual_light(scenes::PunctualLight::Type::Directional, 5.0f, glm::vec3(0.0f),
+                                            glm::vec3(0.35f, -1.0f, 0.25f))};
+  return scene;
+}
+
 // The lights' diffuse light at the first hit of `direction` from `origin`, the part the
 // photons take there: what TexelEstimator leaves out (punctual_light's diffuse share).
 glm::vec3 taken_part(const RenderScene& rs, const PunctualPhotons& photons, const glm::vec3& origin,
@@ -55,22 +75,22 @@ glm::vec3 taken_part(const RenderScene& rs, const PunctualPhotons& photons, cons
   return Fd_Lambert(x.brdf.base_color, x.brdf.metalness) * punctual_light(rs, x, Lobes::kCosine, &c, rest);
 }
 
-TEST(PunctualPhotons, TheirShareOfEachTexelIsTheIntegralTheDirectionsLeaveOut) {
-  PHYIR_SKIP_UNDER_SANITIZERS("PunctualPhotons.TakeNothingWithoutPointOrSpotLights");
-  const scenes::Scene scene = bulb_room();
+struct ProbeAt {
+  const char* name;
+  glm::vec3 origin, normal;
+};
+
+// The photons' share of each probe's texels, gathered (16 draws), against the integral the
+// directions leave out, by brute force (48 x 48 directions per texel).
+void expect_share_is_the_integral_left_out(const scenes::Scene& scene, int per_light, size_t min_photons,
+                                           const std::vector<ProbeAt>& probes) {
   const RenderScene rs(scene);
   uint64_t rays = 0;
-  const PunctualPhotons photons(rs, 65536, 4, 3, &rays);
-  ASSERT_GT(photons.size(), 60000u);
-  const struct {
-    const char* name;
-    glm::vec3 origin, normal;
-  } probes[] = {{"on the floor under the bulb", {0.0f, 0.01f, 0.0f}, {0, 1, 0}},
-                {"on the ceiling 20 cm from the bulb", {0.5f, 2.59f, 0.1f}, {0, -1, 0}},
-                {"on the wall the spot lights", {-1.99f, 1.0f, -0.2f}, {1, 0, 0}}};
-  for (const auto& probe : probes) {
-    // The photons' estimate is exact where nothing hides them; where the board's edge hides
-    // some, the sampling of the texel's photons is random: 16 draws of it, averaged.
+  const PunctualPhotons photons(rs, per_light, 4, scene.bounds, 3, &rays);
+  ASSERT_GT(photons.size(), min_photons);
+  for (const ProbeAt& probe : probes) {
+    // The photons' estimate is exact where nothing hides them; where an edge hides some,
+    // the sampling of the texel's photons is random: 16 draws of it, averaged.
     std::vector<glm::vec3> radiance(kH * kW, glm::vec3(0.0f)), one, one_cos;
     uint64_t shadow_rays = 0;
     const int draws = 16;
@@ -84,7 +104,6 @@ TEST(PunctualPhotons, TheirShareOfEachTexelIsTheIntegralTheDirectionsLeaveOut) {
     for (int r = 0; r < kH; ++r) {
       const float solid_angle = equirect_texel_solid_angle(r, kW, kH);
       for (int c = 0; c < kW; ++c) {
-        // 48 x 48 stratified directions over the texel: the brute-force share.
         glm::dvec3 sum(0.0);
         const int n = 48;
         for (int a = 0; a < n; ++a)
@@ -110,18 +129,34 @@ TEST(PunctualPhotons, TheirShareOfEachTexelIsTheIntegralTheDirectionsLeaveOut) {
   }
 }
 
-TEST(PunctualPhotons, TakeNothingWithoutPointOrSpotLights) {
-  scenes::Scene scene = bulb_room();
-  scene.lights = {test::make_punctual_light(scenes::PunctualLight::Type::Directional, 3.0f, glm::vec3(0.0f),
-                                            glm::vec3(0.2f, -1, 0.1f))};
-  const RenderScene rs(scene);
+TEST(PunctualPhotons, TheirShareOfEachTexelIsTheIntegralTheDirectionsLeaveOut) {
+  PHYIR_SKIP_UNDER_SANITIZERS("PunctualPhotons.TakeNothingWhereNoneAreSent");
+  expect_share_is_the_integral_left_out(bulb_room(), 65536, 60000,
+                                        {{"on the floor under the bulb", {0.0f, 0.01f, 0.0f}, {0, 1, 0}},
+                                         {"on the ceiling 20 cm from the bulb", {0.5f, 2.59f, 0.1f}, {0, -1, 0}},
+                                         {"on the wall the spot lights", {-1.99f, 1.0f, -0.2f}, {1, 0, 0}}});
+}
+
+// The same for the sun's photons, through a skylight onto a floor and a wall.
+TEST(PunctualPhotons, TheSunsShareOfEachTexelIsTheIntegralTheDirectionsLeaveOut) {
+  PHYIR_SKIP_UNDER_SANITIZERS("PunctualPhotons.TakeNothingWhereNoneAreSent");
+  expect_share_is_the_integral_left_out(skylight_room(), 65536, 4000,
+                                        {{"on the wall facing the sun patch", {-1.99f, 1.2f, 0.4f}, {1, 0, 0}},
+                                         {"30 cm above the floor beside the sun patch", {0.0f, 0.3f, -0.8f}, {0, 1, 0}},
+                                         {"on the ceiling by the skylight", {-0.9f, 2.59f, 0.0f}, {0, -1, 0}}});
+}
+
+TEST(PunctualPhotons, TakeNothingWhereNoneAreSent) {
+  scenes::Scene sunny = skylight_room();
+  const RenderScene rs(sunny);
   uint64_t rays = 0;
-  EXPECT_TRUE(PunctualPhotons(rs, 4096, 4, 1, &rays).empty()) << "a directional light sends none";
+  EXPECT_TRUE(PunctualPhotons(rs, 4096, 4, scenes::Bounds(), 1, &rays).empty())
+      << "the sun sends none where no probe is";
   EXPECT_EQ(rays, 0u);
   const scenes::Scene bulb = bulb_room();
   const RenderScene with_bulb(bulb);
-  EXPECT_TRUE(PunctualPhotons(with_bulb, 0, 4, 1, &rays).empty()) << "0 photons per light: off";
-  const PunctualPhotons photons(with_bulb, 4096, 4, 1, &rays);
+  EXPECT_TRUE(PunctualPhotons(with_bulb, 0, 4, bulb.bounds, 1, &rays).empty()) << "0 photons per light: off";
+  const PunctualPhotons photons(with_bulb, 4096, 4, bulb.bounds, 1, &rays);
   EXPECT_FALSE(photons.empty());
   // Next to the bulb they land densely and take nearly all of its light; across the room
   // they take none, and never the spot's light where its cone does not reach.
@@ -131,6 +166,19 @@ TEST(PunctualPhotons, TakeNothingWithoutPointOrSpotLights) {
   EXPECT_GT(shares[0], 0.9f);
   EXPECT_EQ(shares[1], 0.0f);
   EXPECT_FALSE(photons.shares({0.0f, 0.01f, 0.0f}, {1.9f, 2.6f, 1.4f}, {0, -1, 0}, texel, shares));
+  // The sun's, kept to a box round the floor's sun patch: they take its light on the patch,
+  // none on the wall outside the box, nor in the box where the ceiling shades the floor (the
+  // beam's cells there reach no probe: their pilots land on the ceiling's back).
+  scenes::Bounds round_patch;
+  round_patch.extend({0.0f, 0.0f, -0.3f});
+  round_patch.extend({1.9f, 0.05f, 1.4f});
+  const PunctualPhotons sun(rs, 4096, 4, round_patch, 1, &rays);
+  EXPECT_GT(sun.size(), 1000u);
+  const glm::vec3 origin(-1.9f, 1.2f, 0.4f);
+  EXPECT_TRUE(sun.shares(origin, {0.9f, 0.0f, 0.6f}, {0, 1, 0}, texel, shares));
+  EXPECT_GT(shares[0], 0.5f);
+  EXPECT_FALSE(sun.shares(origin, {2.0f, 1.0f, 0.6f}, {-1, 0, 0}, texel, shares)) << "outside the box";
+  EXPECT_FALSE(sun.shares(origin, {0.1f, 0.0f, -0.2f}, {0, 1, 0}, texel, shares)) << "in the ceiling's shade";
 }
 
 // A floor probe's cache-mode settings, the lights' own texels left out (exact either way).
@@ -143,14 +191,15 @@ ProbeSettings cache_settings(int photons, uint64_t seed) {
   return s;
 }
 
-// The relative RMSE of the texels within 25 degrees of `towards` (the bulb's halo on the
-// ceiling, from the floor): the rest of the probe is the same with and without photons.
-double halo_rmse(const Image& a, const Image& reference, const glm::vec3& towards) {
+// The relative RMSE of the first probe's texels within `cone` radians of `towards` (the bulb's
+// halo on the ceiling, from the floor): the rest of the probe is the same with and without
+// photons.
+double halo_rmse(const Image& a, const Image& reference, const glm::vec3& towards, float cone = 0.44f) {
   double se = 0.0, sum = 0.0;
   int n = 0;
   for (int r = 0; r < kH; ++r)
     for (int c = 0; c < kW; ++c) {
-      if (glm::dot(probe_texel_direction(r, c, kH, kW, glm::vec2(0.5f)), towards) < std::cos(0.44f)) continue;
+      if (glm::dot(probe_texel_direction(r, c, kH, kW, glm::vec2(0.5f)), towards) < std::cos(cone)) continue;
       ++n;
       for (int ch = 0; ch < 3; ++ch) {
         const double d = a.at(c, r, ch) - reference.at(c, r, ch);
@@ -163,7 +212,7 @@ double halo_rmse(const Image& a, const Image& reference, const glm::vec3& toward
 // A floor probe under the bulb: the texels that see the bright disc round it on the ceiling
 // agree with the path mode better with photons, over seeds, and the probe's mean stays.
 TEST(PunctualPhotons, AFloorProbeUnderABulbSeesItsHaloBetter) {
-  PHYIR_SKIP_UNDER_SANITIZERS("PunctualPhotons.TakeNothingWithoutPointOrSpotLights");
+  PHYIR_SKIP_UNDER_SANITIZERS("PunctualPhotons.TakeNothingWhereNoneAreSent");
   const scenes::Scene scene = bulb_room();
   const glm::vec3 origin(-0.4f, 0.01f, 0.5f);
   const glm::vec3 towards = glm::normalize(scene.lights[0].position - origin);
@@ -184,6 +233,50 @@ TEST(PunctualPhotons, AFloorProbeUnderABulbSeesItsHaloBetter) {
       }
   }
   std::printf("the halo's texels against path mode: relative RMSE %.4f with photons, %.4f without; probe means "
+              "%.5f, %.5f\n", with, without, mean_with, mean_without);
+  EXPECT_LT(with, 0.8 * without);
+  EXPECT_NEAR(mean_with / mean_without, 1.0, 0.03);
+}
+
+// A wall probe facing the skylight room's sun patch, rendered with two more probes in
+// opposite corners of the room: the sun's photons go where a view's probes are (the box round
+// them), and the rim of the patch is seen better with them. The patch's texels against path
+// mode, over seeds; the probe's mean stays.
+TEST(PunctualPhotons, AWallProbeSeesTheSunPatchBetter) {
+  PHYIR_SKIP_UNDER_SANITIZERS("PunctualPhotons.TakeNothingWhereNoneAreSent");
+  const scenes::Scene scene = skylight_room();
+  const RenderScene rs(scene);
+  std::vector<ProbeSite> sites = single_site(glm::vec3(-1.99f, 1.2f, 0.4f));
+  sites[0].surface = glm::vec3(-2.0f, 1.2f, 0.4f);
+  sites[0].normal = glm::vec3(1.0f, 0.0f, 0.0f);
+  for (const glm::vec3& corner : {glm::vec3(-1.9f, 0.01f, -1.4f), glm::vec3(1.9f, 2.59f, 1.4f)})
+    sites.push_back(single_site(corner)[0]);
+  const glm::vec3 patch_centre(0.91f, 0.0f, 0.65f);
+  const glm::vec3 towards = glm::normalize(patch_centre - sites[0].origin);
+  auto render = [&](ProbeSettings s) {
+    s.layout.grid_width = 3;
+    const ProbeOutput out = ProbeRenderer(rs, analyse_effects(scene, false), s).render_at(sites, {0});
+    EXPECT_EQ(out.stats.counters.nonfinite_samples, 0u);
+    return std::make_pair(out.mosaic, out.stats.photons);
+  };
+  ProbeSettings path = cache_settings(0, 1);
+  path.mode = ProbeMode::kPath;
+  path.spp = 4096;
+  const Image reference = render(path).first;
+  double with = 0.0, without = 0.0, mean_with = 0.0, mean_without = 0.0;
+  const int seeds = 3;
+  for (uint64_t seed = 10; seed < 10 + seeds; ++seed) {
+    const auto [a, photons] = render(cache_settings(4096, seed));
+    const Image b = render(cache_settings(0, seed)).first;
+    EXPECT_GT(photons, 100u) << "the sun's photons land round the probes";
+    with += halo_rmse(a, reference, towards, 0.35f) / seeds, without += halo_rmse(b, reference, towards, 0.35f) / seeds;
+    for (int r = 0; r < kH; ++r)
+      for (int c = 0; c < kW; ++c) {
+        mean_with += luminance(glm::vec3(a.at(c, r, 0), a.at(c, r, 1), a.at(c, r, 2)));
+        mean_without += luminance(glm::vec3(b.at(c, r, 0), b.at(c, r, 1), b.at(c, r, 2)));
+      }
+  }
+  std::printf("the sun patch's texels against path mode: relative RMSE %.4f with photons, %.4f without; probe means "
               "%.5f, %.5f\n", with, without, mean_with, mean_without);
   EXPECT_LT(with, 0.8 * without);
   EXPECT_NEAR(mean_with / mean_without, 1.0, 0.03);

@@ -91,6 +91,17 @@ TEST(SamplingPdf, UniformSphereIntegratesToOne) {
   EXPECT_NEAR(integral, 1.0, 1e-4);
 }
 
+TEST(SamplingPdf, UniformConeIntegratesToOne) {
+  // Half-angles on the grid's rows (pi k / 100), so the cone's edge falls on a cell edge.
+  for (int k : {10, 25, 50, 80, 100}) {
+    const float cos_max = float(std::cos(3.14159265358979323846 * k / 100.0));
+    const SphereGrid grid(glm::vec3(0, 0, 1), 1.0f, 100, 64);
+    const double integral =
+        grid.integrate([&](const glm::vec3& w) { return double(uniform_cone_pdf(w.z, cos_max)); }, 2);
+    EXPECT_NEAR(integral, 1.0, 1e-3) << "half-angle pi " << k << " / 100";
+  }
+}
+
 TEST(SamplingPdf, GgxHalfVectorIntegratesToOne) {
   // alpha = R^2 for R = 1, 0.5, 0.3, 0.05, 0.01. A grid packed towards +z (theta ~ x^4)
   // resolves even the alpha = 1e-4 lobe.
@@ -135,6 +146,26 @@ TEST(SamplingChiSquare, UniformSphere) {
       [](const glm::vec3&) { return double(uniform_sphere_pdf()); });
   std::printf("[chi2] uniform sphere: %s\n", r.message.c_str());
   EXPECT_TRUE(r.passed(kSignificance)) << r.message;
+}
+
+TEST(SamplingChiSquare, UniformCone) {
+  // Half-angles on the grid's rows (pi k / 32): a cell the cone's edge cut would hold a
+  // discontinuity the helper's integration of the pdf over the cell cannot resolve.
+  for (const int k : {4, 12, 22}) {
+    // Rounded up, so no sample on the edge falls in the row beyond it.
+    const float cos_max = std::nextafter(float(std::cos(3.14159265358979323846 * k / 32.0)), 1.0f);
+    Rng rng(13, 4);
+    const SphereGrid grid(glm::vec3(0, 0, 1), 1.0f, 32, 64);
+    const auto r = chi_square_directions(
+        grid, kChiSamples,
+        [&](int, glm::vec3* w, bool*) {
+          *w = sample_uniform_cone(rng.next_2d(), cos_max);
+          return true;
+        },
+        [&](const glm::vec3& w) { return double(uniform_cone_pdf(w.z, cos_max)); });
+    std::printf("[chi2] uniform cone, cos_max %.1f: %s\n", cos_max, r.message.c_str());
+    EXPECT_TRUE(r.passed(kSignificance)) << r.message;
+  }
 }
 
 TEST(SamplingChiSquare, GgxHalfVector) {

@@ -123,7 +123,13 @@ ProbeOutput ProbeView::run() {
   const auto shade_start = Clock::now();
   if (settings_.mode == ProbeMode::kCache && effects_.punctual_lights && settings_.path.max_bounces >= 1) {
     uint64_t rays = 0;
-    photons_ = PunctualPhotons(scene_, settings_.photons_per_light, settings_.spp,
+    scenes::Bounds surroundings;  // where the sun's photons matter: round the view's probes
+    for (const ProbeSite& site : out_.sites) {
+      if (!site.computed()) continue;
+      surroundings.extend(site.surface);
+      surroundings.extend(site.origin);
+    }
+    photons_ = PunctualPhotons(scene_, settings_.photons_per_light, settings_.spp, surroundings,
                                stream_key(settings_.seed, Purpose::kProbePhoton), &rays);
     out_.stats.photons = photons_.size();
     out_.stats.photon_rays += rays;

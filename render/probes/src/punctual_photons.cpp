@@ -9,6 +9,7 @@
 #include "phyir/render/equirect.h"
 #include "phyir/render/frame.h"
 #include "phyir/render/ray_offset.h"
+#include "phyir/render/sampling.h"
 #include "phyir/render/streams.h"
 #include "punctual_deposit.h"
 
@@ -20,78 +21,177 @@ namespace {
 // texel's directions: how many land in a texel's footprint moves with their jitter, so a
 // few per texel are far noisier than a few directions (measured on the suite: taking the
 // light outright wherever 4 landed per texel, the photons took the lit room's error from
-// 0.064 to 0.098). Below
-// kMinPhotonsPerTexel the directions take a hit's light alone: the photons' share would be
-// small, and joining each probe to every photon it sees would cost a shadow ray each.
+// 0.064 to 0.098). Below kMinPhotonsPerTexel the directions take a hit's light alone: the
+// photons' share would be small, and joining each probe to every photon it sees would cost a
+// shadow ray each.
 constexpr float kPhotonsPerDirection = 16.0f;
 constexpr float kMinPhotonsPerTexel = 16.0f;
 // Where more land in a texel, about this many are joined to the probe (systematic sampling,
 // gather()): next to a bulb tens of thousands would, each a shadow ray.
 constexpr float kPhotonsKeptPerTexel = 16.0f;
-
-// A unit direction from the unit square: uniform over the sphere, or over the cap of
-// directions within the angle whose cosine is cos_outer of `axis` (equal-area maps, so a
-// stratified square stays stratified in solid angle).
-glm::vec3 cap_direction(const glm::vec2& u, const glm::vec3& axis, float cos_outer) {
-  const float cos_theta = 1.0f - u.x * (1.0f - cos_outer);
-  const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
-  const float phi = kTwoPi * u.y;
-  const Frame frame(axis);
-  return frame.to_world(glm::vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta));
-}
+// The sun's photons land within this of the probes' surfaces (which bound region_).
+constexpr float kRegionMargin = 0.01f;
+// The sun's beam across the region in kBeamCells^2 cells, kPilotsPerCell^2 pilot photons
+// each: its photons go to the cells whose pilots reached the region (through windows).
+constexpr int kBeamCells = 128;
+constexpr int kPilotsPerCell = 2;
+// At most this many photons from the sun, as from 16 bulbs: every probe considers every
+// photon, and a region tens of metres wide would want millions.
+constexpr double kMaxSunPhotons = double(1 << 16);
 
 }  // namespace
 
-PunctualPhotons::PunctualPhotons(const RenderScene& scene, int per_light, int spp, uint64_t seed, uint64_t* rays)
-    : scene_(&scene), spp_(float(std::max(spp, 1))) {
+PunctualPhotons::PunctualPhotons(const RenderScene& scene, int per_light, int spp, const scenes::Bounds& region,
+                                 uint64_t seed, uint64_t* rays)
+    : scene_(&scene), region_(region), spp_(float(std::max(spp, 1))) {
   const DeltaLights& lights = scene.emitters().delta_lights();
   if (per_light <= 0 || lights.size() > kMaxLights) return;
-  const int side = std::max(1, int(std::lround(std::sqrt(double(per_light)))));
-  const int count = side * side;
   for (int i = 0; i < lights.size(); ++i) {
-    const scenes::PunctualLight& light = lights.light(i);
-    if (light.type == scenes::PunctualLight::Type::Directional) continue;
-    Source s;
-    s.light = i;
-    s.position = light.position;
-    s.axis = light.type == scenes::PunctualLight::Type::Spot ? glm::normalize(light.direction) : glm::vec3(0, 0, 1);
-    s.cos_outer = light.type == scenes::PunctualLight::Type::Spot ? std::cos(light.outer_cone_angle) : -1.0f;
-    s.photons_per_steradian = float(count) / (kTwoPi * (1.0f - s.cos_outer));
-    const int source = int(sources_.size());
-    sources_.push_back(s);
-    // A jittered grid over the square, its jitter from the view's seed.
-    Rng rng = item_stream(seed, uint64_t(i), Purpose::kProbePhoton);
-    for (int a = 0; a < side; ++a) {
-      for (int b = 0; b < side; ++b) {
-        const glm::vec2 jitter = rng.next_2d();
-        const glm::vec2 u((float(a) + jitter.x) / float(side), (float(b) + jitter.y) / float(side));
-        const Ray ray{s.position, cap_direction(glm::min(u, glm::vec2(kOneMinusEpsilon)), s.axis, s.cos_outer)};
-        Photon p;
-        ++*rays;
-        if (!scene.trace(ray, &p.hit) || p.hit.transmission > 0.0f) continue;  // glass: path traced
-        DeltaIllumination seen;
-        if (!lights.illuminate(i, p.hit.position, &seen)) continue;
-        p.source = source;
-        p.to_light = seen.wi;
-        p.irradiance = seen.irradiance;
-        photons_.push_back(p);
-      }
+    if (lights.light(i).type == scenes::PunctualLight::Type::Directional)
+      trace_from_sun(i, per_light, seed, rays);
+    else
+      trace_from_light(i, per_light, seed, rays);
+  }
+}
+
+void PunctualPhotons::trace_from_light(int i, int per_light, uint64_t seed, uint64_t* rays) {
+  const scenes::PunctualLight& light = scene_->emitters().delta_lights().light(i);
+  const int side = std::max(1, int(std::lround(std::sqrt(double(per_light)))));
+  Source s;
+  s.light = i;
+  s.position = light.position;
+  s.axis = light.type == scenes::PunctualLight::Type::Spot ? glm::normalize(light.direction) : glm::vec3(0, 0, 1);
+  s.cos_outer = light.type == scenes::PunctualLight::Type::Spot ? std::cos(light.outer_cone_angle) : -1.0f;
+  s.density = float(side * side) * uniform_cone_pdf(1.0f, s.cos_outer);
+  const int source = int(sources_.size());
+  sources_.push_back(s);
+  // A jittered grid over the square, its jitter from the view's seed.
+  Rng rng = item_stream(seed, uint64_t(i), Purpose::kProbePhoton);
+  for (int a = 0; a < side; ++a) {
+    for (int b = 0; b < side; ++b) {
+      const glm::vec2 jitter = rng.next_2d();
+      const glm::vec2 u((float(a) + jitter.x) / float(side), (float(b) + jitter.y) / float(side));
+      const glm::vec3 local = sample_uniform_cone(glm::min(u, glm::vec2(kOneMinusEpsilon)), s.cos_outer);
+      trace_photon(Ray{s.position, Frame(s.axis).to_world(local)}, source, rays);
     }
   }
 }
 
+void PunctualPhotons::trace_from_sun(int i, int per_square_metre, uint64_t seed, uint64_t* rays) {
+  if (region_.empty()) return;
+  Source s;
+  s.light = i;
+  s.directional = true;
+  s.axis = glm::normalize(scene_->emitters().delta_lights().light(i).direction);
+  // A square across the beam, as wide as the region's bounding sphere, upstream of everything.
+  Beam& beam = s.beam;
+  beam.centre = 0.5f * (region_.min + region_.max);
+  beam.half_width = 0.5f * glm::length(region_.max - region_.min) + kRegionMargin;
+  const scenes::Bounds& all = scene_->scene().bounds;
+  beam.upstream = glm::length(glm::max(glm::abs(all.min - beam.centre), glm::abs(all.max - beam.centre))) +
+                  beam.half_width + 1.0f;
+  const Frame across(s.axis);
+  beam.t = across.t, beam.b = across.b;
+  beam.density.assign(size_t(kBeamCells * kBeamCells), 0.0f);
+  const int source = int(sources_.size());
+  sources_.push_back(s);
+  Rng rng = item_stream(seed, uint64_t(i), Purpose::kProbePhoton);
+  const std::vector<int> cells = cells_reaching_region(sources_.back(), &rng, rays);
+  if (cells.empty()) return;
+  // As many per square metre of the beam as asked, fewer if that would be over kMaxSunPhotons.
+  const float cell_width = 2.0f * beam.half_width / float(kBeamCells), cell_area = cell_width * cell_width;
+  const double per_cell = std::min(double(per_square_metre) * cell_area, double(kMaxSunPhotons) / double(cells.size()));
+  const int side = std::max(1, int(std::floor(std::sqrt(per_cell))));
+  for (int c : cells) {
+    sources_[size_t(source)].beam.density[size_t(c)] = float(side * side) / cell_area;
+    for (int a = 0; a < side; ++a)
+      for (int b = 0; b < side; ++b) {
+        const glm::vec2 u = (glm::vec2(float(a), float(b)) + rng.next_2d()) / float(side);
+        trace_photon(sources_[size_t(source)].beam.ray(c, u, s.axis), source, rays);
+      }
+  }
+}
+
+std::vector<int> PunctualPhotons::cells_reaching_region(const Source& s, Rng* rng, uint64_t* rays) const {
+  // kPilotsPerCell^2 pilot photons per cell: those landing in region_ mark their cell, and the
+  // marks grow by a cell round them (a window's edge can fall between pilots).
+  std::vector<char> reached(s.beam.density.size(), 0), marked(s.beam.density.size(), 0);
+  for (int c = 0; c < kBeamCells * kBeamCells; ++c)
+    for (int a = 0; a < kPilotsPerCell; ++a)
+      for (int b = 0; b < kPilotsPerCell; ++b) {
+        const glm::vec2 u = (glm::vec2(float(a), float(b)) + rng->next_2d()) / float(kPilotsPerCell);
+        SurfaceInteraction hit;
+        ++*rays;
+        if (scene_->trace(s.beam.ray(c, u, s.axis), &hit) && in_region(hit.position)) reached[size_t(c)] = 1;
+      }
+  std::vector<int> cells;
+  for (int y = 0; y < kBeamCells; ++y)
+    for (int x = 0; x < kBeamCells; ++x) {
+      bool near = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int yy = y + dy, xx = x + dx;
+          near = near || (yy >= 0 && yy < kBeamCells && xx >= 0 && xx < kBeamCells && reached[size_t(yy * kBeamCells + xx)]);
+        }
+      if (near) cells.push_back(y * kBeamCells + x);
+    }
+  return cells;
+}
+
+Ray PunctualPhotons::Beam::ray(int cell, const glm::vec2& u, const glm::vec3& axis) const {
+  const glm::vec2 at = (glm::vec2(float(cell % kBeamCells), float(cell / kBeamCells)) + u) / float(kBeamCells);
+  const glm::vec2 square = (2.0f * at - 1.0f) * half_width;
+  return Ray{centre + square.x * t + square.y * b - upstream * axis, axis};
+}
+
+int PunctualPhotons::Beam::cell_of(const glm::vec3& p) const {
+  const glm::vec3 q = p - centre;
+  const glm::vec2 at = (glm::vec2(glm::dot(q, t), glm::dot(q, b)) / half_width + 1.0f) * 0.5f * float(kBeamCells);
+  if (!(at.x >= 0.0f && at.y >= 0.0f && at.x < float(kBeamCells) && at.y < float(kBeamCells))) return -1;
+  return int(at.y) * kBeamCells + int(at.x);
+}
+
+void PunctualPhotons::trace_photon(const Ray& ray, int source, uint64_t* rays) {
+  const Source& s = sources_[size_t(source)];
+  Photon p;
+  ++*rays;
+  if (!scene_->trace(ray, &p.hit) || p.hit.transmission > 0.0f) return;  // glass: path traced
+  if (s.directional && !in_region(p.hit.position)) return;
+  DeltaIllumination seen;
+  if (!scene_->emitters().delta_lights().illuminate(s.light, p.hit.position, &seen)) return;
+  p.source = source;
+  p.to_light = seen.wi;
+  p.irradiance = seen.irradiance;
+  photons_.push_back(p);
+}
+
+bool PunctualPhotons::in_region(const glm::vec3& p) const {
+  return glm::all(glm::greaterThanEqual(p, region_.min - kRegionMargin)) &&
+         glm::all(glm::lessThanEqual(p, region_.max + kRegionMargin));
+}
+
 float PunctualPhotons::photons_per_steradian(const Source& s, const glm::vec3& origin, const glm::vec3& position,
                                              const glm::vec3& ng) const {
-  const glm::vec3 to_light = s.position - position, to_origin = origin - position;
-  const float r2 = glm::dot(to_light, to_light), d2 = glm::dot(to_origin, to_origin);
-  if (!(r2 > 0.0f) || !(d2 > 0.0f)) return 0.0f;
-  const float r = std::sqrt(r2), d = std::sqrt(d2);
-  if (glm::dot(s.axis, -to_light / r) < s.cos_outer) return 0.0f;  // outside a spot's cone
-  const float cos_light = std::abs(glm::dot(ng, to_light)) / r;
-  const float cos_origin = std::abs(glm::dot(ng, to_origin)) / d;
-  // Per unit area of the surface: photons per steradian x cos / r^2; seen from the origin,
-  // per steradian there: x d^2 / cos.
-  const float value = s.photons_per_steradian * cos_light / r2 * d2 / std::max(cos_origin, 1e-6f);
+  const glm::vec3 to_origin = origin - position;
+  const float d2 = glm::dot(to_origin, to_origin);
+  if (!(d2 > 0.0f)) return 0.0f;
+  // Per unit area of the surface: per unit area facing the light x cos there.
+  float per_area = 0.0f;
+  if (s.directional) {
+    const int cell = s.beam.cell_of(position);
+    if (cell < 0 || !in_region(position)) return 0.0f;
+    per_area = s.beam.density[size_t(cell)] * std::abs(glm::dot(ng, s.axis));
+  } else {
+    const glm::vec3 to_light = s.position - position;
+    const float r2 = glm::dot(to_light, to_light);
+    if (!(r2 > 0.0f)) return 0.0f;
+    const float r = std::sqrt(r2);
+    if (glm::dot(s.axis, -to_light / r) < s.cos_outer) return 0.0f;  // outside a spot's cone
+    per_area = s.density / r2 * std::abs(glm::dot(ng, to_light)) / r;
+  }
+  // Seen from the origin, per steradian there: x d^2 / cos.
+  const float cos_origin = std::abs(glm::dot(ng, to_origin)) / std::sqrt(d2);
+  const float value = per_area * d2 / std::max(cos_origin, 1e-6f);
   return std::isfinite(value) ? value : 0.0f;
 }
 

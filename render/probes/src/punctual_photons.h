@@ -1,10 +1,12 @@
 #pragma once
-// The light point and spot lights throw on the surfaces close to them, in the probes.
-// Internal to the probe renderer (docs/probes.md, "Photons round point and spot lights").
+// The light point and spot lights throw on the surfaces close to them, and the sun on the
+// floors and walls it reaches through windows, in the probes.
+// Internal to the probe renderer (docs/probes.md, "Photons round punctual lights and the sun").
 #include <cstdint>
 #include <vector>
 
 #include "phyir/render/render_scene.h"
+#include "phyir/render/rng.h"
 
 namespace phyir::render {
 
@@ -15,17 +17,21 @@ namespace phyir::render {
 // origin by one shadow ray. Both estimate the diffuse light reflected at the first hits of a
 // texel's directions (highlights stay with the directions), and are combined by multiple
 // importance sampling: at a hit where N photons land per texel solid angle, the photons take
-// N / (16 spp + N) of each light's diffuse light and the texel's spp directions the rest (the balance heuristic, a photon counted as a 16th of
-// a direction; below 16 photons per texel the directions take it all).
+// N / (16 spp + N) of each light's diffuse light and the texel's spp directions the rest
+// (the balance heuristic, a photon counted as a 16th of a direction; below 16 photons per
+// texel the directions take it all).
 class PunctualPhotons {
  public:
   PunctualPhotons() = default;
   static constexpr int kMaxLights = 8;  // the scenes whose punctual lights TexelEstimator takes exactly
 
-  // `per_light` photons (rounded to a square) from each point and spot light; none with
-  // per_light = 0, or with more than kMaxLights punctual lights. `spp`: a texel's directions,
-  // for the weights. Traces them (counted in *rays).
-  PunctualPhotons(const RenderScene& scene, int per_light, int spp, uint64_t seed, uint64_t* rays);
+  // `per_light` photons (rounded to a square) from each point and spot light, and from each
+  // directional light `per_light` per square metre of its beam where it reaches `region`
+  // (photons landing outside it are dropped, and there the directions take the sun's light
+  // alone); none with per_light = 0, or with more than kMaxLights punctual lights. `spp`: a
+  // texel's directions, for the weights. Traces them (counted in *rays).
+  PunctualPhotons(const RenderScene& scene, int per_light, int spp, const scenes::Bounds& region, uint64_t seed,
+                  uint64_t* rays);
 
   bool empty() const { return photons_.empty(); }
   size_t size() const { return photons_.size(); }
@@ -44,12 +50,24 @@ class PunctualPhotons {
               std::vector<glm::vec3>* radiance, std::vector<glm::vec3>* radiance_cos, uint64_t* rays) const;
 
  private:
+  // The sun's beam: a square across it over region_, upstream of the scene, in cells, and
+  // each cell's photons per square metre (0 where its pilots found no way into the region).
+  struct Beam {
+    glm::vec3 centre{0.0f}, t{1.0f, 0.0f, 0.0f}, b{0.0f, 1.0f, 0.0f};  // t, b: across the beam
+    float half_width = 0.0f, upstream = 0.0f;
+    std::vector<float> density;  // per cell, row-major
+    // A photon's ray from point u (unit square) of a cell; -1 from cell_of: outside the square.
+    Ray ray(int cell, const glm::vec2& u, const glm::vec3& axis) const;
+    int cell_of(const glm::vec3& point) const;
+  };
   struct Source {
     int light = -1;
-    glm::vec3 position{0.0f};
-    glm::vec3 axis{0.0f, 0.0f, -1.0f};  // a spot's
+    bool directional = false;
+    glm::vec3 position{0.0f};           // a point's or spot's
+    glm::vec3 axis{0.0f, 0.0f, -1.0f};  // a spot's; the sun's direction of travel
     float cos_outer = -1.0f;            // -1: the whole sphere
-    float photons_per_steradian = 0.0f; // photons x their density in direction
+    float density = 0.0f;               // a point's or spot's photons per steradian
+    Beam beam;                          // the sun's
   };
   struct Photon {
     SurfaceInteraction hit;
@@ -58,6 +76,15 @@ class PunctualPhotons {
     glm::vec3 irradiance{0.0f}; // on a surface facing the light (DeltaIllumination)
   };
 
+  // Photons from point or spot light i (stratified over its sphere or cone), or from the sun
+  // (stratified over the cells of its beam that reach region_).
+  void trace_from_light(int i, int per_light, uint64_t seed, uint64_t* rays);
+  void trace_from_sun(int i, int per_square_metre, uint64_t seed, uint64_t* rays);
+  // The sun's cells whose pilot photons land in region_, and their neighbours.
+  std::vector<int> cells_reaching_region(const Source& s, Rng* rng, uint64_t* rays) const;
+  // Traces one photon of source `source` (light i) and keeps it where it lands on a surface
+  // the light reaches (the sun's inside region_ only).
+  void trace_photon(const Ray& ray, int source, uint64_t* rays);
   // A photon's estimate of its texel's radiance if nothing hides it from `origin` (0 where
   // the texel's directions take its hit), and that texel (row-major).
   glm::vec3 unoccluded(const Photon& p, const glm::vec3& origin, int height, int width, uint32_t* texel) const;
@@ -69,9 +96,12 @@ class PunctualPhotons {
   float photons_per_steradian(const Source& s, const glm::vec3& origin, const glm::vec3& position,
                               const glm::vec3& ng) const;
 
+  bool in_region(const glm::vec3& p) const;
+
   std::vector<Source> sources_;
   std::vector<Photon> photons_;
   const RenderScene* scene_ = nullptr;
+  scenes::Bounds region_;  // where the sun's photons are kept
   float spp_ = 1.0f;
 };
 

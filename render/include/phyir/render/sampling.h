@@ -17,6 +17,12 @@ float cosine_hemisphere_pdf(float cos_theta);
 glm::vec3 sample_uniform_sphere(const glm::vec2& u);
 float uniform_sphere_pdf();
 
+// Uniform over the cone of directions within angle acos(cos_max) of +z (cos_max = -1: the
+// sphere); pdf = 1 / (2 pi (1 - cos_max)) inside it. Equal-area: a stratified u stays
+// stratified in solid angle.
+glm::vec3 sample_uniform_cone(const glm::vec2& u, float cos_max);
+float uniform_cone_pdf(float cos_theta, float cos_max);
+
 // GGX half-vector sampling about +z (eq. 18): pdf_h = D(n.h) (n.h).
 glm::vec3 sample_ggx_half_vector(const glm::vec2& u, float alpha);
 

@@ -62,8 +62,9 @@ struct ProbeSettings {
   float glossy_roughness = 0.3f;  // secondary hits smoother than this are traced on
   ProbeSharing sharing;           // texels averaged with neighbouring probes' (docs/probes.md, "Sharing between neighbours")
   bool correct_foot = true;       // the cache's error at each probe's foot taken out (docs/probes.md, "The foot correction")
-  // Photons from each point and spot light take the light it reflects at the first hits where
-  // they land densely (docs/probes.md, "Photons round point and spot lights"); 0: none.
+  // Photons from each point and spot light, and per square metre of the sun's beam where it
+  // reaches the probes, take the light they reflect at the first hits where they land densely
+  // (docs/probes.md, "Photons round punctual lights and the sun"); 0: none.
   int photons_per_light = 4096;
   // Punctual lights added, exactly, to the texel each one's direction falls in (docs/probes.md,
   // "What a texel is"). Both modes; off only to measure the estimated part alone.
