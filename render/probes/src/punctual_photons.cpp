@@ -115,7 +115,7 @@ void PunctualPhotons::trace_from_sun(int i, int per_square_metre, uint64_t seed,
 std::vector<int> PunctualPhotons::cells_reaching_region(const Source& s, Rng* rng, uint64_t* rays) const {
   // kPilotsPerCell^2 pilot photons per cell: those landing in region_ mark their cell, and the
   // marks grow by a cell round them (a window's edge can fall between pilots).
-  std::vector<char> reached(s.beam.density.size(), 0), marked(s.beam.density.size(), 0);
+  std::vector<char> reached(s.beam.density.size(), 0);
   for (int c = 0; c < kBeamCells * kBeamCells; ++c)
     for (int a = 0; a < kPilotsPerCell; ++a)
       for (int b = 0; b < kPilotsPerCell; ++b) {
