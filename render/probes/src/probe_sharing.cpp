@@ -57,8 +57,9 @@ Image share_between_neighbours(const Image& mosaic, const ProbeLayout& layout, c
   Image out = mosaic;
   if (sharing.radius <= 0) return out;
   const size_t records_needed = size_t(layout.probe_count()) * size_t(layout.texels_per_probe());
+  const bool unshared_sized = records.unshared.empty() || records.unshared.size() == records_needed;
   if (records.distance.size() != records_needed || records.samples.size() != records_needed ||
-      records.variance.size() != records_needed || (!records.unshared.empty() && records.unshared.size() != records_needed))
+      records.variance.size() != records_needed || !unshared_sized)
     fail("sharing needs texel records of {} texels, {} given", records_needed, records.samples.size());
   const int h = layout.res_height, w = layout.res_width, texels = layout.texels_per_probe();
   // Per texel: its centre direction and the largest parallax angle accepted there, a

@@ -124,15 +124,15 @@ std::vector<int> PunctualPhotons::cells_reaching_region(const Source& s, Rng* rn
         ++*rays;
         if (scene_->trace(s.beam.ray(c, u, s.axis), &hit) && in_region(hit.position)) reached[size_t(c)] = 1;
       }
+  auto reached_at = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < kBeamCells && y < kBeamCells && reached[size_t(y * kBeamCells + x)];
+  };
   std::vector<int> cells;
   for (int y = 0; y < kBeamCells; ++y)
     for (int x = 0; x < kBeamCells; ++x) {
       bool near = false;
       for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int yy = y + dy, xx = x + dx;
-          near = near || (yy >= 0 && yy < kBeamCells && xx >= 0 && xx < kBeamCells && reached[size_t(yy * kBeamCells + xx)]);
-        }
+        for (int dx = -1; dx <= 1; ++dx) near = near || reached_at(x + dx, y + dy);
       if (near) cells.push_back(y * kBeamCells + x);
     }
   return cells;
