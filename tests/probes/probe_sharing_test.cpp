@@ -141,21 +141,6 @@ TEST(ProbeSharing, ValuesFurtherApartThanTheirNoiseAreNotShared) {
   EXPECT_FLOAT_EQ(grid.centre(0, grid.share()), (16.0f + 25.0f + 36.0f) / 3.0f);
 }
 
-TEST(ProbeSharing, TexelsMarkedUnsharedAreNeitherAveragedNorLent) {
-  // The up texels of the centre probe (4, value 25) and of probe 1 (value 4) are marked: the
-  // centre keeps its own value, and corner probe 0, whose window holds probes 1, 3 and 4,
-  // averages its own 1 with probe 3's 16 alone.
-  Grid grid(3.0f);
-  grid.records.unshared.assign(grid.records.samples.size(), 0);
-  grid.records.unshared[2 * 4 + 0] = 1;
-  grid.records.unshared[2 * 1 + 0] = 1;
-  uint64_t shared = 0;
-  const Image out = grid.share(&shared);
-  EXPECT_FLOAT_EQ(grid.centre(0, out), 25.0f);
-  EXPECT_FLOAT_EQ(out.at(0, 0, 0), 8.5f);
-  EXPECT_EQ(shared, 7u);  // the up texels of the 7 probes not marked
-}
-
 TEST(ProbeSharing, RadiusZeroChangesNothing) {
   const Grid grid(3.0f);
   ProbeSharing off;

@@ -57,9 +57,8 @@ Image share_between_neighbours(const Image& mosaic, const ProbeLayout& layout, c
   Image out = mosaic;
   if (sharing.radius <= 0) return out;
   const size_t records_needed = size_t(layout.probe_count()) * size_t(layout.texels_per_probe());
-  const bool unshared_sized = records.unshared.empty() || records.unshared.size() == records_needed;
   if (records.distance.size() != records_needed || records.samples.size() != records_needed ||
-      records.variance.size() != records_needed || !unshared_sized)
+      records.variance.size() != records_needed)
     fail("sharing needs texel records of {} texels, {} given", records_needed, records.samples.size());
   const int h = layout.res_height, w = layout.res_width, texels = layout.texels_per_probe();
   // Per texel: its centre direction and the largest parallax angle accepted there, a
@@ -73,7 +72,6 @@ Image share_between_neighbours(const Image& mosaic, const ProbeLayout& layout, c
     max_angle[size_t(t)] = sharing.parallax_texels * std::min(kPi / float(h), width);
   }
   auto usable = [&](int p) { return computed[size_t(p)] && sites[size_t(p)].valid(); };
-  auto unshared = [&](size_t i) { return !records.unshared.empty() && records.unshared[i] != 0; };
   std::atomic<uint64_t> shared{0};
 
   tbb::parallel_for(tbb::blocked_range<int>(0, layout.probe_count(), 16), [&](const tbb::blocked_range<int>& range) {
@@ -105,7 +103,6 @@ Image share_between_neighbours(const Image& mosaic, const ProbeLayout& layout, c
           const glm::vec3 baseline = sites[size_t(q)].origin - site.origin;
           const size_t base_q = size_t(q) * size_t(texels);
           for (int t = 0; t < texels; ++t) {
-            if (unshared(base_p + size_t(t)) || unshared(base_q + size_t(t))) continue;
             const float dp = records.distance[base_p + size_t(t)], dq = records.distance[base_q + size_t(t)];
             if (!similar_distances(dp, dq)) continue;
             const glm::vec3& dir = centre[size_t(t)];

@@ -42,7 +42,6 @@ struct TexelRecords {
   std::vector<float> distance;
   std::vector<float> samples;
   std::vector<float> variance;  // of its value's luminance, from its samples' spread
-  std::vector<uint8_t> unshared;  // 1: neither averaged nor lent (empty: every texel may be)
 };
 
 // The mosaic with each valid computed probe's texels averaged over its neighbours as above.

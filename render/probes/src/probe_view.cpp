@@ -140,7 +140,6 @@ ProbeOutput ProbeView::run() {
     records_.distance.assign(size_t(layout_.probe_count()) * size_t(texels_), std::numeric_limits<float>::infinity());
     records_.samples.assign(size_t(layout_.probe_count()) * size_t(texels_), 0.0f);
     records_.variance.assign(size_t(layout_.probe_count()) * size_t(texels_), 0.0f);
-    records_.unshared.assign(size_t(layout_.probe_count()) * size_t(texels_), 0);
   }
   feet_.assign(correct_foot_ ? todo_.size() : 0, FootCorrection());
   Progress progress("probes", todo_.size() * (correct_foot_ ? 2 : 1), correct_foot_ ? "probe halves" : "probes",
@@ -429,11 +428,8 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* s
     const uint64_t key = sample_key(probe_seed_, id, uint64_t(first + s));
     const Ray ray{origin, x.cone.direction(w->strata[size_t(s)])};
     glm::vec3 emitted;
-    float nearest = std::numeric_limits<float>::infinity();
-    glm::vec3 L = estimator_->sample(ray, key, part, probe.foot, solid_angle, saw_hard, &nearest, &emitted,
+    glm::vec3 L = estimator_->sample(ray, key, part, probe.foot, solid_angle, saw_hard, &x.distance, &emitted,
                                      &w->stats.counters);
-    x.distance = std::min(x.distance, nearest);
-    (std::isinf(nearest) ? x.missed : x.hit) = true;
     if (!is_finite(L) || !is_finite(emitted)) {
       ++w->stats.counters.nonfinite_samples;
       L = emitted = glm::vec3(0.0f);
@@ -469,11 +465,6 @@ void ProbeView::store_texel(const Texel& x, glm::vec3 value, const glm::vec3& se
     records_.distance[size_t(id)] = x.distance;
     records_.samples[size_t(id)] = float(x.samples);
     records_.variance[size_t(id)] = x.variance;
-    // The sky's edge through a window is not shared either: tens of times brighter than the
-    // frame, it changes a texel by more than its noise when parallax moves it by a fifth of
-    // the texel, and the consistency test, whose noise comes from the directions' spread
-    // (which overstates a stratified texel's), lets such neighbours in.
-    records_.unshared[size_t(id)] = x.missed && x.hit;
     // Emission seen directly is not shared: a light's edge moves across a texel with the
     // slightest parallax, and its own directions already resolve it.
     if (x.probe->lit[size_t(x.t)]) w->emission_seen.push_back({id, seen_emission});

@@ -66,7 +66,6 @@ class ProbeView {
     ProbeTexel cone{0, 0, 1, 1};
     FootIrradiance* measure = nullptr;  // where its cosine-weighted light goes (pass 0 of the correction)
     float distance = 0.0f;              // its nearest hit
-    bool missed = false, hit = false;   // some of its directions left the scene, some hit it
     glm::vec3 cos_all{0.0f}, cos_emitted{0.0f};
     int samples = 0;          // directions its value (apart from the emission seen directly) took
     float variance = 0.0f;    // of that value's luminance, from its directions' spread
