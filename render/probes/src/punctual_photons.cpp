@@ -67,12 +67,13 @@ void PunctualPhotons::trace_from_light(int i, int per_light, uint64_t seed, uint
   sources_.push_back(s);
   // A jittered grid over the square, its jitter from the view's seed.
   Rng rng = item_stream(seed, uint64_t(i), Purpose::kProbePhoton);
+  const Frame around(s.axis);
   for (int a = 0; a < side; ++a) {
     for (int b = 0; b < side; ++b) {
       const glm::vec2 jitter = rng.next_2d();
       const glm::vec2 u((float(a) + jitter.x) / float(side), (float(b) + jitter.y) / float(side));
       const glm::vec3 local = sample_uniform_cone(glm::min(u, glm::vec2(kOneMinusEpsilon)), s.cos_outer);
-      trace_photon(Ray{s.position, Frame(s.axis).to_world(local)}, source, rays);
+      trace_photon(Ray{s.position, around.to_world(local)}, source, rays);
     }
   }
 }
