@@ -3,7 +3,9 @@
 // masks for emitters, glass and nothing).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "phyir/core/error.h"
 #include "phyir/core/safe_math.h"
@@ -79,6 +81,65 @@ TEST(ProbeTexels, StratifiedSquareUsesEveryCellOnceForSquares) {
   for (const glm::vec2& p : points) cells.push_back(int(p.y * 3) * 3 + int(p.x * 3));
   std::sort(cells.begin(), cells.end());
   EXPECT_EQ(std::unique(cells.begin(), cells.end()), cells.end());
+}
+
+// Over many draws of 24 stratified points (5 x 5 cells), the stratified mean's variance
+// across draws against the mean of stratified_mean_variance and of the samples' spread
+// (their sample variance over the count).
+struct VarianceCheck {
+  double across_draws = 0.0, strata_estimate = 0.0, spread_estimate = 0.0;
+};
+template <typename F>
+VarianceCheck check_variance(F&& value_at, int count, int draws) {
+  Rng rng(31, 7);
+  std::vector<glm::vec2> points;
+  std::vector<float> values;
+  double sum_mean = 0.0, sum_mean2 = 0.0;
+  VarianceCheck check;
+  for (int d = 0; d < draws; ++d) {
+    stratified_square(count, rng, &points);
+    values.clear();
+    double sum = 0.0, sum2 = 0.0;
+    for (const glm::vec2& p : points) {
+      values.push_back(value_at(p, rng));
+      sum += values.back(), sum2 += double(values.back()) * values.back();
+    }
+    const double mean = sum / count;
+    sum_mean += mean, sum_mean2 += mean * mean;
+    check.strata_estimate += stratified_mean_variance(points, values, 8) / draws;
+    check.spread_estimate += (sum2 - sum * sum / count) / (double(count) * (count - 1)) / draws;
+  }
+  check.across_draws = (sum_mean2 - sum_mean * sum_mean / draws) / (draws - 1);
+  return check;
+}
+
+TEST(ProbeTexels, StrataVarianceOfNoisyLightIsItsTrueVariance) {
+  // Noise of variance 1/12 on a gentle gradient: each cell's variance is the noise's, and
+  // the gradient across a cell adds little.
+  const VarianceCheck c = check_variance([](glm::vec2 p, Rng& rng) { return 1.0f + 0.2f * p.x + rng.next_float(); },
+                                         24, 4000);
+  EXPECT_NEAR(c.strata_estimate / c.across_draws, 1.0, 0.15) << c.strata_estimate << " vs " << c.across_draws;
+  EXPECT_NEAR(c.spread_estimate / c.across_draws, 1.0, 0.15);
+}
+
+TEST(ProbeTexels, StrataVarianceCountsAnEdgeOnlyWhereItCrossesCells) {
+  // A sill's edge at x = 0.37, bright beyond it: the stratified mean varies only by the
+  // cells it crosses. The strata's estimate may err high (a pair across the edge) but stays
+  // near the truth; the spread counts the whole step, many times the truth.
+  const VarianceCheck c =
+      check_variance([](glm::vec2 p, Rng&) { return p.x < 0.37f ? 1.0f : 10.0f; }, 24, 4000);
+  EXPECT_GE(c.strata_estimate, 0.9 * c.across_draws) << c.strata_estimate << " vs " << c.across_draws;
+  EXPECT_LE(c.strata_estimate, 3.0 * c.across_draws);
+  EXPECT_GE(c.spread_estimate, 4.0 * c.strata_estimate) << c.spread_estimate;
+}
+
+TEST(ProbeTexels, StrataVarianceNeedsEnoughPairs) {
+  Rng rng(5, 1);
+  std::vector<glm::vec2> points;
+  stratified_square(4, rng, &points);  // 2 x 2 cells: 2 pairs
+  EXPECT_LT(stratified_mean_variance(points, {1.0f, 2.0f, 3.0f, 4.0f}, 8), 0.0);
+  EXPECT_GE(stratified_mean_variance(points, {1.0f, 2.0f, 3.0f, 4.0f}, 2), 0.0);
+  EXPECT_LT(stratified_mean_variance(points, {1.0f, 2.0f}, 2), 0.0);  // one value per point
 }
 
 TEST(ProbePlacement, OriginIsTheFirstSurfaceOffsetAlongItsNormalAndMasksFollowTheGBuffer) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "phyir/core/error.h"
@@ -114,6 +115,34 @@ void stratified_square(int count, Rng& rng, std::vector<glm::vec2>* points, cons
     points->push_back(glm::vec2(std::min((float(cells[k] % s) + jitter.x) / float(s), kBelowOne),
                                 std::min((float(cells[k] / s) + jitter.y) / float(t), kBelowOne)));
   }
+}
+
+double stratified_mean_variance(const std::vector<glm::vec2>& points, const std::vector<float>& values,
+                                int min_pairs) {
+  const int count = int(points.size());
+  if (count < 2 || values.size() != points.size()) return -1.0;
+  const int s = int(std::ceil(std::sqrt(double(count))));
+  const int t = (count + s - 1) / s;
+  thread_local std::vector<float> cell_value;
+  cell_value.assign(size_t(s) * t, std::numeric_limits<float>::quiet_NaN());
+  for (int k = 0; k < count; ++k) {
+    const int col = std::min(int(points[size_t(k)].x * float(s)), s - 1);
+    const int row = std::min(int(points[size_t(k)].y * float(t)), t - 1);
+    cell_value[size_t(row * s + col)] = values[size_t(k)];
+  }
+  double sum = 0.0;
+  int pairs = 0;
+  for (int row = 0; row < t; ++row) {
+    for (int col = 0; col + 1 < s; col += 2) {
+      const float a = cell_value[size_t(row * s + col)], b = cell_value[size_t(row * s + col + 1)];
+      if (std::isnan(a) || std::isnan(b)) continue;
+      sum += double(a - b) * double(a - b);
+      ++pairs;
+    }
+  }
+  if (pairs < min_pairs) return -1.0;
+  // Each pair estimates two cells' variances: the mean's is their average over count.
+  return sum / (2.0 * pairs * count);
 }
 
 }  // namespace phyir::render

@@ -30,7 +30,7 @@ bool one_surface(const ProbeSite& a, const ProbeSite& b, float max_baseline) {
 }
 
 // Two texels' values further apart than this many standard errors of their difference
-// (from their directions' spread) see different light: parallax has moved an edge or a
+// see different light: parallax has moved an edge or a
 // halo across one of them, and averaging would blur it.
 constexpr double kConsistentErrors = 3.0;
 

@@ -16,7 +16,10 @@
 //    (else one probe sees an occluder the other does not);
 //  - the two values agree within kConsistentErrors (3) standard errors of their difference,
 //    from each texel's variance: a halo or an edge moved across one of them by parallax
-//    differs by more than its noise, and averaging would blur it.
+//    differs by more than its noise, and averaging would blur it. A supersampled texel's
+//    variance comes from its strata's differences (stratified_mean_variance), which do not
+//    count an edge its strata resolve; the spread of its directions would, and let a
+//    window's sill moved by parallax pass for noise.
 // The window's probes draw interleaved strata (sub_stratum), so their average is a
 // stratified estimate over (2r+1)^2 times as many strata as one probe's.
 #include <cstdint>
@@ -37,11 +40,12 @@ glm::ivec2 sub_stratum(int i, int j, const ProbeSharing& sharing);
 
 // What shading records per texel (index probe * texels_per_probe + texel): the nearest hit
 // distance among its directions (infinity where all missed), its sample count and the
-// variance of its value's luminance (its directions' sample variance over their count).
+// variance of its value's luminance (from its strata's differences where it has enough of
+// them, else its directions' sample variance over their count).
 struct TexelRecords {
   std::vector<float> distance;
   std::vector<float> samples;
-  std::vector<float> variance;  // of its value's luminance, from its samples' spread
+  std::vector<float> variance;  // of its value's luminance
 };
 
 // The mosaic with each valid computed probe's texels averaged over its neighbours as above.

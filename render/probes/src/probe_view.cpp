@@ -47,6 +47,13 @@ constexpr int kLightPartEdgeSppFactor = 64;
 constexpr int kEmissionSppFactor = 16;
 constexpr int kEmissionEdgeSppFactor = 256;
 
+// A texel's variance (what sharing tests its neighbours' values against) comes from its
+// strata's differences where its samples make at least this many pairs of cells (the hard
+// batches, spp x hard_spp_factor and more), else from their spread: at the window's edge
+// seen from a sofa the spread counted the sill-to-sky step that stratification resolves,
+// and let neighbours whose sill sits a fifth of a texel away average in.
+constexpr int kMinStrataPairs = 8;
+
 // The foot correction needs this many probes to tell the difference common to all of them
 // (the last bounce) from each one's own (foot_correction.h).
 constexpr size_t kMinFootCorrections = 64;
@@ -423,6 +430,7 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* s
   const float solid_angle = equirect_texel_solid_angle(x.row, layout_.res_width, layout_.res_height);
   glm::dvec3 sum(0.0), sum_cos(0.0), sum_emitted_cos(0.0);
   double sum_y = 0.0, sum_y2 = 0.0;
+  w->luminances.clear();
   float lo = std::numeric_limits<float>::infinity(), hi = 0.0f;
   for (int s = 0; s < count; ++s) {
     const uint64_t key = sample_key(probe_seed_, id, uint64_t(first + s));
@@ -442,10 +450,13 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* s
     }
     const float y = luminance(L);
     sum_y += y, sum_y2 += double(y) * y;
+    w->luminances.push_back(y);
     lo = std::min(lo, y);
     hi = std::max(hi, y);
   }
-  x.variance = count > 1 ? float(std::max(sum_y2 - sum_y * sum_y / count, 0.0) / (double(count) * (count - 1))) : 0.0f;
+  x.variance = float(stratified_mean_variance(w->strata, w->luminances, kMinStrataPairs));
+  if (!(x.variance >= 0.0f))
+    x.variance = count > 1 ? float(std::max(sum_y2 - sum_y * sum_y / count, 0.0) / (double(count) * (count - 1))) : 0.0f;
   if (spread) *spread = count > 0 ? hi - lo : 0.0f;
   x.cos_all = glm::vec3(sum_cos / double(count));
   x.cos_emitted = glm::vec3(sum_emitted_cos / double(count));

@@ -53,6 +53,7 @@ class ProbeView {
   struct Worker {
     ProbeStats stats;
     std::vector<glm::vec2> strata;
+    std::vector<float> luminances;  // of one estimate's samples, in the strata's order
     std::vector<EmitterCoverage::View::Piece> pieces;
     std::vector<TileProbe> tile;
     std::vector<std::pair<uint64_t, glm::vec3>> emission_seen;  // added after sharing
@@ -68,7 +69,7 @@ class ProbeView {
     float distance = 0.0f;              // its nearest hit
     glm::vec3 cos_all{0.0f}, cos_emitted{0.0f};
     int samples = 0;          // directions its value (apart from the emission seen directly) took
-    float variance = 0.0f;    // of that value's luminance, from its directions' spread
+    float variance = 0.0f;    // of that value's luminance (ProbeView::estimate)
   };
   using Part = TexelEstimator::Part;
   // A texel between its first samples and its final value.

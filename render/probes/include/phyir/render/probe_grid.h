@@ -108,4 +108,13 @@ struct Interleave {
 };
 void stratified_square(int count, Rng& rng, std::vector<glm::vec2>* points, const Interleave& interleave = {});
 
+// The variance of the mean of `values`, drawn one at each of stratified_square's `points`
+// (same order), from the differences between cells 2k and 2k+1 of each row of its grid
+// (collapsed strata). A pair's squared difference estimates the two cells' variances plus
+// the difference of their means, so in expectation the estimate errs high, by the light's
+// variation across one cell; the samples' spread would count all of it across the square,
+// which stratification resolves (an edge through a texel). Negative where fewer than
+// `min_pairs` pairs of cells both hold a point.
+double stratified_mean_variance(const std::vector<glm::vec2>& points, const std::vector<float>& values, int min_pairs);
+
 }  // namespace phyir::render
