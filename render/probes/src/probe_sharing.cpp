@@ -30,8 +30,8 @@ bool one_surface(const ProbeSite& a, const ProbeSite& b, float max_baseline) {
 }
 
 // Two texels' values further apart than this many standard errors of their difference
-// see different light: parallax has moved an edge or a
-// halo across one of them, and averaging would blur it.
+// see different light: parallax has moved an edge or a halo across one of them, and
+// averaging would blur it.
 constexpr double kConsistentErrors = 3.0;
 
 bool consistent(const glm::dvec3& a, const glm::dvec3& b, float variance_a, float variance_b) {
