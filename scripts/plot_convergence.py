@@ -36,33 +36,25 @@ def main():
     args = sys.argv[1:]
     scenes = bool(args) and args[0] == "--scenes"
     if scenes:
-        if len(args) < 3:
-            sys.exit(__doc__)
-        output, title = args[1], "Path tracer: accuracy versus time, per scene"
-        for path in args[2:]:
-            plot_curve(ax_for(len(args) - 2), read(path), os.path.basename(os.path.dirname(os.path.abspath(path))))
+        args = args[1:]
+    if len(args) < 2:
+        sys.exit(__doc__)
+    output = args[0] if scenes else args[1]
+    fig, ax = plt.subplots(figsize=(7.5, 5) if scenes else (6, 4.2))
+    if scenes:  # out.png, then one CSV per scene, named by its folder
+        title = "Path tracer: accuracy versus time, per scene"
+        for path in args[1:]:
+            plot_curve(ax, read(path), os.path.basename(os.path.dirname(os.path.abspath(path))))
     else:
-        if len(args) < 2:
-            sys.exit(__doc__)
-        output, title = args[1], "Accuracy versus time"
-        plot_curve(ax_for(1), read(args[0]), "phyir path tracer")
-        if len(args) > 2:
-            title += "\n" + args[2]
-    ax = plt.gca()
+        title = "Accuracy versus time" + ("\n" + args[2] if len(args) > 2 else "")
+        plot_curve(ax, read(args[0]), "phyir path tracer")
     ax.set_xlabel("render time (s)")
     ax.set_ylabel("relative RMSE vs converged reference")
     ax.set_title(title, fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7)
-    plt.gcf().tight_layout()
-    plt.gcf().savefig(output, dpi=120)
-
-
-def ax_for(curves):
-    """The one axes of the figure, made on first use (larger for several curves)."""
-    if not plt.get_fignums():
-        plt.subplots(figsize=(6, 4.2) if curves == 1 else (7.5, 5))
-    return plt.gca()
+    fig.tight_layout()
+    fig.savefig(output, dpi=120)
 
 
 if __name__ == "__main__":

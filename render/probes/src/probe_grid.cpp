@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "phyir/core/error.h"
 #include "phyir/core/safe_math.h"
@@ -91,12 +92,22 @@ glm::vec3 ProbeTexel::direction(const glm::vec2& a) const {
   return equirect_direction((col_ + a.x) / width_, float(cos_theta), float(std::sqrt(1.0 - cos_theta * cos_theta)));
 }
 
+namespace {
+
+// The s x t grid stratified_square draws `count` points on: s = ceil(sqrt(count)) columns,
+// as few rows as hold them.
+std::pair<int, int> strata_grid(int count) {
+  const int s = int(std::ceil(std::sqrt(double(count))));
+  return {s, (count + s - 1) / s};
+}
+
+}  // namespace
+
 void stratified_square(int count, Rng& rng, std::vector<glm::vec2>* points, const Interleave& interleave) {
   const int n = std::max(interleave.count, 1);
   points->clear();
   if (count <= 0) return;
-  const int s = int(std::ceil(std::sqrt(double(count))));
-  const int t = (count + s - 1) / s;
+  const auto [s, t] = strata_grid(count);
   // Partial Fisher-Yates: the first `count` entries of a random permutation of the s t cells.
   thread_local std::vector<int> cells;
   cells.resize(size_t(s) * t);
@@ -121,8 +132,7 @@ double stratified_mean_variance(const std::vector<glm::vec2>& points, const std:
                                 int min_pairs) {
   const int count = int(points.size());
   if (count < 2 || values.size() != points.size()) return -1.0;
-  const int s = int(std::ceil(std::sqrt(double(count))));
-  const int t = (count + s - 1) / s;
+  const auto [s, t] = strata_grid(count);
   thread_local std::vector<float> cell_value;
   cell_value.assign(size_t(s) * t, std::numeric_limits<float>::quiet_NaN());
   for (int k = 0; k < count; ++k) {
