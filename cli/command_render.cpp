@@ -1,4 +1,5 @@
 // phyir render: one view of a glTF scene to HDR colour, AOVs and render.json.
+#include <cmath>
 #include <memory>
 #include <sstream>
 
@@ -23,6 +24,7 @@ struct RenderFlags {
   std::string probe_grid = "128x256";
   std::string probe_res = "16x32";
   std::string probe_mode = "cache";
+  std::string exposure = "auto";
 };
 
 glm::vec3 parse_position(const std::string& text) {
@@ -32,6 +34,15 @@ glm::vec3 parse_position(const std::string& text) {
   if (!(in >> p.x >> c1 >> p.y >> c2 >> p.z) || c1 != ',' || c2 != ',' || !in.eof())
     fail("--camera '{}' is not X,Y,Z (three comma-separated numbers, metres)", text);
   return p;
+}
+
+// A number of stops, finite, or an error naming the flag.
+float parse_stops(const std::string& text, const char* flag) {
+  std::istringstream in(text);
+  float stops = 0.0f;
+  if (!(in >> stops) || !in.eof() || !std::isfinite(stops))
+    fail("{} '{}' must be 'auto' or a finite number of stops", flag, text);
+  return stops;
 }
 
 }  // namespace
@@ -55,7 +66,10 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--threads", job.threads, "worker threads (0 = all cores)")->capture_default_str();
   cmd->add_option("--environment", flags->environment, "HDR equirectangular environment map (EXR/HDR)");
   cmd->add_option("--environment-scale", job.environment_scale, "multiplier on the environment")->capture_default_str();
-  cmd->add_option("--exposure", job.exposure, "exposure in stops for color.png")->capture_default_str();
+  cmd->add_option("--exposure", flags->exposure,
+                  "color.png's exposure: auto (the 95th percentile of color.exr's values maps to 0.9, as the "
+                  "dataset's input.png) or a number of stops; written to render.json")
+      ->capture_default_str();
   cmd->add_option("--view", job.view, "OpenColorIO view for color.png: Standard or Raw")->capture_default_str();
   cmd->add_flag("--no-aovs", flags->no_aovs, "write color only");
   cmd->add_flag("--force-all-effects", job.settings.force_all_effects,
@@ -98,6 +112,8 @@ void add_render_command(CLI::App& app) {
     job.projection = render::parse_projection(flags->projection);
     if (!flags->camera.empty()) job.camera_position = parse_position(flags->camera);
     job.environment_path = flags->environment;
+    job.auto_exposure = flags->exposure == "auto";
+    if (!job.auto_exposure) job.exposure = parse_stops(flags->exposure, "--exposure");
     job.settings.aovs = !flags->no_aovs;
     job.settings.progress = !flags->quiet;
     render::parse_size(flags->probe_grid, "--probe-grid", &job.probe.layout.grid_height, &job.probe.layout.grid_width);

@@ -6,16 +6,12 @@
 
 #include <fmt/format.h>
 
+#include "phyir/core/auto_exposure.h"
 #include "phyir/core/colour.h"
 #include "phyir/core/image_io.h"
 #include "phyir/dataset/checksum.h"
 
 namespace phyir::dataset {
-
-namespace {
-// A black or nearly black view would otherwise ask for an absurd gain.
-constexpr float kMaxAutoStops = 32.0f;
-}  // namespace
 
 nlohmann::json InputExposure::to_json(const InputSettings& settings) const {
   nlohmann::json j = {{"file", "input.png"},
@@ -31,19 +27,9 @@ nlohmann::json InputExposure::to_json(const InputSettings& settings) const {
 InputExposure choose_input_exposure(const Image& color, const InputSettings& settings, uint64_t view_seed) {
   InputExposure e;
   if (settings.auto_exposure) {
-    std::vector<float> values;
-    const int channels = std::min(color.channels, 3);
-    values.reserve(size_t(color.width) * color.height * channels);
-    for (size_t p = 0; p + color.channels <= color.pixels.size(); p += color.channels)
-      for (int c = 0; c < channels; ++c) values.push_back(color.pixels[p + c]);
-    if (!values.empty()) {
-      const size_t k = std::min(values.size() - 1, static_cast<size_t>(settings.percentile * double(values.size())));
-      std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
-      e.percentile_value = values[k];
-    }
-    if (e.percentile_value > 0.0f && std::isfinite(e.percentile_value))
-      e.base_stops = std::clamp(float(std::log2(settings.target / double(e.percentile_value))), -kMaxAutoStops,
-                                kMaxAutoStops);
+    const AutoExposure a = auto_exposure(color, settings.percentile, settings.target);
+    e.percentile_value = a.percentile_value;
+    e.base_stops = a.stops;
   } else {
     e.base_stops = settings.exposure_stops;
   }

@@ -63,7 +63,7 @@ ClearanceProbe probe_clearance(const scenes::Scene& scene, const render::Acceler
     ray.origin = p;
     ray.direction = fibonacci_direction(i, rays);
     render::Hit hit;
-    if (!accelerator.intersect(ray, &hit)) {
+    if (!accelerator.intersect(ray, &hit, render::Coverage::kBlendSolid)) {
       ++probe.misses;
       continue;
     }

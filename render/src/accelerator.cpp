@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <deque>
 #include <limits>
@@ -12,6 +13,7 @@
 #include <string>
 
 #include "phyir/core/error.h"
+#include "phyir/core/pcg32.h"
 #include "phyir/render/material_eval.h"
 
 namespace phyir::render {
@@ -52,25 +54,107 @@ std::string geometry_problem(const scenes::Mesh& mesh) {
   return {};
 }
 
-// What the alpha-mask filter needs to evaluate alpha at a hit.
-struct MaskData {
+// What the coverage filter needs to evaluate alpha at a hit.
+struct CoverageData {
   const scenes::Scene* scene;
   const scenes::Mesh* mesh;
   const scenes::Material* material;
 };
 
-// Rejects hits whose base-colour alpha is below the cutoff (glTF alphaMode MASK), for both
-// closest-hit and occlusion queries, so cut-out leaves and grilles let light through.
-void alpha_mask_filter(const RTCFilterFunctionNArguments* args) {
-  const auto* data = static_cast<const MaskData*>(args->geometryUserPtr);
+// Embree hands the filter the context it was given; ours carries the query's coverage mode
+// and, for transmittance queries, the product so far and the blended primitives already
+// counted (Embree may report one primitive more than once: spatial splits put it in
+// several leaves).
+struct CoverageContext {
+  RTCIntersectContext base;  // first member: Embree sees only this
+  Coverage mode;
+  float transmittance = 1.0f;
+  static constexpr int kCounted = 8;
+  int counted = 0;
+  uint64_t counted_ids[kCounted];
+
+  // False when this primitive was already counted; records it otherwise (when full, the
+  // caller falls back to the stochastic decision, which repeats consistently).
+  bool first_report(uint64_t id, bool* recorded) {
+    for (int k = 0; k < counted; ++k)
+      if (counted_ids[k] == id) return false;
+    *recorded = counted < kCounted;
+    if (*recorded) counted_ids[counted++] = id;
+    return true;
+  }
+};
+
+// A uniform number in [0, 1) that depends only on the ray and the primitive: Embree may
+// report one primitive more than once (spatial splits put it in several leaves) and every
+// report must take the same decision; it is the same whatever thread traces the ray.
+float coverage_variate(const RTCFilterFunctionNArguments* args, unsigned i, unsigned prim, unsigned geom) {
+  RTCRayN* ray = args->ray;
+  const unsigned n = args->N;
+  const float parts[6] = {RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i), RTCRayN_org_z(ray, n, i),
+                          RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i), RTCRayN_dir_z(ray, n, i)};
+  uint64_t h = mix64((uint64_t(geom) << 32) | prim);
+  for (float f : parts) {
+    uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    h = mix64(h ^ bits);
+  }
+  return float(h >> 40) * 0x1.0p-24f;
+}
+
+// glTF's alpha coverage (alphaMode MASK and BLEND), for closest-hit and occlusion queries
+// alike: MASK drops hits below the cutoff, so cut-out leaves and grilles let light through;
+// BLEND keeps a hit with probability alpha (stochastic coverage, docs/brdf.md), so on
+// average a fraction 1 - alpha of what lies behind shows through. Queries about geometry
+// rather than light ask for blended surfaces as solid or as absent instead.
+void coverage_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* data = static_cast<const CoverageData*>(args->geometryUserPtr);
+  auto* context = reinterpret_cast<CoverageContext*>(args->context);
+  const Coverage mode = context->mode;
+  const bool blend = data->material->alpha_mode == scenes::AlphaMode::Blend;
+  if (blend && mode == Coverage::kBlendSolid) return;
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
+    if (blend && mode == Coverage::kBlendAbsent) {
+      args->valid[i] = 0;
+      continue;
+    }
     const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
     const glm::vec2 b12(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
     const float alpha = material_alpha(*data->scene, *data->mesh, *data->material,
                                        data->mesh->triangles[prim], barycentrics(b12));
-    if (alpha < data->material->alpha_cutoff) args->valid[i] = 0;
+    const unsigned geom = RTCHitN_geomID(args->hit, args->N, i);
+    if (blend && mode == Coverage::kTransmittance) {
+      // The product of (1 - alpha) over the blended surfaces crossed; the query goes on.
+      bool recorded = false;
+      if (context->first_report((uint64_t(geom) << 32) | prim, &recorded)) {
+        if (recorded) {
+          context->transmittance *= 1.0f - std::clamp(alpha, 0.0f, 1.0f);
+          args->valid[i] = 0;
+          continue;
+        }
+      } else {
+        args->valid[i] = 0;
+        continue;
+      }
+    }
+    const bool kept = blend ? coverage_variate(args, i, prim, geom) < alpha : alpha >= data->material->alpha_cutoff;
+    if (!kept) args->valid[i] = 0;
   }
+}
+
+CoverageContext coverage_context(Coverage mode) {
+  CoverageContext context;
+  rtcInitIntersectContext(&context.base);
+  context.mode = mode;
+  return context;
+}
+
+// Embree picks its kernels by the processor. PHYIR_EMBREE_MAX_ISA (sse2, sse4.2, avx, avx2,
+// avx512) caps them, so that one machine can run another processor's code paths
+// (scripts/test_isa_levels.sh).
+std::string device_config() {
+  const char* isa = std::getenv("PHYIR_EMBREE_MAX_ISA");
+  return isa && *isa ? fmt::format("max_isa={}", isa) : std::string();
 }
 
 void fill_ray(const Ray& ray, RTCRay* r) {
@@ -93,7 +177,7 @@ void fill_ray(const Ray& ray, RTCRay* r) {
 struct Accelerator::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
-  std::deque<MaskData> masks;  // stable addresses for the filters' user pointers
+  std::deque<CoverageData> coverage;  // stable addresses for the filters' user pointers
 
   std::mutex error_mutex;
   std::string first_error;
@@ -121,7 +205,7 @@ struct Accelerator::Impl {
 Accelerator::Accelerator(const scenes::Scene& scene) : impl_(std::make_unique<Impl>()) {
   const std::string source = scene.source.empty() ? std::string("<scene>") : scene.source;
 
-  impl_->device = rtcNewDevice(nullptr);
+  impl_->device = rtcNewDevice(device_config().c_str());
   if (!impl_->device)
     fail("{}: cannot create the Embree device ({})", source, error_name(rtcGetDeviceError(nullptr)));
   rtcSetDeviceErrorFunction(impl_->device, &Impl::on_error, impl_.get());
@@ -133,7 +217,7 @@ Accelerator::Accelerator(const scenes::Scene& scene) : impl_(std::make_unique<Im
   rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
 
-  impl_->masks.clear();
+  impl_->coverage.clear();
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const scenes::Mesh& mesh = scene.meshes[m];
     // Skipped meshes leave their geometry id unused, so ids stay mesh indices.
@@ -161,11 +245,12 @@ Accelerator::Accelerator(const scenes::Scene& scene) : impl_(std::make_unique<Im
 
     if (mesh.material >= 0 && static_cast<size_t>(mesh.material) < scene.materials.size()) {
       const scenes::Material& material = scene.materials[mesh.material];
-      if (material.alpha_mode == scenes::AlphaMode::Mask) {
-        impl_->masks.push_back(MaskData{&scene, &mesh, &material});
-        rtcSetGeometryUserData(geom, &impl_->masks.back());
-        rtcSetGeometryIntersectFilterFunction(geom, &alpha_mask_filter);
-        rtcSetGeometryOccludedFilterFunction(geom, &alpha_mask_filter);
+      // Opaque meshes get no filter: a scene without alpha runs no code for it.
+      if (material.alpha_mode != scenes::AlphaMode::Opaque) {
+        impl_->coverage.push_back(CoverageData{&scene, &mesh, &material});
+        rtcSetGeometryUserData(geom, &impl_->coverage.back());
+        rtcSetGeometryIntersectFilterFunction(geom, &coverage_filter);
+        rtcSetGeometryOccludedFilterFunction(geom, &coverage_filter);
       }
     }
 
@@ -181,15 +266,14 @@ Accelerator::Accelerator(const scenes::Scene& scene) : impl_(std::make_unique<Im
 
 Accelerator::~Accelerator() = default;
 
-bool Accelerator::intersect(const Ray& ray, Hit* hit) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+bool Accelerator::intersect(const Ray& ray, Hit* hit, Coverage coverage) const {
+  CoverageContext context = coverage_context(coverage);
   RTCRayHit rh;
   fill_ray(ray, &rh.ray);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->scene, &context, &rh);
+  rtcIntersect1(impl_->scene, &context.base, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   hit->t = rh.ray.tfar;
   hit->mesh = static_cast<int>(rh.hit.geomID);
@@ -198,20 +282,27 @@ bool Accelerator::intersect(const Ray& ray, Hit* hit) const {
   return true;
 }
 
-bool Accelerator::occluded(const Ray& ray) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+float Accelerator::transmittance(const Ray& ray) const {
+  CoverageContext context = coverage_context(Coverage::kTransmittance);
   RTCRay r;
   fill_ray(ray, &r);
-  rtcOccluded1(impl_->scene, &context, &r);
+  rtcOccluded1(impl_->scene, &context.base, &r);
+  if (r.tfar == -std::numeric_limits<float>::infinity()) return 0.0f;
+  return context.transmittance;
+}
+
+bool Accelerator::occluded(const Ray& ray, Coverage coverage) const {
+  CoverageContext context = coverage_context(coverage);
+  RTCRay r;
+  fill_ray(ray, &r);
+  rtcOccluded1(impl_->scene, &context.base, &r);
   // Embree sets tfar to -inf when it finds any hit.
   return r.tfar == -std::numeric_limits<float>::infinity();
 }
 
 void Accelerator::intersect_batch(const Ray* rays, size_t count, float* t_out) const {
   constexpr size_t kLanes = 16;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  CoverageContext context = coverage_context(Coverage::kStochastic);
   alignas(64) RTCRayHit16 packet;
   alignas(64) int valid[kLanes];
   for (size_t start = 0; start < count; start += kLanes) {
@@ -237,7 +328,7 @@ void Accelerator::intersect_batch(const Ray* rays, size_t count, float* t_out) c
       packet.hit.primID[i] = RTC_INVALID_GEOMETRY_ID;
       packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
     }
-    rtcIntersect16(valid, impl_->scene, &context, &packet);
+    rtcIntersect16(valid, impl_->scene, &context.base, &packet);
     for (size_t i = 0; i < n; ++i)
       t_out[start + i] = packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID
                              ? std::numeric_limits<float>::infinity()

@@ -71,17 +71,20 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
   };
   auto visible = [&] {
     ++counters->rays;
-    return !scene.accelerator().occluded(shadow_ray(x, ls));
+    return scene.accelerator().transmittance(shadow_ray(x, ls));
   };
   // Without the roulette the value is only needed where the light is in view.
-  if (!(options.weak > 0.0f)) return visible() ? value() : glm::vec3(0.0f);
+  if (!(options.weak > 0.0f)) {
+    const float through = visible();
+    return through > 0.0f ? through * value() : glm::vec3(0.0f);
+  }
   const glm::vec3 contribution = value();
   float keep = 1.0f;
   if (const float y = luminance(contribution); y < options.weak) {
     keep = y / options.weak;
     if (!(roulette->next_float() < keep)) return glm::vec3(0.0f);
   }
-  return visible() ? contribution / keep : glm::vec3(0.0f);
+  return contribution * (visible() / keep);
 }
 
 glm::vec3 punctual_light(const RenderScene& scene, const ShadingPoint& x, Lobes lobes, PathCounters* counters,
@@ -103,7 +106,7 @@ glm::vec3 punctual_light(const RenderScene& scene, const ShadingPoint& x, Lobes 
     ls.wi = seen.wi;
     ls.distance = seen.distance;
     ++counters->rays;
-    if (!scene.accelerator().occluded(shadow_ray(x, ls))) sum += f * seen.irradiance * wi.z;
+    sum += f * seen.irradiance * (wi.z * scene.accelerator().transmittance(shadow_ray(x, ls)));
   }
   return is_finite(sum) ? sum : glm::vec3(0.0f);
 }
@@ -119,10 +122,10 @@ glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint&
   if (!(wi.z > 0.0f) || !(glm::dot(wi_world, x.geometric_normal) > 0.0f) || !(max_component(f) > 0.0f))
     return glm::vec3(0.0f);
   ++counters->rays;
-  if (scene.accelerator().occluded(Ray{spawn_origin(x.position, x.geometric_normal, wi_world), wi_world}))
-    return glm::vec3(0.0f);
+  const float through = scene.accelerator().transmittance(Ray{spawn_origin(x.position, x.geometric_normal, wi_world), wi_world});
+  if (!(through > 0.0f)) return glm::vec3(0.0f);
   const float w = power_heuristic(pdf, lobe_pdf(x, lobes, wi));
-  return throughput * f * Le * (wi.z * w / pdf);
+  return throughput * f * Le * (wi.z * w * through / pdf);
 }
 
 float emitter_hit_weight(const RenderScene& scene, const glm::vec3& from, float brdf_pdf, const SurfaceInteraction& hit,

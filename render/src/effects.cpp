@@ -7,7 +7,8 @@ namespace phyir::render {
 nlohmann::json Effects::to_json() const {
   return {{"emitter_sampling", emitters}, {"punctual_lights", punctual_lights}, {"environment", environment},
           {"transmission", transmission}, {"textures", textures},
-          {"mirrors", mirrors},           {"alpha", alpha}};
+          {"mirrors", mirrors},           {"alpha_masking", alpha_masking},
+          {"alpha_blending", alpha_blending}};
 }
 
 Effects analyse_effects(const scenes::Scene& scene, bool has_environment) {
@@ -27,14 +28,15 @@ Effects analyse_effects(const scenes::Scene& scene, bool has_environment) {
     // A metallic-roughness texture can reach roughness 0 anywhere its factor allows.
     e.mirrors |= is_mirror(m.roughness_factor) ||
                  (m.metallic_roughness_texture.present() && m.roughness_factor > 0.0f);
-    e.alpha |= m.alpha_mode != scenes::AlphaMode::Opaque;
+    e.alpha_masking |= m.alpha_mode == scenes::AlphaMode::Mask;
+    e.alpha_blending |= m.alpha_mode == scenes::AlphaMode::Blend;
   }
   return e;
 }
 
 Effects all_effects() {
   Effects e;
-  e.emitters = e.punctual_lights = e.environment = e.transmission = e.textures = e.mirrors = e.alpha = true;
+  e.emitters = e.punctual_lights = e.environment = e.transmission = e.textures = e.mirrors = e.alpha_masking = e.alpha_blending = true;
   return e;
 }
 

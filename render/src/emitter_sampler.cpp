@@ -453,13 +453,13 @@ bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const gl
   out->triangle = e.triangle;
   out->delta = false;
   // A one-sided emitter seen from behind sends nothing toward the reference, nor does a
-  // cut-out (alpha MASK) part, which the accelerator treats as empty space.
+  // cut-out (alpha MASK) part, which the accelerator treats as empty space; a blended one
+  // sends alpha of its emission, the share of rays that stop on it (docs/brdf.md).
   const glm::uvec3 tri = mesh.triangles[e.triangle];
   const bool sees_emitting_side = g.cos_light > 0.0f || material.double_sided;
-  const bool cut_out = material.alpha_mode == scenes::AlphaMode::Mask &&
-                       material_alpha(*scene_, mesh, material, tri, bary) < material.alpha_cutoff;
-  out->radiance = sees_emitting_side && !cut_out ? emitted_radiance(*scene_, mesh, material, tri, bary)
-                                                 : glm::vec3(0.0f);
+  out->radiance = sees_emitting_side ? coverage(material, material_alpha(*scene_, mesh, material, tri, bary)) *
+                                           emitted_radiance(*scene_, mesh, material, tri, bary)
+                                     : glm::vec3(0.0f);
   return true;
 }
 

@@ -39,7 +39,7 @@ bool side_is_enclosed(const scenes::Scene& scene, const Accelerator& accelerator
       const glm::vec3 d = frame.to_world(local);
       const Ray ray{spawn_origin(p, n, d), d};
       Hit hit;
-      if (!accelerator.intersect(ray, &hit) || !hits_a_back_face(scene, ray, hit)) return false;
+      if (!accelerator.intersect(ray, &hit, Coverage::kBlendAbsent) || !hits_a_back_face(scene, ray, hit)) return false;
     }
   }
   return true;

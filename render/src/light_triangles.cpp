@@ -13,7 +13,9 @@ std::vector<LightTriangle> light_triangles(const scenes::Scene& scene) {
     const scenes::Material& material = scene.materials[size_t(mesh.material)];
     if (!material.is_emissive()) continue;
     const glm::vec3 emission = glm::max(material.emission(), glm::vec3(0.0f));
-    const bool uniform = !material.emissive_texture.present() && material.alpha_mode != scenes::AlphaMode::Mask &&
+    // Alpha (MASK or BLEND) makes what a triangle sends vary over it and lets what lies
+    // behind show through: such emitters are only ever sampled.
+    const bool uniform = !material.emissive_texture.present() && material.alpha_mode == scenes::AlphaMode::Opaque &&
                          is_finite(emission);
     for (const glm::uvec3& t : mesh.triangles) {
       if (t.x >= mesh.positions.size() || t.y >= mesh.positions.size() || t.z >= mesh.positions.size()) continue;

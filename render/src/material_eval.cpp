@@ -77,6 +77,14 @@ float material_alpha(const scenes::Scene& scene, const scenes::Mesh& mesh, const
   return phyir::finite_or(alpha, 1.0f);
 }
 
+float coverage(const scenes::Material& material, float alpha) {
+  switch (material.alpha_mode) {
+    case scenes::AlphaMode::Mask: return alpha >= material.alpha_cutoff ? 1.0f : 0.0f;
+    case scenes::AlphaMode::Blend: return clamp01(alpha);
+    default: return 1.0f;
+  }
+}
+
 glm::vec3 emitted_radiance(const scenes::Scene& scene, const scenes::Mesh& mesh,
                            const scenes::Material& material, const glm::uvec3& tri, const glm::vec3& bary) {
   glm::vec3 e = material.emission();
@@ -120,12 +128,7 @@ MaterialPoint evaluate_material(const scenes::Scene& scene, const scenes::Mesh& 
   m.transmission = clamp01(phyir::finite_or(transmission, 0.0f));
   m.ior = (std::isfinite(material.ior) && material.ior >= 1.0f) ? material.ior : 1.5f;
 
-  const float alpha = phyir::finite_or(base.w, 1.0f);
-  switch (material.alpha_mode) {
-    case scenes::AlphaMode::Opaque: m.opacity = 1.0f; break;
-    case scenes::AlphaMode::Mask: m.opacity = alpha >= material.alpha_cutoff ? 1.0f : 0.0f; break;
-    case scenes::AlphaMode::Blend: m.opacity = clamp01(alpha); break;
-  }
+  m.opacity = coverage(material, phyir::finite_or(base.w, 1.0f));
 
   // Tangent-space normal: (texel * 2 - 1) * (scale, scale, 1) (glTF 2.0, 3.9.3).
   if (slot_valid(scene, material.normal_texture)) {

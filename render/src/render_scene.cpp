@@ -170,9 +170,9 @@ SurfaceInteraction RenderScene::interact(const Ray& ray, const Hit& hit) const {
   return si;
 }
 
-bool RenderScene::trace(const Ray& ray, SurfaceInteraction* si) const {
+bool RenderScene::trace(const Ray& ray, SurfaceInteraction* si, Coverage coverage) const {
   Hit hit;
-  if (!accelerator_.intersect(ray, &hit)) return false;
+  if (!accelerator_.intersect(ray, &hit, coverage)) return false;
   *si = interact(ray, hit);
   return true;
 }

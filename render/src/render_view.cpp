@@ -65,7 +65,9 @@ uint64_t render_gbuffer(const RenderScene& scene, const CameraModel& camera, Fil
       for (int x = 0; x < film->width(); ++x) {
         const Ray ray = camera.generate_ray(glm::vec2(x + 0.5f, y + 0.5f));
         SurfaceInteraction si;
-        film->set_gbuffer(x, y, scene.trace(ray, &si) ? GBufferSample::from_hit(si) : GBufferSample{});
+        // The AOVs record the first surface, blended or not, and mark a blended one in
+        // mask_transparent (docs/conventions.md): a pixel's labels do not flicker with alpha.
+        film->set_gbuffer(x, y, scene.trace(ray, &si, Coverage::kBlendSolid) ? GBufferSample::from_hit(si) : GBufferSample{});
       }
     }
   });

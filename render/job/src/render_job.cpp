@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "phyir/core/atomic_file.h"
+#include "phyir/core/auto_exposure.h"
 #include "phyir/core/colour.h"
 #include "phyir/core/error.h"
 #include "phyir/core/image_io.h"
@@ -228,7 +229,8 @@ RenderReport run_render_job(const RenderJob& job) {
     report.files.insert(report.files.end(), report.probes->files.begin(), report.probes->files.end());
   }
   start = Clock::now();
-  write_image(job.out_dir / "color.png", linear_to_display(out.film.color(), job.exposure, job.view));
+  report.exposure = job.auto_exposure ? auto_exposure(out.film.color()) : AutoExposure{job.exposure, 0.0f};
+  write_image(job.out_dir / "color.png", linear_to_display(out.film.color(), report.exposure.stops, job.view));
   report.files.push_back("color.png");
   report.timings.write_seconds = color_write_seconds + seconds_since(start);
   report.timings.total_seconds = seconds_since(total_start);
@@ -274,8 +276,10 @@ nlohmann::json RenderReport::to_json() const {
                         {"environment", environment.path},
                         {"environment_scale", environment.scale},
                         {"environment_source", environment.source},
-                        {"exposure", job.exposure},
+                        {"exposure", job.auto_exposure ? nlohmann::json("auto") : nlohmann::json(job.exposure)},
                         {"view", job.view}};
+  report["color_png"] = {{"exposure_stops", exposure.stops}, {"view", job.view}};
+  if (job.auto_exposure) report["color_png"]["percentile_value"] = exposure.percentile_value;
   report["effects"] = effects.to_json();
   report["counters"] = stats.to_json();
   report["timings"] = {{"load_seconds", timings.load_seconds},

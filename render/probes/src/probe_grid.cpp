@@ -52,7 +52,7 @@ std::vector<ProbeSite> place_probes(const RenderScene& scene, const CameraModel&
         ProbeSite& site = sites[size_t(i) * layout.grid_width + j];
         const Ray ray = camera.generate_ray(probe_pixel_position(layout, camera, i, j));
         SurfaceInteraction si;
-        if (!scene.trace(ray, &si)) continue;  // kNothing, all zeros
+        if (!scene.trace(ray, &si, Coverage::kBlendSolid)) continue;  // kNothing, all zeros
         // The G-buffer's own flags, so the probe mask agrees with mask_emissive and
         // mask_transparent for a grid of the panorama's resolution.
         const GBufferSample g = GBufferSample::from_hit(si);
@@ -68,7 +68,7 @@ std::vector<ProbeSite> place_probes(const RenderScene& scene, const CameraModel&
           Ray up{spawn_origin(si.position, si.geometric_normal, si.shading_normal), si.shading_normal};
           up.tmax = offset;
           Hit hit;
-          if (scene.accelerator().intersect(up, &hit)) site.offset = 0.5f * hit.t;
+          if (scene.accelerator().intersect(up, &hit, Coverage::kBlendSolid)) site.offset = 0.5f * hit.t;
         }
         site.origin = si.position + site.offset * si.shading_normal;
       }

@@ -15,7 +15,8 @@ struct Effects {
   bool transmission = false;  // the dielectric (glass) lobe
   bool textures = false;      // any texture fetch
   bool mirrors = false;       // delta specular lobes (roughness below kMirrorRoughness)
-  bool alpha = false;         // alpha masking / blending
+  bool alpha_masking = false;   // alphaMode MASK: hits below the cutoff dropped (Embree filter)
+  bool alpha_blending = false;  // alphaMode BLEND: stochastic coverage (Embree filter)
 
   // Whether next-event estimation runs at all.
   bool light_sampling() const { return emitters || punctual_lights; }

@@ -27,8 +27,9 @@ class RenderScene {
   // any finite normal.
   SurfaceInteraction interact(const Ray& ray, const Hit& hit) const;
 
-  // Closest surface along the ray; false on a miss.
-  bool trace(const Ray& ray, SurfaceInteraction* si) const;
+  // Closest surface along the ray; false on a miss. Light transport keeps a blended
+  // surface with probability alpha; the AOVs ask for Coverage::kBlendSolid.
+  bool trace(const Ray& ray, SurfaceInteraction* si, Coverage coverage = Coverage::kStochastic) const;
 
   // Only the emission of the closest surface (zero if it does not emit) and its distance;
   // false on a miss. The same values as trace(), without evaluating a surface that cannot

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "phyir/core/auto_exposure.h"
 #include "phyir/render/camera.h"
 #include "phyir/render/environment_light.h"
 #include "phyir/render/probe_renderer.h"
@@ -33,7 +34,10 @@ struct RenderJob {
   // whichever is used (the scene's times its own scale).
   std::filesystem::path environment_path;
   float environment_scale = 1.0f;
-  float exposure = 0.0f;                     // stops, for color.png only
+  // color.png's exposure: the toolkit's auto exposure (core/auto_exposure.h, as the
+  // dataset's input.png) unless a fixed number of stops is given. color.exr is never scaled.
+  bool auto_exposure = true;
+  float exposure = 0.0f;                     // stops, when !auto_exposure
   std::string view = "Standard";             // OCIO view for color.png
   // Per-pixel light probes (docs/probes.md): rendered after the view, only when asked, from
   // streams of their own (color.exr is the same with or without them). Their seed and path
@@ -81,6 +85,7 @@ struct RenderReport {
   RenderStats stats;          // the colour and AOV passes
   Timings timings;
   std::optional<Probes> probes;
+  AutoExposure exposure;      // color.png's: the stops used (fixed or auto) and, auto, the percentile
   std::vector<std::string> files;  // written into job.out_dir, render.json excluded
 
   // render.json (docs/conventions.md).
