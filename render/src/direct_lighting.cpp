@@ -15,6 +15,7 @@ Frame shading_frame(const SurfaceInteraction& si, const glm::vec3& wo_world) {
 ShadingPoint shading_point(const SurfaceInteraction& si, const glm::vec3& wo_world) {
   ShadingPoint x;
   x.position = si.position;
+  x.shadow_lift = si.shadow_lift;
   x.geometric_normal = si.geometric_normal;
   x.frame = shading_frame(si, wo_world);
   x.wo = x.frame.to_local(wo_world);
@@ -41,11 +42,21 @@ float lobe_pdf(const ShadingPoint& x, Lobes lobes, const glm::vec3& wi) {
   }
 }
 
+// Whether light from wi (above the shading normal's horizon) can reach x: from above the
+// facet's plane always; from below it (the shadow terminator of a coarse smooth-shaded mesh)
+// only where x was lifted onto the smooth surface, whose shadow ray may clear the mesh
+// (docs/brdf.md, "Smooth normals on coarse meshes"). A flat or concave facet, a normal map:
+// the facet's plane decides, as in pbrt and Mitsuba.
+bool can_arrive(const ShadingPoint& x, const glm::vec3& wi_world) {
+  return glm::dot(wi_world, x.geometric_normal) > 0.0f || x.shadow_lift != glm::vec3(0.0f);
+}
+
 // The shadow ray of a light sample: to a point on an emitter, to a point light, or out of
-// the scene towards a directional light.
+// the scene towards a directional light; it always leaves on the shaded side of the facet.
 Ray shadow_ray(const ShadingPoint& x, const EmitterSample& ls) {
-  if (std::isinf(ls.distance)) return Ray{spawn_origin(x.position, x.geometric_normal, ls.wi), ls.wi};
-  return shadow_ray_to(x.position, x.geometric_normal, ls.position, ls.normal);
+  const glm::vec3 origin = offset_ray_origin(x.position + x.shadow_lift, x.geometric_normal);
+  if (std::isinf(ls.distance)) return Ray{origin, ls.wi};
+  return shadow_ray_between(origin, ls.position, ls.normal);
 }
 
 }  // namespace
@@ -60,8 +71,7 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
   const glm::vec3 wi = x.frame.to_local(ls.wi);
   const glm::vec3 f = lobe_eval(x, options.lobes, wi);
   // f > 0 implies wi.z >= kMinCosine for every lobe.
-  if (!(wi.z > 0.0f) || !(glm::dot(ls.wi, x.geometric_normal) > 0.0f) || !(max_component(f) > 0.0f))
-    return glm::vec3(0.0f);
+  if (!(wi.z > 0.0f) || !can_arrive(x, ls.wi) || !(max_component(f) > 0.0f)) return glm::vec3(0.0f);
   auto value = [&] {
     // A punctual light cannot be hit by the competing ray: no MIS.
     const float w = options.mis && !ls.delta ? power_heuristic(float(options.light_samples) * ls.pdf,
@@ -99,7 +109,7 @@ glm::vec3 punctual_light(const RenderScene& scene, const ShadingPoint& x, Lobes 
     glm::vec3 f = lobe_eval(x, lobes, wi);
     if (elsewhere > 0.0f)
       f -= elsewhere * (lobes == Lobes::kAll ? Fd_Lambert(x.brdf.base_color, x.brdf.metalness) : f);
-    if (!(wi.z > 0.0f) || !(glm::dot(seen.wi, x.geometric_normal) > 0.0f) || !(max_component(f) > 0.0f)) continue;
+    if (!(wi.z > 0.0f) || !can_arrive(x, seen.wi) || !(max_component(f) > 0.0f)) continue;
     EmitterSample ls;
     ls.position = seen.position;
     ls.normal = -seen.wi;
@@ -119,10 +129,10 @@ glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint&
   if (!environment || !environment->sample(u, &wi_world, &Le, &pdf) || !(pdf > 0.0f)) return glm::vec3(0.0f);
   const glm::vec3 wi = x.frame.to_local(wi_world);
   const glm::vec3 f = lobe_eval(x, lobes, wi);
-  if (!(wi.z > 0.0f) || !(glm::dot(wi_world, x.geometric_normal) > 0.0f) || !(max_component(f) > 0.0f))
-    return glm::vec3(0.0f);
+  if (!(wi.z > 0.0f) || !can_arrive(x, wi_world) || !(max_component(f) > 0.0f)) return glm::vec3(0.0f);
   ++counters->rays;
-  const float through = scene.accelerator().transmittance(Ray{spawn_origin(x.position, x.geometric_normal, wi_world), wi_world});
+  const float through =
+      scene.accelerator().transmittance(Ray{offset_ray_origin(x.position + x.shadow_lift, x.geometric_normal), wi_world});
   if (!(through > 0.0f)) return glm::vec3(0.0f);
   const float w = power_heuristic(pdf, lobe_pdf(x, lobes, wi));
   return throughput * f * Le * (wi.z * w * through / pdf);

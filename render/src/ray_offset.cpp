@@ -40,8 +40,12 @@ glm::vec3 spawn_origin(const glm::vec3& p, const glm::vec3& geometric_normal, co
 
 Ray shadow_ray_to(const glm::vec3& p, const glm::vec3& geometric_normal, const glm::vec3& target,
                   const glm::vec3& target_normal) {
+  return shadow_ray_between(spawn_origin(p, geometric_normal, target - p), target, target_normal);
+}
+
+Ray shadow_ray_between(const glm::vec3& origin, const glm::vec3& target, const glm::vec3& target_normal) {
   Ray ray;
-  ray.origin = spawn_origin(p, geometric_normal, target - p);
+  ray.origin = origin;
   const glm::vec3 end = spawn_origin(target, target_normal, ray.origin - target);
   const glm::vec3 d = end - ray.origin;
   const float length = std::sqrt(glm::dot(d, d));

@@ -7,6 +7,7 @@
 #include "phyir/core/safe_math.h"
 #include "phyir/render/frame.h"
 #include "phyir/render/material_eval.h"
+#include "phyir/render/smooth_surface.h"
 
 namespace phyir::render {
 
@@ -154,6 +155,7 @@ SurfaceInteraction RenderScene::interact(const Ray& ray, const Hit& hit) const {
   si.geometric_normal = si.front_face ? f.ng : -f.ng;
   si.shading_normal = si.front_face ? f.ns : -f.ns;
   si.tangent = f.tangent;
+  si.shadow_lift = smooth_surface_point(mesh, tri, bary, si.position, si.geometric_normal) - si.position;
 
   if (has_attribute(mesh.texcoords0, mesh)) {
     const glm::vec2 uv = mesh.texcoords0[tri.x] * bary.x + mesh.texcoords0[tri.y] * bary.y +

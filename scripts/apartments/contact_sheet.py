@@ -1,15 +1,16 @@
 #!/usr/bin/python3
 """One PNG of rendered views: a row per render folder (phyir render --out DIR), the columns
-colour (exposed so the 95th percentile of luminance maps to 0.8 before the sRGB curve),
+colour (the render's own color.png: OpenColorIO, with the exposure render.json records),
 base colour, normal (n * 0.5 + 0.5), depth (0-8 m, near = light), roughness and metalness,
 and with --probes N a last tile of N light probes (phyir render --probes) from the grid's
-lower middle row, left to right, with the colour's exposure.
+lower middle row, left to right, with color.png's exposure.
 
     contact_sheet.py --out sheet.png [--width 384] [--probes 4] DIR...
 
 Needs Debian's python3-openimageio and python3-numpy (/usr/bin/python3).
 """
 import argparse
+import json
 import os
 import sys
 
@@ -36,9 +37,9 @@ def as_rgb(image):
 
 
 def tile(folder, column):
-    image = as_rgb(read(os.path.join(folder, f"{column}.exr")))
     if column == "color":
-        return srgb(image * colour_scale(folder))
+        return as_rgb(read(os.path.join(folder, "color.png")))  # OIIO gives 8-bit as [0, 1]
+    image = as_rgb(read(os.path.join(folder, f"{column}.exr")))
     if column == "basecolor":
         return srgb(image)
     if column == "normal":
@@ -65,9 +66,13 @@ def probe_tile(folder, count, colour_scale):
 
 
 def colour_scale(folder):
-    image = as_rgb(read(os.path.join(folder, "color.exr")))
-    p95 = np.percentile(image @ np.array([0.2126, 0.7152, 0.0722]), 95)
-    return 0.8 / p95 if p95 > 0 else 1.0
+    """color.png's exposure (render.json), as a factor on linear radiance."""
+    path = os.path.join(folder, "render.json")
+    try:
+        stops = json.load(open(path))["color_png"]["exposure_stops"]
+    except (OSError, ValueError, KeyError) as error:
+        sys.exit(f"{path}: no color_png.exposure_stops ({error})")
+    return 2.0 ** stops
 
 
 def resized(image, width):

@@ -26,7 +26,8 @@ namespace phyir::render {
 // A surface point being shaded: where it is, its frames, the direction it is seen from.
 struct ShadingPoint {
   glm::vec3 position{0.0f};
-  glm::vec3 geometric_normal{0.0f, 0.0f, 1.0f};  // on the side the light must arrive from
+  glm::vec3 shadow_lift{0.0f};                   // SurfaceInteraction::shadow_lift
+  glm::vec3 geometric_normal{0.0f, 0.0f, 1.0f};  // the side shadow rays leave from
   Frame frame;                                   // shading frame (n = shading normal)
   glm::vec3 wo{0.0f, 0.0f, 1.0f};                // towards the viewer, local
   BrdfParams brdf;

@@ -24,6 +24,10 @@ struct SurfaceInteraction {
   // together with geometric_normal. Same side as geometric_normal.
   glm::vec3 shading_normal{0.0f, 0.0f, 1.0f};
   glm::vec3 tangent{1.0f, 0.0f, 0.0f};  // unit, orthogonal to shading_normal
+  // Shadow rays leave from position + shadow_lift: the point lifted onto the smooth surface
+  // the vertex normals describe where it bulges above the facet (smooth_surface.h); 0 on
+  // flat, concave or flat-shaded geometry.
+  glm::vec3 shadow_lift{0.0f};
   bool front_face = true;  // the ray arrived on the side the triangle's winding faces
   glm::vec2 uv{0.0f};       // TEXCOORD_0 (no texture transform), (0,0) when absent
   float distance = 0.0f;   // along the ray

@@ -26,4 +26,7 @@ glm::vec3 spawn_origin(const glm::vec3& p, const glm::vec3& geometric_normal, co
 Ray shadow_ray_to(const glm::vec3& p, const glm::vec3& geometric_normal, const glm::vec3& target,
                   const glm::vec3& target_normal);
 
+// The same from an origin already off its surface (e.g. a smooth-surface shadow origin).
+Ray shadow_ray_between(const glm::vec3& origin, const glm::vec3& target, const glm::vec3& target_normal);
+
 }  // namespace phyir::render
