@@ -57,7 +57,17 @@ e = r["effects"]
 assert e["emitter_sampling"] and e["transmission"] and e["mirrors"], e
 assert r["settings"]["seed"] == 5 and r["settings"]["spp"] == 8
 assert "Euclidean" in r["conventions"]["depth"]
+# color.png: auto exposure by default, recorded (core/auto_exposure.h's rule, recomputed here).
+assert r["settings"]["exposure"] == "auto", r["settings"]["exposure"]
+c = read("color.exr")[..., :3].ravel()
+v = np.sort(c)[min(c.size - 1, int(0.95 * c.size))]
+assert abs(r["color_png"]["percentile_value"] - v) <= 1e-6 * max(v, 1.0), (r["color_png"], v)
+assert abs(r["color_png"]["exposure_stops"] - np.log2(0.9 / v)) < 1e-4, r["color_png"]
 PY
+"$phyir" --log-level warn render "$scene" --out "$work/fixed" --width 32 --height 16 --spp 1 --exposure -1.5 --quiet
+grep -q '"exposure_stops": -1.5' "$work/fixed/render.json" || die "--exposure -1.5 not recorded"
+if "$phyir" render "$scene" --out "$work/bad" --exposure bright 2> "$work/err.txt"; then die "--exposure bright accepted"; fi
+grep -q -- "--exposure 'bright'" "$work/err.txt" || die "error does not name --exposure: $(cat "$work/err.txt")"
 
 # Bad input: clear message, non-zero exit, no output folder that looks complete.
 if "$phyir" render "$scene" --out "$work/bad" --spp 0 2> "$work/err.txt"; then die "--spp 0 accepted"; fi
