@@ -97,7 +97,8 @@ def main():
             mosaic = probe_tile(f, args.probes, colour_scale(f))
             tiles.append(resized(mosaic, tiles[0].shape[0] * mosaic.shape[1] // mosaic.shape[0]))
         rows.append(np.concatenate(tiles, axis=1))
-    sheet = (np.concatenate(rows, axis=0) * 255.0 + 0.5).astype(np.uint8)
+    # Resizing filters overshoot past [0, 1] at sharp edges: clip before the 8-bit cast wraps.
+    sheet = (np.clip(np.concatenate(rows, axis=0), 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
     out = oiio.ImageBuf(oiio.ImageSpec(sheet.shape[1], sheet.shape[0], 3, oiio.UINT8))
     out.set_pixels(oiio.ROI(), sheet)
     tmp = args.out + ".tmp.png"
