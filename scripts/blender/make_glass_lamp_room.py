@@ -16,7 +16,10 @@ What it builds (Blender coordinates, +Z up, metres; glTF (x, y, z) = Blender (x,
   0.12 m, smooth shaded; base colour near white, roughness 0.35, alpha 0.35), a 40 W point
   light of radius 0 at the globe's centre;
 - a ceiling pendant: a cord, a socket, an open lampshade (a truncated cone open at both ends,
-  ochre fabric, roughness 0.9, alpha 0.6), a 60 W point light of radius 0 inside it;
+  radius 0.22 m 0.12 m below the light and 0.11 m 0.12 m above it; ochre fabric, roughness
+  0.9, alpha 0.6), a 60 W point light of radius 0 inside it, 5 cm below the socket: the
+  ceiling gets the light through the fabric and, in a ring, through the top opening, the
+  floor through the bottom opening;
 - a wall sconce on the north wall (y = 1.5): an emissive bulb (sphere, radius 0.05 m,
   emission (1, 0.85, 0.6) at strength 40, i.e. KHR_materials_emissive_strength) behind a
   diffuser box open towards the wall (front and four sides, white, alpha 0.5);
@@ -230,9 +233,11 @@ def build_table_lamp(materials):
 
 def build_pendant(materials):
     px, py = PENDANT
-    socket_z0, shade_z0, shade_z1 = PENDANT_LIGHT_Z + 0.02, PENDANT_LIGHT_Z - 0.12, PENDANT_LIGHT_Z + 0.12
-    parts = [cylinder(px, py, 0.006, shade_z1 - 0.02, ROOM_Z, 8),           # cord
-             cylinder(px, py, 0.02, socket_z0, shade_z1 - 0.02, 16)]         # socket, 2 cm above the light
+    shade_z0, shade_z1 = PENDANT_LIGHT_Z - 0.12, PENDANT_LIGHT_Z + 0.12
+    # The socket 5 cm above the light: its shadow on the ceiling, a cone of half-angle 17 degrees,
+    # stays inside the cone of the shade's top opening (43 degrees), which lights a ring of ceiling.
+    parts = [cylinder(px, py, 0.006, shade_z1 + 0.03, ROOM_Z, 8),           # cord
+             cylinder(px, py, 0.015, PENDANT_LIGHT_Z + 0.05, shade_z1 + 0.03, 16)]  # socket
     assign(add_object("pendant_cord", make_mesh("pendant_cord", parts)), materials["lamp_metal_dark"])
     profile = [(0.22, shade_z0), (0.18, 0.5 * (shade_z0 + shade_z1)), (0.11, shade_z1)]
     shade = add_object("lampshade", make_mesh("lampshade", [open_tube(profile, px, py)], smooth=True))

@@ -14,6 +14,9 @@ The output matches `phyir render` as closely as Cycles allows (see docs/cycles-c
 - unbiased light transport: no clamping, no glossy blur, caustics on, no light threshold,
   no path guiding, MIS between light sampling and BSDF sampling (ours);
 - black world (our renders have no environment unless asked);
+- glTF alpha (BLEND) as the importer maps it, a Transparent BSDF mixed in by the Principled
+  Alpha input (kept by --materials ue4 too), with no limit on the blended surfaces a path
+  crosses (transparent_max_bounces 1024: phyir does not count them as bounces);
 - punctual lights (KHR_lights_punctual) as delta lights: the importer's 0.25 m lamp radius
   and the sun's 0.526 degree angle are set to 0; the lights are listed in the JSON.
 
@@ -199,6 +202,14 @@ def rebuild_as_ue4(material):
         tree.links.new(surface, mix.inputs[1])
         tree.links.new(glass.outputs["BSDF"], mix.inputs[2])
         surface = mix.outputs["Shader"]
+    alpha = input_source(principled.inputs["Alpha"])
+    if alpha[0] is not None or alpha[1] < 1.0:  # glTF alpha (BLEND): as Principled's Alpha, mix(Transparent, BRDF + emission, alpha)
+        transparent = tree.nodes.new("ShaderNodeBsdfTransparent")
+        mix_alpha = tree.nodes.new("ShaderNodeMixShader")
+        connect(tree, alpha, mix_alpha.inputs["Fac"])
+        tree.links.new(transparent.outputs["BSDF"], mix_alpha.inputs[1])
+        tree.links.new(surface, mix_alpha.inputs[2])
+        surface = mix_alpha.outputs["Shader"]
     tree.links.new(surface, output.inputs["Surface"])
     return True
 
@@ -246,7 +257,7 @@ def setup_cycles(scene, args):
     c.glossy_bounces = args.bounces
     c.transmission_bounces = args.bounces
     c.volume_bounces = 0
-    c.transparent_max_bounces = args.bounces
+    c.transparent_max_bounces = 1024  # blended (alpha) surfaces crossed: not bounces in phyir, no limit there
     c.min_light_bounces = 0
     c.min_transparent_bounces = 0
     c.sample_clamp_direct = 0.0
