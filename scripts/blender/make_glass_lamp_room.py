@@ -41,6 +41,10 @@ import sys
 import bpy
 from mathutils import Euler, Vector
 
+# The geometry helpers of the lit room, shared (the folder is on sys.path when Blender runs us).
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from make_lit_room import add_object, assign, box, uv_sphere  # noqa: E402
+
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 DEFAULT_OUT = os.path.join(ROOT, "tests", "data", "gltf", "blender_glass_lamp", "glass_lamp_room.gltf")
 
@@ -69,13 +73,6 @@ def parse_args():
 # ---------------------------------------------------------------------------------------
 # Geometry: parts are (vertices, faces) with faces wound counter-clockwise seen from outside.
 
-def box(x0, x1, y0, y1, z0, z1):
-    v = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0),
-         (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
-    f = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
-    return v, f
-
-
 def cylinder(cx, cy, radius, z0, z1, segments=16):
     v = []
     for z in (z0, z1):
@@ -102,28 +99,6 @@ def open_tube(profile, cx, cy, segments=48):
         for i in range(segments):
             j = (i + 1) % segments
             f.append((base + i, base + j, up + j, up + i))
-    return v, f
-
-
-def uv_sphere(cx, cy, cz, radius, segments=48, rings=24):
-    v = [(cx, cy, cz - radius)]
-    for k in range(1, rings):
-        theta = math.pi * k / rings - math.pi / 2
-        for i in range(segments):
-            a = 2 * math.pi * i / segments
-            v.append((cx + radius * math.cos(theta) * math.cos(a),
-                      cy + radius * math.cos(theta) * math.sin(a),
-                      cz + radius * math.sin(theta)))
-    v.append((cx, cy, cz + radius))
-    top = len(v) - 1
-    f = [(0, 1 + (i + 1) % segments, 1 + i) for i in range(segments)]
-    for k in range(rings - 2):
-        base, up = 1 + k * segments, 1 + (k + 1) * segments
-        for i in range(segments):
-            j = (i + 1) % segments
-            f.append((base + i, base + j, up + j, up + i))
-    last = 1 + (rings - 2) * segments
-    f += [(last + i, last + (i + 1) % segments, top) for i in range(segments)]
     return v, f
 
 
@@ -159,13 +134,6 @@ def make_mesh(name, parts, smooth=False):
     return mesh
 
 
-def add_object(name, data, location=(0, 0, 0)):
-    obj = bpy.data.objects.new(name, data)
-    obj.location = location
-    bpy.context.scene.collection.objects.link(obj)
-    return obj
-
-
 # ---------------------------------------------------------------------------------------
 # Materials: Principled BSDF; blended ones with the Alpha input and blend_method BLEND.
 
@@ -186,11 +154,6 @@ def principled(name, colour, roughness, alpha=1.0, emission=None, strength=0.0):
         mat.shadow_method = "HASHED"
         mat.show_transparent_back = True
     return mat
-
-
-def assign(obj, material):
-    obj.data.materials.clear()
-    obj.data.materials.append(material)
 
 
 # ---------------------------------------------------------------------------------------

@@ -478,4 +478,5 @@ def main():
     summarise(out)
 
 
-main()
+if __name__ == "__main__":  # make_glass_lamp_room.py imports its geometry helpers
+    main()
