@@ -43,7 +43,7 @@ from mathutils import Euler, Vector
 
 # The geometry helpers of the lit room, shared (the folder is on sys.path when Blender runs us).
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from make_lit_room import add_object, assign, box, uv_sphere  # noqa: E402
+from make_lit_room import add_object, assign, box, cylinder, lathe, uv_sphere  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 DEFAULT_OUT = os.path.join(ROOT, "tests", "data", "gltf", "blender_glass_lamp", "glass_lamp_room.gltf")
@@ -72,35 +72,6 @@ def parse_args():
 
 # ---------------------------------------------------------------------------------------
 # Geometry: parts are (vertices, faces) with faces wound counter-clockwise seen from outside.
-
-def cylinder(cx, cy, radius, z0, z1, segments=16):
-    v = []
-    for z in (z0, z1):
-        for i in range(segments):
-            a = 2 * math.pi * i / segments
-            v.append((cx + radius * math.cos(a), cy + radius * math.sin(a), z))
-    n = segments
-    f = [(i, (i + 1) % n, n + (i + 1) % n, n + i) for i in range(n)]
-    f.append(tuple(reversed(range(n))))       # bottom, facing -z
-    f.append(tuple(range(n, 2 * n)))          # top, facing +z
-    return v, f
-
-
-def open_tube(profile, cx, cy, segments=48):
-    """Surface of revolution of (radius, z) points, bottom to top, open at both ends (one sheet)."""
-    v = []
-    for r, z in profile:
-        for i in range(segments):
-            a = 2 * math.pi * i / segments
-            v.append((cx + r * math.cos(a), cy + r * math.sin(a), z))
-    f = []
-    for k in range(len(profile) - 1):
-        base, up = k * segments, (k + 1) * segments
-        for i in range(segments):
-            j = (i + 1) % segments
-            f.append((base + i, base + j, up + j, up + i))
-    return v, f
-
 
 def diffuser_box(cx, y_wall, cz, half_w, half_h, depth):
     """Front and four sides of a box standing out of the wall y = y_wall towards -y; open at the wall."""
@@ -176,7 +147,7 @@ def build_furniture(materials):
     parts = [box(cx - half_x, cx + half_x, cy - half_y, cy + half_y, top - 0.04, top)]
     for sx in (-1, 1):
         for sy in (-1, 1):
-            parts.append(cylinder(cx + sx * (half_x - 0.07), cy + sy * (half_y - 0.07), 0.03, 0.0, top - 0.04))
+            parts.append(cylinder(cx + sx * (half_x - 0.07), cy + sy * (half_y - 0.07), 0.03, 0.0, top - 0.04, 16))
     assign(add_object("table", make_mesh("table", parts)), materials["table"])
     # A low cabinet against the west wall, under the pendant's light.
     cabinet = box(-ROOM_X + 0.01, -ROOM_X + 0.46, -1.2, 0.0, 0.0, 0.8)
@@ -203,7 +174,7 @@ def build_pendant(materials):
              cylinder(px, py, 0.015, PENDANT_LIGHT_Z + 0.05, shade_z1 + 0.03, 16)]  # socket
     assign(add_object("pendant_cord", make_mesh("pendant_cord", parts)), materials["lamp_metal_dark"])
     profile = [(0.22, shade_z0), (0.18, 0.5 * (shade_z0 + shade_z1)), (0.11, shade_z1)]
-    shade = add_object("lampshade", make_mesh("lampshade", [open_tube(profile, px, py)], smooth=True))
+    shade = add_object("lampshade", make_mesh("lampshade", [lathe(profile, px, py, closed=False)], smooth=True))
     assign(shade, materials["shade_fabric"])
     add_light("pendant_lamp", 60.0, (px, py, PENDANT_LIGHT_Z), (1.0, 1.0, 1.0))
 

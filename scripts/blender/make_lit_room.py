@@ -77,8 +77,9 @@ def cylinder(cx, cy, radius, z0, z1, segments=12):
     return v, f
 
 
-def lathe(profile, cx, cy, segments=48):
-    """Surface of revolution of (radius, z) points, bottom to top; closed at the bottom."""
+def lathe(profile, cx, cy, segments=48, closed=True):
+    """Surface of revolution of (radius, z) points, bottom to top; closed at the bottom, or
+    open at both ends (one sheet)."""
     v = []
     for r, z in profile:
         for i in range(segments):
@@ -90,7 +91,8 @@ def lathe(profile, cx, cy, segments=48):
         for i in range(segments):
             j = (i + 1) % segments
             f.append((base + i, base + j, up + j, up + i))
-    f.append(tuple(reversed(range(segments))))  # bottom cap
+    if closed:
+        f.append(tuple(reversed(range(segments))))  # bottom cap
     return v, f
 
 
