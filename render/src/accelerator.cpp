@@ -71,7 +71,7 @@ struct CoverageContext {
   float transmittance = 1.0f;
   static constexpr int kCounted = 8;
   int counted = 0;
-  uint64_t counted_ids[kCounted];
+  uint64_t counted_ids[kCounted] = {};
 
   // False when this primitive was already counted; records it otherwise (when full, the
   // caller falls back to the stochastic decision, which repeats consistently).
