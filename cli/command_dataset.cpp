@@ -4,9 +4,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "commands.h"
+#include "exposure_flag.h"
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
 #include "phyir/core/log.h"
@@ -148,15 +150,9 @@ dataset::DatasetSettings resolve(const SettingsFlags& f) {
   if (f.given("--probe-share-radius")) s.probe.sharing.radius = f.probe_share_radius;
   if (f.given("--probe-share-parallax")) s.probe.sharing.parallax_texels = f.probe_share_parallax;
   if (f.given("--probe-photons")) s.probe.photons_per_light = f.probe_photons;
-  if (f.exposure == "auto") {
-    s.input.auto_exposure = true;
-  } else {
-    std::istringstream in(f.exposure);
-    float stops = 0;
-    if (!(in >> stops) || !in.eof()) fail("--exposure '{}' must be 'auto' or a number of stops", f.exposure);
-    s.input.auto_exposure = false;
-    s.input.exposure_stops = stops;
-  }
+  const std::optional<float> stops = parse_exposure_flag(f.exposure);
+  s.input.auto_exposure = !stops;
+  if (stops) s.input.exposure_stops = *stops;
   if (f.given("--exposure-percentile")) s.input.percentile = f.exposure_percentile;
   if (f.given("--exposure-target")) s.input.target = f.exposure_target;
   if (f.given("--exposure-jitter")) s.input.jitter_stops = f.exposure_jitter;

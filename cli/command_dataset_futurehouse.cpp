@@ -1,8 +1,10 @@
 // phyir dataset import-futurehouse / export-futurehouse (docs/futurehouse.md).
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "commands.h"
+#include "exposure_flag.h"
 #include "phyir/core/error.h"
 #include "phyir/core/log.h"
 #include "phyir/dataset/futurehouse.h"
@@ -55,13 +57,9 @@ void add_import(CLI::App* dataset) {
                                      : dataset::ImportProbes::kAuto;
     if (!f->probe_res.empty() && std::sscanf(f->probe_res.c_str(), "%dx%d", &o.probe_height, &o.probe_width) != 2)
       fail("--probe-resolution '{}': give HxW, e.g. 16x32", f->probe_res);
-    if (f->exposure != "auto") {
+    if (const std::optional<float> stops = parse_exposure_flag(f->exposure)) {
       o.input.auto_exposure = false;
-      try {
-        o.input.exposure_stops = std::stof(f->exposure);
-      } catch (const std::exception&) {
-        fail("--exposure '{}': auto or a number of stops", f->exposure);
-      }
+      o.input.exposure_stops = *stops;
     }
     o.progress = !f->quiet;
     const dataset::FutureHouseImportSummary s = dataset::import_futurehouse(o);

@@ -1,9 +1,10 @@
 // phyir render: one view of a glTF scene to HDR colour, AOVs and render.json.
-#include <cmath>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "commands.h"
+#include "exposure_flag.h"
 #include "phyir/core/error.h"
 #include "phyir/render/render_job.h"
 
@@ -34,15 +35,6 @@ glm::vec3 parse_position(const std::string& text) {
   if (!(in >> p.x >> c1 >> p.y >> c2 >> p.z) || c1 != ',' || c2 != ',' || !in.eof())
     fail("--camera '{}' is not X,Y,Z (three comma-separated numbers, metres)", text);
   return p;
-}
-
-// A number of stops, finite, or an error naming the flag.
-float parse_stops(const std::string& text, const char* flag) {
-  std::istringstream in(text);
-  float stops = 0.0f;
-  if (!(in >> stops) || !in.eof() || !std::isfinite(stops))
-    fail("{} '{}' must be 'auto' or a finite number of stops", flag, text);
-  return stops;
 }
 
 }  // namespace
@@ -112,8 +104,9 @@ void add_render_command(CLI::App& app) {
     job.projection = render::parse_projection(flags->projection);
     if (!flags->camera.empty()) job.camera_position = parse_position(flags->camera);
     job.environment_path = flags->environment;
-    job.auto_exposure = flags->exposure == "auto";
-    if (!job.auto_exposure) job.exposure = parse_stops(flags->exposure, "--exposure");
+    const std::optional<float> stops = parse_exposure_flag(flags->exposure);
+    job.auto_exposure = !stops;
+    job.exposure = stops.value_or(0.0f);
     job.settings.aovs = !flags->no_aovs;
     job.settings.progress = !flags->quiet;
     render::parse_size(flags->probe_grid, "--probe-grid", &job.probe.layout.grid_height, &job.probe.layout.grid_width);
