@@ -68,6 +68,7 @@ struct CoverageData {
 struct CoverageContext {
   RTCIntersectContext base;  // first member: Embree sees only this
   Coverage mode;
+  bool product = false;  // transmittance(): blended surfaces multiply, the query goes on
   float transmittance = 1.0f;
   static constexpr int kCounted = 8;
   int counted = 0;
@@ -120,15 +121,15 @@ void coverage_filter(const RTCFilterFunctionNArguments* args) {
     }
     const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
     const glm::vec2 b12(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
-    const float alpha = material_alpha(*data->scene, *data->mesh, *data->material,
-                                       data->mesh->triangles[prim], barycentrics(b12));
+    const float covered = coverage_at(*data->scene, *data->mesh, *data->material, data->mesh->triangles[prim],
+                                      barycentrics(b12));
     const unsigned geom = RTCHitN_geomID(args->hit, args->N, i);
-    if (blend && mode == Coverage::kTransmittance) {
+    if (blend && context->product) {
       // The product of (1 - alpha) over the blended surfaces crossed; the query goes on.
       bool recorded = false;
       if (context->first_report((uint64_t(geom) << 32) | prim, &recorded)) {
         if (recorded) {
-          context->transmittance *= 1.0f - std::clamp(alpha, 0.0f, 1.0f);
+          context->transmittance *= 1.0f - covered;
           args->valid[i] = 0;
           continue;
         }
@@ -137,7 +138,8 @@ void coverage_filter(const RTCFilterFunctionNArguments* args) {
         continue;
       }
     }
-    const bool kept = blend ? coverage_variate(args, i, prim, geom) < alpha : alpha >= data->material->alpha_cutoff;
+    // MASK: covered is 0 or 1; BLEND: kept with probability `covered`.
+    const bool kept = blend ? coverage_variate(args, i, prim, geom) < covered : covered > 0.0f;
     if (!kept) args->valid[i] = 0;
   }
 }
@@ -283,7 +285,8 @@ bool Accelerator::intersect(const Ray& ray, Hit* hit, Coverage coverage) const {
 }
 
 float Accelerator::transmittance(const Ray& ray) const {
-  CoverageContext context = coverage_context(Coverage::kTransmittance);
+  CoverageContext context = coverage_context(Coverage::kStochastic);
+  context.product = true;
   RTCRay r;
   fill_ray(ray, &r);
   rtcOccluded1(impl_->scene, &context.base, &r);

@@ -46,17 +46,21 @@ float lobe_pdf(const ShadingPoint& x, Lobes lobes, const glm::vec3& wi) {
 // facet's plane always; from below it (the shadow terminator of a coarse smooth-shaded mesh)
 // only where x was lifted onto the smooth surface, whose shadow ray may clear the mesh
 // (docs/brdf.md, "Smooth normals on coarse meshes"). A flat or concave facet, a normal map:
-// the facet's plane decides, as in pbrt and Mitsuba.
+// the facet's plane decides.
 bool can_arrive(const ShadingPoint& x, const glm::vec3& wi_world) {
   return glm::dot(wi_world, x.geometric_normal) > 0.0f || x.shadow_lift != glm::vec3(0.0f);
+}
+
+// Where every shadow ray of x starts: its smooth-surface point, on the shaded side.
+glm::vec3 shadow_origin(const ShadingPoint& x) {
+  return offset_ray_origin(x.position + x.shadow_lift, x.geometric_normal);
 }
 
 // The shadow ray of a light sample: to a point on an emitter, to a point light, or out of
 // the scene towards a directional light; it always leaves on the shaded side of the facet.
 Ray shadow_ray(const ShadingPoint& x, const EmitterSample& ls) {
-  const glm::vec3 origin = offset_ray_origin(x.position + x.shadow_lift, x.geometric_normal);
-  if (std::isinf(ls.distance)) return Ray{origin, ls.wi};
-  return shadow_ray_between(origin, ls.position, ls.normal);
+  if (std::isinf(ls.distance)) return Ray{shadow_origin(x), ls.wi};
+  return shadow_ray_between(shadow_origin(x), ls.position, ls.normal);
 }
 
 }  // namespace
@@ -131,8 +135,7 @@ glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint&
   const glm::vec3 f = lobe_eval(x, lobes, wi);
   if (!(wi.z > 0.0f) || !can_arrive(x, wi_world) || !(max_component(f) > 0.0f)) return glm::vec3(0.0f);
   ++counters->rays;
-  const float through =
-      scene.accelerator().transmittance(Ray{offset_ray_origin(x.position + x.shadow_lift, x.geometric_normal), wi_world});
+  const float through = scene.accelerator().transmittance(Ray{shadow_origin(x), wi_world});
   if (!(through > 0.0f)) return glm::vec3(0.0f);
   const float w = power_heuristic(pdf, lobe_pdf(x, lobes, wi));
   return throughput * f * Le * (wi.z * w * through / pdf);

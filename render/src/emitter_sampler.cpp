@@ -457,7 +457,7 @@ bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const gl
   // sends alpha of its emission, the share of rays that stop on it (docs/brdf.md).
   const glm::uvec3 tri = mesh.triangles[e.triangle];
   const bool sees_emitting_side = g.cos_light > 0.0f || material.double_sided;
-  out->radiance = sees_emitting_side ? coverage(material, material_alpha(*scene_, mesh, material, tri, bary)) *
+  out->radiance = sees_emitting_side ? coverage_at(*scene_, mesh, material, tri, bary) *
                                            emitted_radiance(*scene_, mesh, material, tri, bary)
                                      : glm::vec3(0.0f);
   return true;

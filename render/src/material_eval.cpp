@@ -85,6 +85,12 @@ float coverage(const scenes::Material& material, float alpha) {
   }
 }
 
+float coverage_at(const scenes::Scene& scene, const scenes::Mesh& mesh, const scenes::Material& material,
+                  const glm::uvec3& tri, const glm::vec3& bary) {
+  if (material.alpha_mode == scenes::AlphaMode::Opaque) return 1.0f;
+  return coverage(material, material_alpha(scene, mesh, material, tri, bary));
+}
+
 glm::vec3 emitted_radiance(const scenes::Scene& scene, const scenes::Mesh& mesh,
                            const scenes::Material& material, const glm::uvec3& tri, const glm::vec3& bary) {
   glm::vec3 e = material.emission();

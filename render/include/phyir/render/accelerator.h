@@ -23,7 +23,6 @@ enum class Coverage {
   kStochastic,   // light transport: a hit is kept with probability alpha (docs/brdf.md)
   kBlendSolid,   // geometry (AOVs, viewpoints): a blended surface is where it is
   kBlendAbsent,  // where light can get out (enclosed emitters): a blended surface lets it
-  kTransmittance,  // shadow rays (transmittance()): each blended surface multiplies by 1 - alpha
 };
 
 class Accelerator {

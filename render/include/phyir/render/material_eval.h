@@ -49,6 +49,9 @@ float material_alpha(const scenes::Scene& scene, const scenes::Mesh& mesh, const
 // The share of light a surface of this alpha stops (glTF 2.0, 3.9.4): OPAQUE 1, MASK 0 or 1
 // by the cutoff, BLEND alpha clamped to [0, 1].
 float coverage(const scenes::Material& material, float alpha);
+// The same at a point of a triangle; 1 for OPAQUE without reading any texture.
+float coverage_at(const scenes::Scene& scene, const scenes::Mesh& mesh, const scenes::Material& material,
+                  const glm::uvec3& tri, const glm::vec3& bary);
 
 // Emitted radiance of the front face at the point: emissive_factor x strength x emissive
 // texture RGB (non-negative, finite).
