@@ -23,7 +23,7 @@ fi
 # Embree).
 caps() {
   case "$1" in
-    sse4) echo "DNNL_MAX_CPU_ISA=SSE41 ATEN_CPU_CAPABILITY=default GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX512F,-AVX2,-FMA,-AVX PHYIR_EMBREE_MAX_ISA=sse4.2" ;;
+    sse4) sed -n 's/^export //p' "$root/tests/scripts/pinned_kernels.sh" | tr '\n' ' ' ;;  # the tests' own pin
     avx2) echo "DNNL_MAX_CPU_ISA=AVX2 ATEN_CPU_CAPABILITY=avx2 GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX512F PHYIR_EMBREE_MAX_ISA=avx2" ;;
     avx512) echo "" ;;
     *) echo "test_isa_levels: unknown level '$1' (sse4, avx2, avx512)" >&2; exit 2 ;;
