@@ -1,14 +1,14 @@
 // read_furniture_catalog: PluginFurnitureCatalog.properties -> AssetEntry, with the
 // semantics of Sweet Home 3D's DefaultFurnitureCatalog (docs/assets.md, "Catalog keys").
-#include "asset_catalog.h"
+#include "assets/asset_catalog.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <regex>
 
-#include "asset_catalog_keys.h"
-#include "asset_properties.h"
+#include "assets/asset_catalog_keys.h"
+#include "assets/asset_properties.h"
 #include "phyir/core/error.h"
 
 namespace phyir::scenes {

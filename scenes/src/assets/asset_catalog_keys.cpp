@@ -1,6 +1,6 @@
 // CatalogKeys: the catalog's values parsed the way Java's Float.parseFloat and
 // Boolean.parseBoolean read them, but refusing what they would silently default.
-#include "asset_catalog_keys.h"
+#include "assets/asset_catalog_keys.h"
 
 #include <algorithm>
 #include <cctype>

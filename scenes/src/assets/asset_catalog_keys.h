@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "asset_properties.h"
+#include "assets/asset_properties.h"
 
 namespace phyir::scenes {
 

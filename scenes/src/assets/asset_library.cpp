@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <set>
 
-#include "asset_catalog.h"
-#include "asset_zip.h"
+#include "assets/asset_catalog.h"
+#include "assets/asset_zip.h"
 #include "phyir/core/error.h"
 #include "phyir/core/log.h"
 

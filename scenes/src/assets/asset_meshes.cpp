@@ -1,10 +1,10 @@
 // build_meshes: vertex welding per material.
-#include "asset_meshes.h"
+#include "assets/asset_meshes.h"
 
 #include <unordered_map>
 #include <unordered_set>
 
-#include "asset_normals.h"
+#include "assets/asset_normals.h"
 #include "phyir/scenes/triangle_corners.h"
 
 namespace phyir::scenes {

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "asset_obj.h"
+#include "assets/asset_obj.h"
 #include "phyir/scenes/asset_model.h"
 
 namespace phyir::scenes {

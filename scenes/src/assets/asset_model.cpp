@@ -4,11 +4,11 @@
 #include <algorithm>
 #include <limits>
 
-#include "asset_meshes.h"
-#include "asset_normalise.h"
-#include "asset_obj.h"
-#include "asset_textures.h"
-#include "asset_zip.h"
+#include "assets/asset_meshes.h"
+#include "assets/asset_normalise.h"
+#include "assets/asset_obj.h"
+#include "assets/asset_textures.h"
+#include "assets/asset_zip.h"
 #include "phyir/core/error.h"
 
 namespace phyir::scenes {

@@ -1,5 +1,5 @@
 // The normalising transform of a furniture model (docs/assets.md, "Normalisation").
-#include "asset_normalise.h"
+#include "assets/asset_normalise.h"
 
 #include <algorithm>
 #include <limits>

@@ -1,5 +1,5 @@
 // corner_normals: given or generated per docs/assets.md ("Normals").
-#include "asset_normals.h"
+#include "assets/asset_normals.h"
 
 #include <cmath>
 #include <cstdint>

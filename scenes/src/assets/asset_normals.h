@@ -8,7 +8,7 @@
 
 #include <vector>
 
-#include "asset_obj.h"
+#include "assets/asset_obj.h"
 
 namespace phyir::scenes {
 

@@ -1,6 +1,6 @@
 // read_obj: tinyobjloader over a stream from the archive, with a MaterialReader that reads
 // the MTL from the same archive.
-#include "asset_obj.h"
+#include "assets/asset_obj.h"
 
 #include <tiny_obj_loader.h>
 
@@ -8,7 +8,7 @@
 #include <cctype>
 #include <sstream>
 
-#include "asset_zip.h"
+#include "assets/asset_zip.h"
 #include "phyir/core/error.h"
 
 namespace phyir::scenes {

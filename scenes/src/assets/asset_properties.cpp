@@ -1,5 +1,5 @@
 // read_java_properties: the format of java.util.Properties.load(InputStream).
-#include "asset_properties.h"
+#include "assets/asset_properties.h"
 
 #include <cctype>
 

@@ -1,11 +1,11 @@
 // TextureFiles: resolving MTL texture names inside the archive (docs/assets.md, "Textures").
-#include "asset_textures.h"
+#include "assets/asset_textures.h"
 
 #include <cstring>
 #include <optional>
 
-#include "asset_obj.h"
-#include "asset_zip.h"
+#include "assets/asset_obj.h"
+#include "assets/asset_zip.h"
 
 namespace phyir::scenes {
 

@@ -1,5 +1,5 @@
 // ZipArchive: libzip behind the three calls the asset library needs.
-#include "asset_zip.h"
+#include "assets/asset_zip.h"
 
 #include <zip.h>
 

@@ -3,7 +3,7 @@
 #define IMATH_HALF_NO_LOOKUP_TABLE
 #include <Imath/half.h>
 
-#include "texel_codec.h"
+#include "scene/texel_codec.h"
 
 #include <algorithm>
 

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "phyir/core/error.h"
-#include "texel_codec.h"
+#include "scene/texel_codec.h"
 
 namespace phyir::scenes {
 

@@ -9,7 +9,7 @@
 
 #include "phyir/core/error.h"
 #include "phyir/scenes/texture.h"
-#include "texel_codec.h"
+#include "scene/texel_codec.h"
 
 namespace phyir::scenes {
 

@@ -2,7 +2,7 @@
 // them into walls: scaled to the hole's width and height, and in depth so that the part of
 // the model made for the wall (doorOrWindowWallThickness at doorOrWindowWallDistance) spans
 // the wall's thickness. Fronts face the room the opening belongs to.
-#include "apartment_roles.h"
+#include "generator/apartment/apartment_roles.h"
 #include "phyir/scenes/apartment_furnishing.h"
 
 namespace phyir::scenes {

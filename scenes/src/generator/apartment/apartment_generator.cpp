@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "apartment_gltf.h"
-#include "apartment_steps.h"
+#include "generator/apartment/apartment_gltf.h"
+#include "generator/apartment/apartment_steps.h"
 #include "phyir/core/image_io.h"
 #include "phyir/scenes/sky.h"
 

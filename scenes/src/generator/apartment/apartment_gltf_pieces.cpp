@@ -7,7 +7,7 @@
 #include <cmath>
 #include <set>
 
-#include "apartment_gltf.h"
+#include "generator/apartment/apartment_gltf.h"
 #include "phyir/scenes/lamp_light.h"
 
 namespace phyir::scenes {

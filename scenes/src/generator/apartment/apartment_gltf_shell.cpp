@@ -1,11 +1,11 @@
 // The apartment's shell as glTF meshes and materials.
 #include <fmt/format.h>
 
-#include "apartment_gltf.h"
-#include "apartment_steps.h"
+#include "generator/apartment/apartment_gltf.h"
+#include "generator/apartment/apartment_steps.h"
+#include "generator/room/room_materials.h"
+#include "generator/room/room_textures.h"
 #include "phyir/core/image_io.h"
-#include "room_materials.h"
-#include "room_textures.h"
 
 namespace phyir::scenes {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "apartment_steps.h"
+#include "generator/apartment/apartment_steps.h"
 
 namespace phyir::scenes {
 

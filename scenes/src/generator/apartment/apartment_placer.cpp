@@ -1,5 +1,5 @@
 // Placement moves inside one room (apartment_placer.h).
-#include "apartment_placer.h"
+#include "generator/apartment/apartment_placer.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "apartment_steps.h"
+#include "generator/apartment/apartment_steps.h"
 #include "phyir/core/error.h"
 
 namespace phyir::scenes {

@@ -1,5 +1,5 @@
 // The furniture roles of docs/apartments.md, "Furniture rules".
-#include "apartment_roles.h"
+#include "generator/apartment/apartment_roles.h"
 
 #include <algorithm>
 #include <cctype>

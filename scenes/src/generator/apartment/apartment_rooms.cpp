@@ -2,7 +2,7 @@
 #include <map>
 #include <string>
 
-#include "apartment_steps.h"
+#include "generator/apartment/apartment_steps.h"
 
 namespace phyir::scenes {
 

@@ -3,9 +3,9 @@
 #include <functional>
 #include <map>
 
-#include "apartment_placer.h"
-#include "apartment_roles.h"
-#include "apartment_steps.h"
+#include "generator/apartment/apartment_placer.h"
+#include "generator/apartment/apartment_roles.h"
+#include "generator/apartment/apartment_steps.h"
 
 namespace phyir::scenes {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "apartment_steps.h"
+#include "generator/apartment/apartment_steps.h"
 #include "phyir/scenes/apartment_generator.h"
 
 namespace phyir::scenes {

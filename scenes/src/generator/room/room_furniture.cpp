@@ -1,7 +1,7 @@
 // Furniture builders. Sizes are those of real furniture (table tops at 72-76 cm, shelf
 // boards 2 cm, cabinet tops 3 cm) so rooms read as rooms at metric scale. Random draws are
 // one per statement: argument evaluation order is unspecified and rooms must be portable.
-#include "room_furniture.h"
+#include "generator/room/room_furniture.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,9 +4,9 @@
 // -z and front at +z (the side that faces the room when the piece stands against a wall).
 #include <vector>
 
+#include "generator/room/room_materials.h"
+#include "generator/room/room_rng.h"
 #include "phyir/scenes/room_layout.h"
-#include "room_materials.h"
-#include "room_rng.h"
 
 namespace phyir::scenes {
 

@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "generator/room/room_primitives.h"
+#include "generator/room/room_textures.h"
 #include "phyir/core/image_io.h"
 #include "phyir/scenes/gltf_writer.h"
-#include "room_primitives.h"
-#include "room_textures.h"
 
 namespace phyir::scenes {
 

@@ -1,6 +1,6 @@
 // The material palette: what each role looks like, with seeded variation. Colours are
 // linear Rec.709; texture colours are sRGB-encoded because they become PNG texels.
-#include "room_materials.h"
+#include "generator/room/room_materials.h"
 
 #include <algorithm>
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "generator/room/room_rng.h"
 #include "phyir/scenes/room_layout.h"
-#include "room_rng.h"
 
 namespace phyir::scenes {
 

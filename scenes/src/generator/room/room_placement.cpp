@@ -1,10 +1,10 @@
 // Rejection-sampled placement of furniture, wall items and lights.
-#include "room_placement.h"
+#include "generator/room/room_placement.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "room_furniture.h"
+#include "generator/room/room_furniture.h"
 
 namespace phyir::scenes {
 

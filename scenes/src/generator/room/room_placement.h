@@ -4,8 +4,8 @@
 // object already placed. Failing to fit is not an error: the room just has one piece less.
 #include <vector>
 
+#include "generator/room/room_rng.h"
 #include "phyir/scenes/room_layout.h"
-#include "room_rng.h"
 
 namespace phyir::scenes {
 

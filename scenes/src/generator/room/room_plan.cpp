@@ -1,12 +1,12 @@
 // plan_room(): what goes into a mini or a hard room, in which order.
 #include <string>
 
+#include "generator/room/room_furniture.h"
+#include "generator/room/room_materials.h"
+#include "generator/room/room_placement.h"
+#include "generator/room/room_plan_steps.h"
 #include "phyir/core/error.h"
 #include "phyir/scenes/room_layout.h"
-#include "room_furniture.h"
-#include "room_materials.h"
-#include "room_placement.h"
-#include "room_plan_steps.h"
 
 namespace phyir::scenes {
 

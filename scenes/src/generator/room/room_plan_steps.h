@@ -1,7 +1,7 @@
 #pragma once
 // The steps plan_room() runs, one source file each.
+#include "generator/room/room_rng.h"
 #include "phyir/scenes/room_layout.h"
-#include "room_rng.h"
 
 namespace phyir::scenes {
 

@@ -1,5 +1,5 @@
 // Box, cylinder, sphere and shell meshes.
-#include "room_primitives.h"
+#include "generator/room/room_primitives.h"
 
 #include <algorithm>
 #include <cmath>

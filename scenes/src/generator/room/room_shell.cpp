@@ -2,8 +2,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "generator/room/room_plan_steps.h"
 #include "phyir/scenes/room_layout.h"
-#include "room_plan_steps.h"
 
 namespace phyir::scenes {
 

@@ -1,12 +1,12 @@
 // Procedural textures. All patterns are periodic over the image (integer frequencies and
 // wrapped noise lattices), so they repeat without seams under glTF's REPEAT wrap mode.
-#include "room_textures.h"
+#include "generator/room/room_textures.h"
 
 #include <algorithm>
 #include <cmath>
 
+#include "generator/room/room_rng.h"
 #include "phyir/core/safe_math.h"
-#include "room_rng.h"
 
 namespace phyir::scenes {
 

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "generator/room/room_plan_steps.h"
 #include "phyir/core/safe_math.h"
 #include "phyir/scenes/room_layout.h"
-#include "room_plan_steps.h"
 
 namespace phyir::scenes {
 

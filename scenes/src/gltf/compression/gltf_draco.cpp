@@ -1,4 +1,4 @@
-#include "gltf_draco.h"
+#include "gltf/compression/gltf_draco.h"
 
 #include <draco/compression/decode.h>
 #include <draco/mesh/mesh.h>
@@ -6,7 +6,7 @@
 #include <cstring>
 #include <memory>
 
-#include "gltf_values.h"
+#include "gltf/read/gltf_values.h"
 
 namespace phyir::scenes::gltf {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "gltf_accessors.h"
+#include "gltf/read/gltf_accessors.h"
 
 namespace phyir::scenes::gltf {
 

@@ -1,4 +1,4 @@
-#include "gltf_meshopt.h"
+#include "gltf/compression/gltf_meshopt.h"
 
 #include <meshoptimizer.h>
 
@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "gltf_values.h"
+#include "gltf/read/gltf_values.h"
 
 namespace phyir::scenes::gltf {
 

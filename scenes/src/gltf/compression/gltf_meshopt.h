@@ -4,7 +4,7 @@
 // filter) into a buffer of its own and the bufferView is pointed at it, so accessors read
 // it like any other view. Fallback buffers, placeholders for the uncompressed data that
 // often have none, are never read.
-#include "gltf_context.h"
+#include "gltf/read/gltf_context.h"
 
 namespace phyir::scenes::gltf {
 

@@ -1,4 +1,4 @@
-#include "gltf_quantization.h"
+#include "gltf/compression/gltf_quantization.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "gltf_tinygltf.h"
+#include "gltf/read/gltf_tinygltf.h"
 
 namespace phyir::scenes::gltf {
 

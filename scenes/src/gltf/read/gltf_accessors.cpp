@@ -1,4 +1,4 @@
-#include "gltf_accessors.h"
+#include "gltf/read/gltf_accessors.h"
 
 #include <fmt/ranges.h>
 

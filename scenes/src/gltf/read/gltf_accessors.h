@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "gltf_context.h"
-#include "gltf_quantization.h"
+#include "gltf/compression/gltf_quantization.h"
+#include "gltf/read/gltf_context.h"
 
 namespace phyir::scenes::gltf {
 

@@ -1,8 +1,8 @@
-#include "gltf_cameras.h"
+#include "gltf/read/gltf_cameras.h"
 
 #include <cmath>
 
-#include "gltf_values.h"
+#include "gltf/read/gltf_values.h"
 #include "phyir/core/safe_math.h"
 
 namespace phyir::scenes::gltf {

@@ -1,6 +1,6 @@
 #pragma once
 // glTF cameras placed by their node: position, forward (node -Z), up (node +Y).
-#include "gltf_nodes.h"
+#include "gltf/read/gltf_nodes.h"
 #include "phyir/scenes/scene.h"
 
 namespace phyir::scenes::gltf {

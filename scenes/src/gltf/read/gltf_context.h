@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "gltf_tinygltf.h"
+#include "gltf/read/gltf_tinygltf.h"
 #include "phyir/core/error.h"
 #include "phyir/core/log.h"
 

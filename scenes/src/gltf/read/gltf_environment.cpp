@@ -1,8 +1,8 @@
-#include "gltf_environment.h"
+#include "gltf/read/gltf_environment.h"
 
 #include <fmt/ranges.h>
 
-#include "gltf_values.h"
+#include "gltf/read/gltf_values.h"
 
 namespace phyir::scenes::gltf {
 

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "gltf_context.h"
+#include "gltf/read/gltf_context.h"
 #include "phyir/scenes/scene.h"
 
 namespace phyir::scenes::gltf {

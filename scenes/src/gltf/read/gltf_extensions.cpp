@@ -1,4 +1,4 @@
-#include "gltf_extensions.h"
+#include "gltf/read/gltf_extensions.h"
 
 #include <algorithm>
 #include <map>

@@ -1,4 +1,4 @@
-#include "gltf_file.h"
+#include "gltf/read/gltf_file.h"
 
 #include <cstdint>
 #include <cstring>

@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "gltf_context.h"
+#include "gltf/read/gltf_context.h"
 
 namespace phyir::scenes::gltf {
 

@@ -1,4 +1,4 @@
-#include "gltf_geometry.h"
+#include "gltf/read/gltf_geometry.h"
 
 #include <cmath>
 #include <limits>

@@ -3,7 +3,7 @@
 // flat normals when NORMAL is absent, tangents when a normal map needs them.
 #include <glm/glm.hpp>
 
-#include "gltf_primitives.h"
+#include "gltf/read/gltf_primitives.h"
 #include "phyir/scenes/scene.h"
 
 namespace phyir::scenes::gltf {

@@ -1,10 +1,10 @@
-#include "gltf_instancing.h"
+#include "gltf/read/gltf_instancing.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "gltf_geometry.h"
-#include "gltf_values.h"
+#include "gltf/read/gltf_geometry.h"
+#include "gltf/read/gltf_values.h"
 
 namespace phyir::scenes::gltf {
 

@@ -6,9 +6,9 @@
 #include <cstddef>
 #include <optional>
 
-#include "gltf_accessors.h"
-#include "gltf_nodes.h"
-#include "gltf_primitives.h"
+#include "gltf/read/gltf_accessors.h"
+#include "gltf/read/gltf_nodes.h"
+#include "gltf/read/gltf_primitives.h"
 #include "phyir/scenes/scene.h"
 
 namespace phyir::scenes::gltf {

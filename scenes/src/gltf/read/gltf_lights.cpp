@@ -1,9 +1,9 @@
-#include "gltf_lights.h"
+#include "gltf/read/gltf_lights.h"
 
 #include <cmath>
 #include <limits>
 
-#include "gltf_values.h"
+#include "gltf/read/gltf_values.h"
 
 namespace phyir::scenes::gltf {
 

@@ -2,7 +2,7 @@
 // KHR_lights_punctual: the lights the default scene's nodes carry, placed in world space.
 #include <vector>
 
-#include "gltf_nodes.h"
+#include "gltf/read/gltf_nodes.h"
 #include "phyir/scenes/scene.h"
 
 namespace phyir::scenes::gltf {

@@ -7,20 +7,20 @@
 #include <map>
 #include <optional>
 
-#include "gltf_cameras.h"
-#include "gltf_environment.h"
-#include "gltf_extensions.h"
-#include "gltf_file.h"
-#include "gltf_lights.h"
-#include "gltf_geometry.h"
-#include "gltf_instancing.h"
-#include "gltf_materials.h"
-#include "gltf_nodes.h"
-#include "gltf_parse.h"
-#include "gltf_preflight.h"
-#include "gltf_primitives.h"
-#include "gltf_textures.h"
-#include "gltf_values.h"
+#include "gltf/read/gltf_cameras.h"
+#include "gltf/read/gltf_environment.h"
+#include "gltf/read/gltf_extensions.h"
+#include "gltf/read/gltf_file.h"
+#include "gltf/read/gltf_geometry.h"
+#include "gltf/read/gltf_instancing.h"
+#include "gltf/read/gltf_lights.h"
+#include "gltf/read/gltf_materials.h"
+#include "gltf/read/gltf_nodes.h"
+#include "gltf/read/gltf_parse.h"
+#include "gltf/read/gltf_preflight.h"
+#include "gltf/read/gltf_primitives.h"
+#include "gltf/read/gltf_textures.h"
+#include "gltf/read/gltf_values.h"
 
 namespace phyir::scenes {
 

@@ -1,4 +1,4 @@
-#include "gltf_materials.h"
+#include "gltf/read/gltf_materials.h"
 
 #include <fmt/ranges.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <set>
 
-#include "gltf_values.h"
+#include "gltf/read/gltf_values.h"
 
 namespace phyir::scenes::gltf {
 

@@ -3,8 +3,8 @@
 // KHR_materials_emissive_strength / _transmission / _ior and KHR_texture_transform.
 #include <vector>
 
-#include "gltf_context.h"
-#include "gltf_textures.h"
+#include "gltf/read/gltf_context.h"
+#include "gltf/read/gltf_textures.h"
 #include "phyir/scenes/scene.h"
 
 namespace phyir::scenes::gltf {

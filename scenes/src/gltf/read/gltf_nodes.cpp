@@ -1,4 +1,4 @@
-#include "gltf_nodes.h"
+#include "gltf/read/gltf_nodes.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "gltf_context.h"
+#include "gltf/read/gltf_context.h"
 
 namespace phyir::scenes::gltf {
 

@@ -1,12 +1,12 @@
-#include "gltf_parse.h"
+#include "gltf/read/gltf_parse.h"
 
 #include <fmt/ranges.h>
 
 #include <sstream>
 #include <string_view>
 
-#include "gltf_meshopt.h"
-#include "gltf_tinygltf_input.h"
+#include "gltf/compression/gltf_meshopt.h"
+#include "gltf/read/gltf_tinygltf_input.h"
 
 namespace phyir::scenes::gltf {
 

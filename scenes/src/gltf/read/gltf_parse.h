@@ -3,8 +3,8 @@
 // their encoded bytes are kept in tinygltf::Image::image (as_is = true). Bufferviews
 // compressed with EXT_meshopt_compression are decoded here (gltf_meshopt.h), so later
 // stages read them like any other.
-#include "gltf_context.h"
-#include "gltf_file.h"
+#include "gltf/read/gltf_context.h"
+#include "gltf/read/gltf_file.h"
 
 namespace phyir::scenes::gltf {
 

@@ -1,13 +1,13 @@
-#include "gltf_preflight.h"
+#include "gltf/read/gltf_preflight.h"
 
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include <optional>
 
-#include "gltf_extensions.h"
-#include "gltf_tinygltf_input.h"
-#include "gltf_schema.h"
+#include "gltf/read/gltf_extensions.h"
+#include "gltf/read/gltf_tinygltf_input.h"
+#include "gltf/schema/gltf_schema.h"
 
 namespace phyir::scenes::gltf {
 

@@ -3,8 +3,8 @@
 // then precise messages where tinygltf's are vague (missing .bin, missing image file,
 // unsupported required extension) and a guard on its one unchecked read (an image's
 // bufferView range).
-#include "gltf_context.h"
-#include "gltf_file.h"
+#include "gltf/read/gltf_context.h"
+#include "gltf/read/gltf_file.h"
 
 namespace phyir::scenes::gltf {
 

@@ -1,10 +1,10 @@
-#include "gltf_primitives.h"
+#include "gltf/read/gltf_primitives.h"
 
 #include <algorithm>
 #include <numeric>
 
-#include "gltf_accessors.h"
-#include "gltf_draco.h"
+#include "gltf/compression/gltf_draco.h"
+#include "gltf/read/gltf_accessors.h"
 
 namespace phyir::scenes::gltf {
 

@@ -6,7 +6,7 @@
 #include <optional>
 #include <vector>
 
-#include "gltf_context.h"
+#include "gltf/read/gltf_context.h"
 
 namespace phyir::scenes::gltf {
 

@@ -1,4 +1,4 @@
-#include "gltf_textures.h"
+#include "gltf/read/gltf_textures.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -11,7 +11,7 @@
 #include <exception>
 #include <variant>
 
-#include "gltf_values.h"
+#include "gltf/read/gltf_values.h"
 #include "phyir/core/colour.h"
 #include "phyir/core/image_io.h"
 #include "phyir/core/png_structure.h"

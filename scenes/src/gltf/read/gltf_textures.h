@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "gltf_context.h"
+#include "gltf/read/gltf_context.h"
 #include "phyir/scenes/texture.h"
 
 namespace phyir::scenes::gltf {

@@ -1,4 +1,4 @@
-#include "gltf_tinygltf_input.h"
+#include "gltf/read/gltf_tinygltf_input.h"
 
 #include <cstdint>
 #include <cstring>

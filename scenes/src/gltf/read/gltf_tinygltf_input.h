@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "gltf_file.h"
+#include "gltf/read/gltf_file.h"
 
 namespace phyir::scenes::gltf {
 

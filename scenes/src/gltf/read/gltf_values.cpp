@@ -1,4 +1,4 @@
-#include "gltf_values.h"
+#include "gltf/read/gltf_values.h"
 
 #include <cmath>
 #include <limits>

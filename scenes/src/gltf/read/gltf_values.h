@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "gltf_context.h"
+#include "gltf/read/gltf_context.h"
 
 namespace phyir::scenes::gltf {
 

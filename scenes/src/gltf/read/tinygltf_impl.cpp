@@ -1,3 +1,3 @@
 // The one translation unit that compiles tinygltf's implementation.
 #define TINYGLTF_IMPLEMENTATION
-#include "gltf_tinygltf.h"
+#include "gltf/read/gltf_tinygltf.h"

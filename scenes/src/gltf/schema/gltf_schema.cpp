@@ -1,10 +1,10 @@
-#include "gltf_schema.h"
+#include "gltf/schema/gltf_schema.h"
 
 #include <nlohmann/json.hpp>
 
 #include <regex>
 
-#include "gltf_schema_objects.h"
+#include "gltf/schema/gltf_schema_objects.h"
 
 namespace phyir::scenes::gltf {
 

@@ -8,7 +8,7 @@
 // ("Schema validation") lists them and where the Khronos validator disagrees.
 #include <nlohmann/json_fwd.hpp>
 
-#include "gltf_context.h"
+#include "gltf/read/gltf_context.h"
 
 namespace phyir::scenes::gltf {
 

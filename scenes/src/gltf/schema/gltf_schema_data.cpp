@@ -3,7 +3,7 @@
 
 #include <map>
 
-#include "gltf_schema_objects.h"
+#include "gltf/schema/gltf_schema_objects.h"
 
 namespace phyir::scenes::gltf::schema {
 

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "gltf_schema_objects.h"
+#include "gltf/schema/gltf_schema_objects.h"
 
 namespace phyir::scenes::gltf::schema {
 

@@ -1,5 +1,5 @@
 // Materials and textures (glTF 2.0 schema: material*, textureInfo, texture, sampler, image).
-#include "gltf_schema_objects.h"
+#include "gltf/schema/gltf_schema_objects.h"
 
 namespace phyir::scenes::gltf::schema {
 

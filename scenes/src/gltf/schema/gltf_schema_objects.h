@@ -2,7 +2,7 @@
 // One check per object type of the glTF 2.0 schema (gltf_schema_data.cpp, _scene.cpp,
 // _materials.cpp) and the extensions they may carry (gltf_schema_extensions.cpp). Each takes
 // the object and its properties; references between objects are checked later, by the loader.
-#include "gltf_schema_rules.h"
+#include "gltf/schema/gltf_schema_rules.h"
 
 namespace phyir::scenes::gltf::schema {
 

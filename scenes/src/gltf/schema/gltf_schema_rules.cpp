@@ -1,4 +1,4 @@
-#include "gltf_schema_rules.h"
+#include "gltf/schema/gltf_schema_rules.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

@@ -13,7 +13,7 @@
 #include <set>
 #include <string>
 
-#include "gltf_context.h"
+#include "gltf/read/gltf_context.h"
 
 namespace phyir::scenes::gltf::schema {
 

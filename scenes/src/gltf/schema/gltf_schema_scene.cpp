@@ -2,7 +2,7 @@
 // animation*).
 #include <fmt/format.h>
 
-#include "gltf_schema_objects.h"
+#include "gltf/schema/gltf_schema_objects.h"
 
 namespace phyir::scenes::gltf::schema {
 

@@ -1,4 +1,4 @@
-#include "gltf_write_buffer.h"
+#include "gltf/write/gltf_write_buffer.h"
 
 #include <cstring>
 

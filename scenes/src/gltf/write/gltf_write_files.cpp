@@ -1,4 +1,4 @@
-#include "gltf_write_files.h"
+#include "gltf/write/gltf_write_files.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,9 +1,9 @@
-#include "gltf_write_lights.h"
+#include "gltf/write/gltf_write_lights.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "gltf_write_values.h"
+#include "gltf/write/gltf_write_values.h"
 #include "phyir/core/error.h"
 
 namespace phyir::scenes {

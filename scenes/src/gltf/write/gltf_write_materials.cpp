@@ -1,8 +1,8 @@
-#include "gltf_write_materials.h"
+#include "gltf/write/gltf_write_materials.h"
 
 #include <cmath>
 
-#include "gltf_write_values.h"
+#include "gltf/write/gltf_write_values.h"
 #include "phyir/core/error.h"
 
 namespace phyir::scenes::gltf_write {

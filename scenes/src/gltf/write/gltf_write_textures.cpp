@@ -1,11 +1,11 @@
-#include "gltf_write_textures.h"
+#include "gltf/write/gltf_write_textures.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <map>
 
-#include "gltf_write_files.h"
+#include "gltf/write/gltf_write_files.h"
 #include "phyir/core/error.h"
 
 namespace phyir::scenes::gltf_write {

@@ -6,13 +6,13 @@
 #include <cmath>
 #include <set>
 
-#include "gltf_geometry.h"
-#include "gltf_write_buffer.h"
-#include "gltf_write_files.h"
-#include "gltf_write_lights.h"
-#include "gltf_write_materials.h"
-#include "gltf_write_textures.h"
-#include "gltf_write_values.h"
+#include "gltf/read/gltf_geometry.h"
+#include "gltf/write/gltf_write_buffer.h"
+#include "gltf/write/gltf_write_files.h"
+#include "gltf/write/gltf_write_lights.h"
+#include "gltf/write/gltf_write_materials.h"
+#include "gltf/write/gltf_write_textures.h"
+#include "gltf/write/gltf_write_values.h"
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
 
