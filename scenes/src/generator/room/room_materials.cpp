@@ -73,6 +73,9 @@ MaterialSpec emitter(vec3 colour, float strength) {
   return m;
 }
 
+// What make() returns for a role no step knows (none: every role has its step).
+MaterialSpec fallback_material() { return dielectric(MaterialKind::Diffuse, vec3(0.8f), 1.0f); }
+
 const char* role_name(MaterialRole role) {
   switch (role) {
     case MaterialRole::Wall: return "wall";
@@ -147,9 +150,39 @@ MaterialSpec MaterialPalette::make_diffuse(MaterialRole role) {
 }
 
 // Every random draw is its own statement: the evaluation order of function arguments is
-// unspecified, and two draws in one call could differ between compilers.
+// unspecified, and two draws in one call could differ between compilers. Each role draws only
+// in its own step, so the steps below draw exactly as one switch over every role would.
 MaterialSpec MaterialPalette::make(MaterialRole role) {
-  const bool hard = preset_ == RoomPreset::Hard;
+  switch (role) {
+    case MaterialRole::Wall:
+    case MaterialRole::AccentWall:
+    case MaterialRole::Ceiling:
+      return make_shell(role);
+    case MaterialRole::Floor:
+      return make_floor();
+    case MaterialRole::Wood:
+    case MaterialRole::Paint:
+    case MaterialRole::Fabric:
+    case MaterialRole::Lacquer:
+    case MaterialRole::Ceramic:
+    case MaterialRole::Checker:
+      return make_furniture(role);
+    case MaterialRole::RoughMetal:
+    case MaterialRole::PolishedMetal:
+    case MaterialRole::WornMetal:
+    case MaterialRole::Mirror:
+    case MaterialRole::Glass:
+      return make_specular(role);
+    case MaterialRole::LightPanel:
+    case MaterialRole::LampShade:
+    case MaterialRole::BrightBulb:
+      return make_light(role);
+  }
+  return fallback_material();
+}
+
+// Walls, the accent wall and the ceiling: diffuse paint.
+MaterialSpec MaterialPalette::make_shell(MaterialRole role) {
   switch (role) {
     case MaterialRole::Wall: {
       const vec3 colour = jitter(rng_, rng_.pick(kWallColours));
@@ -161,29 +194,40 @@ MaterialSpec MaterialPalette::make(MaterialRole role) {
     }
     case MaterialRole::Ceiling:
       return dielectric(MaterialKind::Diffuse, vec3(rng_.uniform(0.78f, 0.86f)), 0.95f);
-    case MaterialRole::Floor: {
-      // mini: a textured wood floor half of the time; hard: always wood planks or tiles.
-      const bool textured = hard || rng_.chance(0.5f);
-      if (!textured) {
-        return dielectric(MaterialKind::Diffuse, jitter(rng_, vec3(0.25f, 0.24f, 0.22f)), 0.95f);
-      }
-      if (hard && rng_.chance(0.4f)) {
-        // Glazed tiles: 4 x 4 tiles of 0.3 m per texture.
-        const float roughness = rng_.uniform(0.12f, 0.25f);
-        const vec3 glaze = jitter(rng_, vec3(0.85f, 0.84f, 0.80f));
-        MaterialSpec m = dielectric(MaterialKind::Glossy, vec3(1.0f), roughness);
-        m.base_color_texture = add_texture("tiles", TexturePattern::Tiles, 512, glaze, vec3(0.45f));
-        m.texture_repeats_per_metre = 1.0f / 1.2f;
-        return m;
-      }
-      const auto& tone = rng_.pick(kWoodTones);
-      MaterialSpec m = dielectric(MaterialKind::Diffuse, vec3(1.0f), rng_.uniform(0.45f, 0.7f));
-      m.base_color_texture =
-          add_texture("floor_wood", TexturePattern::WoodPlanks, hard ? 512 : 256, tone.first, tone.second);
-      m.texture_repeats_per_metre = 0.5f;  // the texture holds 2 m of planks
-      return m;
-    }
+    default:
+      return fallback_material();
+  }
+}
+
+// mini: a textured wood floor half of the time; hard: always wood planks or tiles.
+MaterialSpec MaterialPalette::make_floor() {
+  const bool hard = preset_ == RoomPreset::Hard;
+  const bool textured = hard || rng_.chance(0.5f);
+  if (!textured) {
+    return dielectric(MaterialKind::Diffuse, jitter(rng_, vec3(0.25f, 0.24f, 0.22f)), 0.95f);
+  }
+  if (hard && rng_.chance(0.4f)) {
+    // Glazed tiles: 4 x 4 tiles of 0.3 m per texture.
+    const float roughness = rng_.uniform(0.12f, 0.25f);
+    const vec3 glaze = jitter(rng_, vec3(0.85f, 0.84f, 0.80f));
+    MaterialSpec m = dielectric(MaterialKind::Glossy, vec3(1.0f), roughness);
+    m.base_color_texture = add_texture("tiles", TexturePattern::Tiles, 512, glaze, vec3(0.45f));
+    m.texture_repeats_per_metre = 1.0f / 1.2f;
+    return m;
+  }
+  const auto& tone = rng_.pick(kWoodTones);
+  MaterialSpec m = dielectric(MaterialKind::Diffuse, vec3(1.0f), rng_.uniform(0.45f, 0.7f));
+  m.base_color_texture =
+      add_texture("floor_wood", TexturePattern::WoodPlanks, hard ? 512 : 256, tone.first, tone.second);
+  m.texture_repeats_per_metre = 0.5f;  // the texture holds 2 m of planks
+  return m;
+}
+
+// Furniture finishes: wood, paint, fabric, lacquer, ceramic and the checker pattern.
+MaterialSpec MaterialPalette::make_furniture(MaterialRole role) {
+  switch (role) {
     case MaterialRole::Wood: {
+      const bool hard = preset_ == RoomPreset::Hard;
       if (!hard) return dielectric(MaterialKind::Diffuse, vec3(0.35f, 0.20f, 0.10f), 0.7f);
       const auto& tone = rng_.pick(kWoodTones);
       MaterialSpec m = dielectric(MaterialKind::Diffuse, vec3(1.0f), rng_.uniform(0.5f, 0.75f));
@@ -205,6 +249,22 @@ MaterialSpec MaterialPalette::make(MaterialRole role) {
       const vec3 colour(rng_.uniform(0.75f, 0.85f));
       return dielectric(MaterialKind::Glossy, colour, rng_.uniform(0.08f, 0.2f));
     }
+    case MaterialRole::Checker: {
+      const vec3 light = jitter(rng_, vec3(0.85f));
+      const vec3 dark = jitter(rng_, rng_.pick(kAccentColours));
+      MaterialSpec m = dielectric(MaterialKind::Diffuse, vec3(1.0f), 0.8f);
+      m.base_color_texture = add_texture("checker", TexturePattern::Checker, 256, light, dark);
+      m.texture_repeats_per_metre = 2.5f;  // 8 x 8 squares of 5 cm
+      return m;
+    }
+    default:
+      return fallback_material();
+  }
+}
+
+// Metals, the mirror and glass: the specular materials.
+MaterialSpec MaterialPalette::make_specular(MaterialRole role) {
+  switch (role) {
     case MaterialRole::RoughMetal: {
       const vec3 f0 = rng_.pick(kMetalColours);
       return metal(MaterialKind::RoughMetal, f0, rng_.uniform(0.4f, 0.65f));
@@ -230,17 +290,17 @@ MaterialSpec MaterialPalette::make(MaterialRole role) {
       m.ior = 1.5f;  // soda-lime glass
       return m;
     }
-    case MaterialRole::Checker: {
-      const vec3 light = jitter(rng_, vec3(0.85f));
-      const vec3 dark = jitter(rng_, rng_.pick(kAccentColours));
-      MaterialSpec m = dielectric(MaterialKind::Diffuse, vec3(1.0f), 0.8f);
-      m.base_color_texture = add_texture("checker", TexturePattern::Checker, 256, light, dark);
-      m.texture_repeats_per_metre = 2.5f;  // 8 x 8 squares of 5 cm
-      return m;
-    }
-    // Radiances in W / (sr m^2) = emissive_factor * emissive_strength (docs/commands/scenes-generate.md).
+    default:
+      return fallback_material();
+  }
+}
+
+// Radiances in W / (sr m^2) = emissive_factor * emissive_strength (docs/commands/scenes-generate.md).
+MaterialSpec MaterialPalette::make_light(MaterialRole role) {
+  switch (role) {
     case MaterialRole::LightPanel: {
       const vec3 colour = rng_.pick(kLightColours);
+      const bool hard = preset_ == RoomPreset::Hard;
       return emitter(colour, hard ? rng_.uniform(12.0f, 40.0f) : rng_.uniform(18.0f, 30.0f));
     }
     case MaterialRole::LampShade: {
@@ -253,8 +313,9 @@ MaterialSpec MaterialPalette::make(MaterialRole role) {
       const vec3 colour = rng_.pick(kLightColours);
       return emitter(colour, rng_.uniform(300.0f, 600.0f));
     }
+    default:
+      return fallback_material();
   }
-  return dielectric(MaterialKind::Diffuse, vec3(0.8f), 1.0f);
 }
 
 }  // namespace phyir::scenes

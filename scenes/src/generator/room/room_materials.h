@@ -33,7 +33,14 @@ class MaterialPalette {
   int get(MaterialRole role);
 
  private:
+  // make() hands each role to its step: the shell (walls, ceiling), the floor, furniture
+  // finishes, specular materials (metals, mirror, glass) and lights.
   MaterialSpec make(MaterialRole role);
+  MaterialSpec make_shell(MaterialRole role);
+  MaterialSpec make_floor();
+  MaterialSpec make_furniture(MaterialRole role);
+  MaterialSpec make_specular(MaterialRole role);
+  MaterialSpec make_light(MaterialRole role);
   MaterialSpec make_diffuse(MaterialRole role);
   int add_texture(const std::string& name, TexturePattern pattern, int size, glm::vec3 a,
                   glm::vec3 b);
