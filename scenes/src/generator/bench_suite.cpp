@@ -7,6 +7,7 @@
 
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
+#include "phyir/core/setting_error.h"
 #include "phyir/scenes/apartment_generator.h"
 #include "phyir/scenes/asset_library.h"
 
@@ -60,8 +61,8 @@ std::vector<SuiteScene> generated_rooms(const fs::path& out_dir) {
 
 std::vector<SuiteScene> apartment_rooms(const fs::path& out_dir, const fs::path& asset_dir) {
   if (!fs::exists(asset_dir))
-    fail("{}: no furniture library: install the Debian package sweethome3d-furniture (scripts/install_deps.sh "
-         "does) or pass --assets DIR with .sh3f files", asset_dir.string());
+    fail_setting("asset_dir", "{}: no furniture library: install the Debian package sweethome3d-furniture "
+                 "(scripts/install_deps.sh does) or name a folder with .sh3f files", asset_dir.string());
   const AssetLibrary library = AssetLibrary::open(asset_dir);
   const fs::path dir = out_dir / "apartments";
   for (int index = 0; index < 3; ++index) generate_apartment(dir, index, kSeed, library, ApartmentOptions{});

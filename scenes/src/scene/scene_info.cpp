@@ -206,9 +206,9 @@ json environment_json(const Scene& scene) {
 }
 
 std::string environment_text(const Scene& scene) {
-  if (!scene.environment) return "environment: none declared (phyir render --environment can add one)\n";
+  if (!scene.environment) return "environment: none declared (a render's environment setting can add one)\n";
   const SceneEnvironment& e = *scene.environment;
-  return fmt::format("environment: {} x {:.4g} (extras.phyir.environment; phyir render --environment overrides it)\n",
+  return fmt::format("environment: {} x {:.4g} (extras.phyir.environment; a render's environment setting overrides it)\n",
                      e.path.string(), e.scale);
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// `phyir scenes generate --preset apartment`: an apartment plan (apartment_plan.h), its
+// The scene generator's "apartment" preset: an apartment plan (apartment_plan.h), its
 // shell (apartment_shell.h) and furniture from a Sweet Home 3D library
 // (apartment_furnishing.h), lit by a sky and the sun by day or by its lamps at night,
 // written as one self-contained glTF (docs/apartments.md). The same (seed, index, options)

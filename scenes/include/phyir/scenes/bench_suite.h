@@ -2,11 +2,11 @@
 // The benchmark suite: the scenes every `phyir bench` figure is measured on, scene by scene
 // (docs/bench-suite.md). Small generated rooms keep earlier figures comparable; furnished
 // apartments (real furniture, day and night) and a room made in Blender are what users render.
-//   mini                  --preset mini --seed 1, room 0: a box with a table and a panel light
-//   hard                  --preset hard --seed 1, room 0: glass, mirrors, sphere lights
-//   apartment_day_living  --preset apartment --seed 1, apartment 0 (day): its living room
-//   apartment_night_living                      apartment 1 (night, lamps): its living room
-//   apartment_day_bedroom                       apartment 2 (day): a bedroom
+//   mini                  preset mini, seed 1, room 0: a box with a table and a panel light
+//   hard                  preset hard, seed 1, room 0: glass, mirrors, sphere lights
+//   apartment_day_living  preset apartment, seed 1, apartment 0 (day): its living room
+//   apartment_night_living                   apartment 1 (night, lamps): its living room
+//   apartment_day_bedroom                    apartment 2 (day): a bedroom
 //   blender_lit_room      tests/data/gltf/blender_lit_room: Blender's export, point, spot, sun
 // suite.json lists them; each entry names a glTF file (relative to suite.json) and, where the
 // scene's own camera is not the view, a camera position.
