@@ -44,6 +44,137 @@ bool similar_distances(float a, float b) {
   return std::max(a, b) <= kMaxDistanceRatio * std::min(a, b);
 }
 
+// Per texel of a probe: its centre direction and the largest parallax angle accepted there,
+// a fraction of the texel's smaller extent (texels narrow towards the poles).
+struct TexelParallax {
+  std::vector<glm::vec3> centre;
+  std::vector<float> max_angle;
+};
+
+TexelParallax texel_parallax(const ProbeLayout& layout, float parallax_texels) {
+  const int h = layout.res_height, w = layout.res_width, texels = layout.texels_per_probe();
+  TexelParallax tp{std::vector<glm::vec3>(static_cast<size_t>(texels)), std::vector<float>(static_cast<size_t>(texels))};
+  for (int t = 0; t < texels; ++t) {
+    const int row = t / w;
+    tp.centre[size_t(t)] = probe_texel_direction(row, t % w, h, w, glm::vec2(0.5f));
+    const float width = kTwoPi / float(w) * std::sin(kPi * (float(row) + 0.5f) / float(h));
+    tp.max_angle[size_t(t)] = parallax_texels * std::min(kPi / float(h), width);
+  }
+  return tp;
+}
+
+void check_records(const ProbeLayout& layout, const TexelRecords& records) {
+  const size_t records_needed = size_t(layout.probe_count()) * size_t(layout.texels_per_probe());
+  if (records.distance.size() != records_needed || records.samples.size() != records_needed ||
+      records.variance.size() != records_needed)
+    fail("sharing needs texel records of {} texels, {} given", records_needed, records.samples.size());
+}
+
+// What every probe's average reads: the mosaic before sharing, the grid and its sites,
+// the texel records and the parallax limits.
+struct SharingInputs {
+  const Image& mosaic;
+  const ProbeLayout& layout;
+  const std::vector<ProbeSite>& sites;
+  const std::vector<uint8_t>& computed;
+  const TexelRecords& records;
+  const ProbeSharing& sharing;
+  const TexelParallax& parallax;
+
+  bool usable(int p) const { return computed[size_t(p)] && sites[size_t(p)].valid(); }
+  glm::dvec3 texel(int probe, int t) const {
+    const glm::ivec2 at = layout.mosaic_pixel(probe, t);
+    return glm::dvec3(mosaic.at(at.x, at.y, 0), mosaic.at(at.x, at.y, 1), mosaic.at(at.x, at.y, 2));
+  }
+};
+
+// One probe's texels averaged with its window's, sample-count weighted; one per thread, its
+// buffers reused from probe to probe.
+class WindowAverage {
+ public:
+  explicit WindowAverage(const SharingInputs& in)
+      : in_(in),
+        texels_(in.layout.texels_per_probe()),
+        sum_(static_cast<size_t>(texels_)),
+        weight_(static_cast<size_t>(texels_)),
+        took_(static_cast<size_t>(texels_)) {}
+
+  // Writes probe p's shared texels into `out`; returns how many took in a neighbour.
+  uint64_t share(int p, Image& out) {
+    start_from_own(p);
+    take_in_window(p);
+    return write_shared(p, out);
+  }
+
+ private:
+  void start_from_own(int p) {
+    const size_t base_p = size_t(p) * size_t(texels_);
+    for (int t = 0; t < texels_; ++t) {
+      const double n = in_.records.samples[base_p + size_t(t)];
+      sum_[size_t(t)] = n * in_.texel(p, t);
+      weight_[size_t(t)] = n;
+      took_[size_t(t)] = 0;
+    }
+  }
+
+  // Every usable probe of the (2r+1) x (2r+1) window on p's surface.
+  void take_in_window(int p) {
+    const ProbeLayout& layout = in_.layout;
+    const int r = in_.sharing.radius;
+    const int i = p / layout.grid_width, j = p % layout.grid_width;
+    for (int di = -r; di <= r; ++di) {
+      for (int dj = -r; dj <= r; ++dj) {
+        const int qi = i + di, qj = j + dj;
+        if ((di == 0 && dj == 0) || qi < 0 || qj < 0 || qi >= layout.grid_height || qj >= layout.grid_width) continue;
+        const int q = qi * layout.grid_width + qj;
+        if (!in_.usable(q) || !one_surface(in_.sites[size_t(p)], in_.sites[size_t(q)], in_.sharing.max_baseline))
+          continue;
+        take_in_neighbour(p, q);
+      }
+    }
+  }
+
+  // Probe q's texels that see what p's see: similar distances, small parallax, consistent values.
+  void take_in_neighbour(int p, int q) {
+    const TexelRecords& records = in_.records;
+    const glm::vec3 baseline = in_.sites[size_t(q)].origin - in_.sites[size_t(p)].origin;
+    const size_t base_p = size_t(p) * size_t(texels_), base_q = size_t(q) * size_t(texels_);
+    for (int t = 0; t < texels_; ++t) {
+      const float dp = records.distance[base_p + size_t(t)], dq = records.distance[base_q + size_t(t)];
+      if (!similar_distances(dp, dq)) continue;
+      const glm::vec3& dir = in_.parallax.centre[size_t(t)];
+      const glm::vec3 across = baseline - glm::dot(baseline, dir) * dir;
+      if (!(std::sqrt(glm::dot(across, across)) <= in_.parallax.max_angle[size_t(t)] * std::min(dp, dq))) continue;
+      const glm::dvec3 value = in_.texel(q, t);
+      if (!consistent(in_.texel(p, t), value, records.variance[base_p + size_t(t)],
+                      records.variance[base_q + size_t(t)]))
+        continue;
+      const double n = records.samples[base_q + size_t(t)];
+      sum_[size_t(t)] += n * value;
+      weight_[size_t(t)] += n;
+      took_[size_t(t)] = 1;
+    }
+  }
+
+  uint64_t write_shared(int p, Image& out) const {
+    uint64_t shared = 0;
+    for (int t = 0; t < texels_; ++t) {
+      if (!took_[size_t(t)]) continue;
+      ++shared;
+      const glm::dvec3 v = sum_[size_t(t)] / weight_[size_t(t)];
+      const glm::ivec2 at = in_.layout.mosaic_pixel(p, t);
+      for (int ch = 0; ch < 3; ++ch) out.at(at.x, at.y, ch) = float(v[ch]);
+    }
+    return shared;
+  }
+
+  const SharingInputs& in_;
+  int texels_;
+  std::vector<glm::dvec3> sum_;
+  std::vector<double> weight_;
+  std::vector<uint8_t> took_;
+};
+
 }  // namespace
 
 glm::ivec2 sub_stratum(int i, int j, const ProbeSharing& sharing) {
@@ -56,77 +187,15 @@ Image share_between_neighbours(const Image& mosaic, const ProbeLayout& layout, c
                                const ProbeSharing& sharing, uint64_t* shared_texels) {
   Image out = mosaic;
   if (sharing.radius <= 0) return out;
-  const size_t records_needed = size_t(layout.probe_count()) * size_t(layout.texels_per_probe());
-  if (records.distance.size() != records_needed || records.samples.size() != records_needed ||
-      records.variance.size() != records_needed)
-    fail("sharing needs texel records of {} texels, {} given", records_needed, records.samples.size());
-  const int h = layout.res_height, w = layout.res_width, texels = layout.texels_per_probe();
-  // Per texel: its centre direction and the largest parallax angle accepted there, a
-  // fraction of the texel's smaller extent (texels narrow towards the poles).
-  std::vector<glm::vec3> centre(static_cast<size_t>(texels));
-  std::vector<float> max_angle(static_cast<size_t>(texels));
-  for (int t = 0; t < texels; ++t) {
-    const int row = t / w;
-    centre[size_t(t)] = probe_texel_direction(row, t % w, h, w, glm::vec2(0.5f));
-    const float width = kTwoPi / float(w) * std::sin(kPi * (float(row) + 0.5f) / float(h));
-    max_angle[size_t(t)] = sharing.parallax_texels * std::min(kPi / float(h), width);
-  }
-  auto usable = [&](int p) { return computed[size_t(p)] && sites[size_t(p)].valid(); };
+  check_records(layout, records);
+  const TexelParallax parallax = texel_parallax(layout, sharing.parallax_texels);
+  const SharingInputs in{mosaic, layout, sites, computed, records, sharing, parallax};
   std::atomic<uint64_t> shared{0};
-
   tbb::parallel_for(tbb::blocked_range<int>(0, layout.probe_count(), 16), [&](const tbb::blocked_range<int>& range) {
-    std::vector<glm::dvec3> sum(static_cast<size_t>(texels));
-    std::vector<double> weight(static_cast<size_t>(texels));
-    std::vector<uint8_t> took(static_cast<size_t>(texels));
+    WindowAverage average(in);
     uint64_t local_shared = 0;
-    for (int p = range.begin(); p < range.end(); ++p) {
-      if (!usable(p)) continue;
-      const int i = p / layout.grid_width, j = p % layout.grid_width;
-      const ProbeSite& site = sites[size_t(p)];
-      const size_t base_p = size_t(p) * size_t(texels);
-      auto texel = [&](int probe, int t) {
-        const glm::ivec2 at = layout.mosaic_pixel(probe, t);
-        return glm::dvec3(mosaic.at(at.x, at.y, 0), mosaic.at(at.x, at.y, 1), mosaic.at(at.x, at.y, 2));
-      };
-      for (int t = 0; t < texels; ++t) {
-        const double n = records.samples[base_p + size_t(t)];
-        sum[size_t(t)] = n * texel(p, t);
-        weight[size_t(t)] = n;
-        took[size_t(t)] = 0;
-      }
-      for (int di = -sharing.radius; di <= sharing.radius; ++di) {
-        for (int dj = -sharing.radius; dj <= sharing.radius; ++dj) {
-          const int qi = i + di, qj = j + dj;
-          if ((di == 0 && dj == 0) || qi < 0 || qj < 0 || qi >= layout.grid_height || qj >= layout.grid_width) continue;
-          const int q = qi * layout.grid_width + qj;
-          if (!usable(q) || !one_surface(site, sites[size_t(q)], sharing.max_baseline)) continue;
-          const glm::vec3 baseline = sites[size_t(q)].origin - site.origin;
-          const size_t base_q = size_t(q) * size_t(texels);
-          for (int t = 0; t < texels; ++t) {
-            const float dp = records.distance[base_p + size_t(t)], dq = records.distance[base_q + size_t(t)];
-            if (!similar_distances(dp, dq)) continue;
-            const glm::vec3& dir = centre[size_t(t)];
-            const glm::vec3 across = baseline - glm::dot(baseline, dir) * dir;
-            if (!(std::sqrt(glm::dot(across, across)) <= max_angle[size_t(t)] * std::min(dp, dq))) continue;
-            const glm::dvec3 value = texel(q, t);
-            if (!consistent(texel(p, t), value, records.variance[base_p + size_t(t)],
-                            records.variance[base_q + size_t(t)]))
-              continue;
-            const double n = records.samples[base_q + size_t(t)];
-            sum[size_t(t)] += n * value;
-            weight[size_t(t)] += n;
-            took[size_t(t)] = 1;
-          }
-        }
-      }
-      for (int t = 0; t < texels; ++t) {
-        if (!took[size_t(t)]) continue;
-        ++local_shared;
-        const glm::dvec3 v = sum[size_t(t)] / weight[size_t(t)];
-        const glm::ivec2 at = layout.mosaic_pixel(p, t);
-        for (int ch = 0; ch < 3; ++ch) out.at(at.x, at.y, ch) = float(v[ch]);
-      }
-    }
+    for (int p = range.begin(); p < range.end(); ++p)
+      if (in.usable(p)) local_shared += average.share(p, out);
     shared += local_shared;
   });
   if (shared_texels) *shared_texels = shared.load();
