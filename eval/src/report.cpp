@@ -70,11 +70,8 @@ const std::vector<Column>& table2() {
   return c;
 }
 
-}  // namespace
-
-std::string main_table_markdown(const json& j) { return table(j, table2()); }
-
-std::string report_markdown(const json& j) {
+// The title, what was evaluated against what, and what was not.
+std::string header_section(const json& j) {
   std::string r;
   r += "# PhyIR evaluation report\n\n";
   r += fmt::format("- Dataset: `{}`, split `{}`, {} views in {} scenes\n", j["dataset"].get<std::string>(),
@@ -90,12 +87,20 @@ std::string report_markdown(const json& j) {
       r += fmt::format("- **Not evaluated**: `{}` missing in {} prediction folder(s) (first: {})\n", file, views.size(),
                        views[0].get<std::string>());
   }
+  return r;
+}
 
+std::string materials_section(const json& j) {
+  std::string r;
   r += "\n## Materials, geometry and re-rendering (layout of the paper's Table 2)\n\n";
   r += "MSE for base colour, roughness, metalness and the re-rendered image (linear HDR against `color.exr`); "
        "mean angular error in degrees for normals.\n\n";
-  r += main_table_markdown(j);
+  r += table(j, table2());
+  return r;
+}
 
+std::string relighting_section(const json& j) {
+  std::string r;
   r += "\n## Relighting (layout of Table 5)\n\n";
   const json& s = j["settings"];
   r += fmt::format("Spheres of Table 10's materials rendered by the path tracer lit by the predicted and by the "
@@ -109,14 +114,21 @@ std::string report_markdown(const json& j) {
                  {"Matte silver RMSE", "relight_matte_silver_rmse", "{:.4f}"},
                  {"Mirror silver MAE", "relight_mirror_silver_mae", "{:.4f}"},
                  {"Mirror silver RMSE", "relight_mirror_silver_rmse", "{:.4f}"}});
+  return r;
+}
 
+std::string lighting_section(const json& j) {
+  std::string r;
   r += "\n## Lighting (layout of Table 6)\n\n";
   r += "SSIM of log(1 + L) probes (eq. 7: 5x5 Gaussian window, sigma 1.5, C1 = 1e-4, C2 = 9e-4, circular padding "
        "in u), averaged over the probes valid on both sides; re-render MSE as in Table 2.\n\n";
   r += radiance_units_sentence(j);
   r += table(j, {{"SSIM ↑", "probe_ssim", "{:.4f}"}, {"Re-render error (MSE) ↓", "rerender_mse", "{:.4f}"}});
+  return r;
+}
 
-  const DepthProtocol depth = depth_protocol_of(j);
+std::string depth_section(const json& j, DepthProtocol depth) {
+  std::string r;
   r += "\n## Depth (layout of Tables 7 and 11)\n\n";
   r += depth_protocol_description(depth) + "\n\n";
   r += table(j, {{"MAE", "depth_mae", "{:.4f}"},
@@ -128,7 +140,11 @@ std::string report_markdown(const json& j) {
                  {"δ1 ↑", "depth_delta1", "{:.4f}"},
                  {"δ2 ↑", "depth_delta2", "{:.4f}"},
                  {"δ3 ↑", "depth_delta3", "{:.4f}"}});
+  return r;
+}
 
+std::string per_scene_section(const json& j) {
+  std::string r;
   r += "\n## Per scene (the evaluated method)\n\n";
   r += "| Scene | Views | Base color | Normal | Roughness | Metalness | Re-render | Depth AbsRel | Depth δ1 | SSIM | "
        "Diffuse RMSE | Matte RMSE | Mirror RMSE |\n";
@@ -141,7 +157,11 @@ std::string report_markdown(const json& j) {
                      cell(m, "relight_diffuse_rmse"), cell(m, "relight_matte_silver_rmse"),
                      cell(m, "relight_mirror_silver_rmse"));
   }
+  return r;
+}
 
+std::string masks_section(const json& j, DepthProtocol depth) {
+  std::string r;
   r += "\n## Masks and resolutions\n\n";
   r += "- Maps and the re-render count the pixels where the ground truth sees a surface (`mask_geometry`) that is "
        "neither emissive (`mask_emissive`) nor transparent (`mask_transparent`). ";
@@ -161,7 +181,12 @@ std::string report_markdown(const json& j) {
                    cell(pm, "pixels_maps", "{:.0f}"), cell(pm, "pixels_depth", "{:.0f}"),
                    cell(pm, "pixels_rerender", "{:.0f}"),
                    cell(pm, "probes_compared", "{:.0f}"), cell(pm, "relight_positions", "{:.0f}"));
+  return r;
+}
 
+// Empty when the report has no figures.
+std::string figures_section(const json& j) {
+  std::string r;
   if (!j["figures"].empty()) {
     r += "\n## Side by side\n\n";
     r += "Columns: input / ground truth / prediction. Rows: input.png, color.exr and the re-render (tone-mapped at "
@@ -171,6 +196,16 @@ std::string report_markdown(const json& j) {
     for (const json& f : j["figures"]) r += fmt::format("![{}]({})\n\n", f.get<std::string>(), f.get<std::string>());
   }
   return r;
+}
+
+}  // namespace
+
+std::string main_table_markdown(const json& j) { return table(j, table2()); }
+
+std::string report_markdown(const json& j) {
+  const DepthProtocol depth = depth_protocol_of(j);
+  return header_section(j) + materials_section(j) + relighting_section(j) + lighting_section(j) +
+         depth_section(j, depth) + per_scene_section(j) + masks_section(j, depth) + figures_section(j);
 }
 
 }  // namespace phyir::eval
