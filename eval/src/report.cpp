@@ -12,18 +12,18 @@ namespace {
 
 using nlohmann::json;
 
-// The protocol of the depth metrics; files written before there was a choice used `toolkit`.
 // Which unit the radiance metrics (re-render, probes, relighting) were scored in.
 std::string radiance_units_sentence(const json& j) {
   const json& s = j["settings"];
   const std::string units = s.contains("radiance_units") ? s["radiance_units"].get<std::string>() : "absolute";
   if (units == "input")
     return "Radiance metrics (re-render, probes, relighting) in each view's input units: both sides times "
-           "2^exposure_stops of its input image (`--radiance input`).\n\n";
+           "2^exposure_stops of its input image (radiance units `input`).\n\n";
   return "Radiance metrics (re-render, probes, relighting) in absolute radiance, color.exr's unit "
-         "(`--radiance absolute`).\n\n";
+         "(radiance units `absolute`).\n\n";
 }
 
+// The protocol of the depth metrics; files written before there was a choice used `toolkit`.
 DepthProtocol depth_protocol_of(const json& j) {
   const json& s = j.at("settings");
   return s.contains("depth_protocol") ? parse_depth_protocol(s["depth_protocol"].get<std::string>())
