@@ -217,217 +217,316 @@ struct PixelGrad {
   bool geometry;  // n or R need a gradient: differentiate the sample directions too
 };
 
-// Forward (grad == nullptr: writes out_d, out_s) or backward (accumulates into grad).
+// The specular lobe's terms of one pixel: F0 = 0.04 (1 - M) + M B and Schlick's k = (R + 1)^2 / 8.
 template <typename T>
-void shade_pixel(const PixelIn<T>& in, const Sizes& sz, uint64_t pixel, T* out_d, T* out_s,
-                 const PixelGrad<T>* grad) {
-  const int h = sz.h, w = sz.w;
-  T B[3], gBc[3] = {0, 0, 0}, gF0[3] = {0, 0, 0};
-  for (int c = 0; c < 3; ++c) B[c] = clamp01(in.B[c]);
-  const T R = clamp01(in.R), M = clamp01(in.M);
-  const V3<T> m{in.n[0], in.n[1], in.n[2]};
-  const T len2 = dot(m, m);
-  const T inv_len = T(1) / std::sqrt(std::max(len2, T(kNormalMinLength2)));
-  const V3<T> n{m.x * inv_len, m.y * inv_len, m.z * inv_len};
-  const Frame<T> fr(n);
-  const V3<T> v{in.v[0], in.v[1], in.v[2]};
-  const V3<T> vl{dot(v, fr.t), dot(v, fr.b), dot(v, n)};
-  if (!grad) {
-    for (int c = 0; c < 3; ++c) out_d[c] = out_s[c] = T(0);
-  }
-  // As render::brdf_eval: a surface seen from below (or within kMinCosine of grazing) is black.
-  if (!(vl.z >= T(kMinCosine))) return;
-  const T NoV = std::min(vl.z, T(1));
-  const bool geo = grad && grad->geometry;
-  V3<T> gt{0, 0, 0}, gb{0, 0, 0}, gn{0, 0, 0}, gvl{0, 0, 0};
-  T gNoV = 0, gk = 0, galpha = 0;
-  const T wf = T(w), hf = T(h);
-  auto dir_grad = [&](const V3<T>& g) { return V3<T>{g.x * wf, g.y * hf, g.z * wf}; };
+struct SpecularTerms {
+  T F0[3];
+  T k;
+};
 
-  Pcg32 rng(mix64(sz.seed), sz.first_stream + pixel);
-  T L[3], gL[3];
+// One GGX half-vector sample (eq. 18): cos^2 = (1-u)/d, sin^2 = alpha^2 u/d, d = (1-u) + alpha^2 u,
+// in the pixel's frame, and l, the view direction vl reflected about it.
+template <typename T>
+struct GgxSample {
+  T u1, d, ch, su, sh, cp, sp;
+  V3<T> hv, l;
+  T VoH, NoL;
+};
+template <typename T>
+inline GgxSample<T> ggx_sample(T u1, T u2, T alpha, T a2, const V3<T>& vl) {
+  GgxSample<T> g;
+  g.u1 = u1;
+  const T phi = u2 * T(static_cast<float>(2.0 * kPi));
+  g.d = (T(1) - u1) + a2 * u1;
+  g.ch = std::sqrt((T(1) - u1) / g.d);
+  g.su = std::sqrt(u1 / g.d);
+  g.sh = alpha * g.su;
+  g.cp = std::cos(phi);
+  g.sp = std::sin(phi);
+  g.hv = {g.sh * g.cp, g.sh * g.sp, g.ch};
+  g.VoH = dot(vl, g.hv);
+  g.l = {T(2) * g.VoH * g.hv.x - vl.x, T(2) * g.VoH * g.hv.y - vl.y, T(2) * g.VoH * g.hv.z - vl.z};
+  g.NoL = g.l.z;
+  return g;
+}
+
+// A GGX sample's weight, F G1(NoL) VoH / ((NoV (1-k) + k) NoH): D cancelled, no division by
+// alpha. `common` is its colourless part; qv = NoV (1-k) + k.
+template <typename T>
+struct GgxWeight {
+  T VoHc, fc, NoLc, qL, G1L, den, common;
+  T F[3];
+};
+template <typename T>
+inline GgxWeight<T> ggx_weight(const GgxSample<T>& g, const SpecularTerms<T>& sp, T qv) {
+  GgxWeight<T> e;
+  e.VoHc = std::min(g.VoH, T(1));
+  e.fc = fresnel_weight(e.VoHc);
+  e.NoLc = std::min(g.NoL, T(1));
+  e.qL = e.NoLc * (T(1) - sp.k) + sp.k;
+  e.G1L = e.NoLc / e.qL;
+  e.den = qv * g.ch;
+  e.common = e.G1L * e.VoHc / e.den;
+  for (int c = 0; c < 3; ++c) e.F[c] = sp.F0[c] + (T(1) - sp.F0[c]) * e.fc;
+  return e;
+}
+
+// One pixel's estimate, forward (grad == nullptr: writes out_d, out_s) or backward (accumulates
+// into *grad), as named steps: the diffuse samples, the mirror or GGX specular lobe, then the
+// pixel-level backward through the material and the geometry. The gradients of the pixel's
+// intermediate quantities are accumulated in its members over the samples. Built on the stack
+// per pixel; every step is inline (no allocation, no virtual call).
+template <typename T>
+class PixelShader {
+ public:
+  PixelShader(const PixelIn<T>& in, const Sizes& sz, const PixelGrad<T>* grad)
+      : in_(in),
+        sz_(sz),
+        grad_(grad),
+        h_(sz.h),
+        w_(sz.w),
+        R_(clamp01(in.R)),
+        M_(clamp01(in.M)),
+        m_{in.n[0], in.n[1], in.n[2]},
+        len2_(dot(m_, m_)),
+        inv_len_(T(1) / std::sqrt(std::max(len2_, T(kNormalMinLength2)))),
+        n_{m_.x * inv_len_, m_.y * inv_len_, m_.z * inv_len_},
+        fr_(n_),
+        v_{in.v[0], in.v[1], in.v[2]},
+        vl_{dot(v_, fr_.t), dot(v_, fr_.b), dot(v_, n_)},
+        geo_(grad && grad->geometry) {
+    for (int c = 0; c < 3; ++c) B_[c] = clamp01(in.B[c]);
+  }
+
+  // As render::brdf_eval: a surface seen from below (or within kMinCosine of grazing) is black.
+  bool faces_viewer() const { return vl_.z >= T(kMinCosine); }
 
   // --- Diffuse: cosine samples, f_d L cos / pdf = B (1 - M) L (eq. 18) ---
-  if (sz.nd > 0) {
-    T sumL[3] = {0, 0, 0};
-    const T scale = T(1) / T(sz.nd);
+  void diffuse(Pcg32& rng, T* out_d) {
+    if (sz_.nd <= 0) return;
+    T sumL[3] = {0, 0, 0}, L[3];
+    const T scale = T(1) / T(sz_.nd);
     T kd[3];  // dLoss/dL of one sample
-    if (grad)
-      for (int c = 0; c < 3; ++c) kd[c] = grad->gd[c] * B[c] * (T(1) - M) * scale;
-    for (int s = 0; s < sz.nd; ++s) {
+    if (grad_)
+      for (int c = 0; c < 3; ++c) kd[c] = grad_->gd[c] * B_[c] * (T(1) - M_) * scale;
+    for (int s = 0; s < sz_.nd; ++s) {
       T u1, u2;
       draw(rng, 0.0, kDiffuseUMax, u1, u2);
       const T phi = u2 * T(static_cast<float>(2.0 * kPi));
       const T r = std::sqrt(u1), z = std::sqrt(T(1) - u1);
       if (!(z >= T(kMinCosine))) continue;
       const V3<T> l{r * std::cos(phi), r * std::sin(phi), z};
-      const V3<T> wd = fr.to_world(l);
-      const Lookup<T> lk(wd, h, w, geo);
-      lk.value(in.probe, L);
+      const Lookup<T> lk(fr_.to_world(l), h_, w_, geo_);
+      lk.value(in_.probe, L);
       for (int c = 0; c < 3; ++c) sumL[c] += L[c];
-      if (grad) {
-        const V3<T> gw = dir_grad(lk.backward(in.probe, kd, grad->gprobe, geo));
-        if (geo) {  // wd = l.x t + l.y b + l.z n
-          axpy(gt, l.x, gw);
-          axpy(gb, l.y, gw);
-          axpy(gn, l.z, gw);
-        }
+      if (grad_) {
+        const V3<T> gw = direction_grad(lk.backward(in_.probe, kd, grad_->gprobe, geo_));
+        if (geo_) to_world_backward(l, gw);
       }
     }
     for (int c = 0; c < 3; ++c) {
       const T meanL = sumL[c] * scale;
-      if (!grad) {
-        out_d[c] = B[c] * (T(1) - M) * meanL;
+      if (!grad_) {
+        out_d[c] = B_[c] * (T(1) - M_) * meanL;
       } else {
-        gBc[c] += grad->gd[c] * (T(1) - M) * meanL;
-        *grad->gM -= grad->gd[c] * B[c] * meanL * inside01(in.M);
+        gBc_[c] += grad_->gd[c] * (T(1) - M_) * meanL;
+        *grad_->gM -= grad_->gd[c] * B_[c] * meanL * inside01(in_.M);
       }
     }
   }
 
-  // --- Specular ---
-  T F0[3];
-  for (int c = 0; c < 3; ++c) F0[c] = T(0.04) * (T(1) - M) + M * B[c];
-  const T k = (R + T(1)) * (R + T(1)) / T(8);
-  if (R < T(kMirrorRoughness)) {
-    // Mirror: the delta reflection F(NoV) G1(NoV)^2 L(reflect(v, n)).
-    const T VoN = dot(v, n);
-    const V3<T> refl{T(2) * VoN * n.x - v.x, T(2) * VoN * n.y - v.y, T(2) * VoN * n.z - v.z};
-    const Lookup<T> lk(refl, h, w, geo);
-    lk.value(in.probe, L);
-    const T fc = fresnel_weight(NoV);
-    const T q = NoV * (T(1) - k) + k;
-    const T G1 = NoV / q;
-    T Fv[3];
-    for (int c = 0; c < 3; ++c) Fv[c] = F0[c] + (T(1) - F0[c]) * fc;
-    if (!grad) {
-      for (int c = 0; c < 3; ++c) out_s[c] = Fv[c] * G1 * G1 * L[c];
-    } else {
-      T gfc = 0, gG1 = 0;
-      for (int c = 0; c < 3; ++c) {
-        gL[c] = grad->gs[c] * Fv[c] * G1 * G1;
-        const T gF = grad->gs[c] * G1 * G1 * L[c];
-        gF0[c] += gF * (T(1) - fc);
-        gfc += gF * (T(1) - F0[c]);
-        gG1 += grad->gs[c] * Fv[c] * T(2) * G1 * L[c];
-      }
-      gNoV += gfc * fresnel_weight_grad(NoV, fc) + gG1 * k / (q * q);
-      gk += gG1 * (-NoV * (T(1) - NoV)) / (q * q);
-      const V3<T> gr = dir_grad(lk.backward(in.probe, gL, grad->gprobe, geo));
-      if (geo) {  // refl = 2 (v.n) n - v
-        axpy(gn, T(2) * VoN, gr);
-        axpy(gn, T(2) * dot(gr, n), v);
-      }
-    }
-  } else if (sz.ns > 0) {
-    // GGX half vectors (eq. 18): cos^2 = (1-u)/d, sin^2 = alpha^2 u/d, d = (1-u) + alpha^2 u;
-    // estimator F G1(NoL) VoH / ((NoV (1-k) + k) NoH): D cancelled, no division by alpha.
-    const T alpha = R * R, a2 = alpha * alpha;
-    const T scale = T(1) / T(sz.ns);
-    const T qv = NoV * (T(1) - k) + k;
-    T sum[3] = {0, 0, 0};
-    for (int s = 0; s < sz.ns; ++s) {
-      T u1, u2;
-      draw(rng, kSpecularUMin, kSpecularUMax, u1, u2);
-      const T phi = u2 * T(static_cast<float>(2.0 * kPi));
-      const T d = (T(1) - u1) + a2 * u1;
-      const T ch = std::sqrt((T(1) - u1) / d);
-      const T su = std::sqrt(u1 / d);
-      const T sh = alpha * su;
-      const T cp = std::cos(phi), sp = std::sin(phi);
-      const V3<T> hv{sh * cp, sh * sp, ch};
-      const T VoH = dot(vl, hv);
-      const V3<T> l{T(2) * VoH * hv.x - vl.x, T(2) * VoH * hv.y - vl.y, T(2) * VoH * hv.z - vl.z};
-      const T NoL = l.z;
-      if (!(NoL >= T(kMinCosine) && VoH > T(0))) continue;  // reflected below the horizon: 0
-      const V3<T> wd = fr.to_world(l);
-      const Lookup<T> lk(wd, h, w, geo);
-      lk.value(in.probe, L);
-      const T VoHc = std::min(VoH, T(1));
-      const T fc = fresnel_weight(VoHc);
-      const T NoLc = std::min(NoL, T(1));
-      const T qL = NoLc * (T(1) - k) + k;
-      const T G1L = NoLc / qL;
-      const T den = qv * ch;
-      const T common = G1L * VoHc / den;
-      T F[3];
-      for (int c = 0; c < 3; ++c) F[c] = F0[c] + (T(1) - F0[c]) * fc;
-      if (!grad) {
-        for (int c = 0; c < 3; ++c) sum[c] += F[c] * common * L[c];
-        continue;
-      }
-      // Backward of: sum_c += F_c common L_c (scaled by 1/Ns).
-      T gcommon = 0, gfc = 0;
-      for (int c = 0; c < 3; ++c) {
-        const T a = grad->gs[c] * scale;
-        gL[c] = a * F[c] * common;
-        const T gF = a * common * L[c];
-        gF0[c] += gF * (T(1) - fc);
-        gfc += gF * (T(1) - F0[c]);
-        gcommon += a * F[c] * L[c];
-      }
-      // common = G1L VoHc / den
-      const T gG1L = gcommon * VoHc / den;
-      T gVoHc = gcommon * G1L / den + gfc * fresnel_weight_grad(VoHc, fc);
-      const T gden = -gcommon * common / den;
-      // G1L = NoLc / (NoLc (1-k) + k);  den = (NoV (1-k) + k) ch
-      const T gNoLc = gG1L * k / (qL * qL);
-      gk += gG1L * (-NoLc * (T(1) - NoLc)) / (qL * qL) + gden * (T(1) - NoV) * ch;
-      gNoV += gden * (T(1) - k) * ch;
-      T gch = gden * qv;
-      const V3<T> gw = dir_grad(lk.backward(in.probe, gL, grad->gprobe, geo));
-      if (!geo) continue;
-      // wd = l.x t + l.y b + l.z n
-      axpy(gt, l.x, gw);
-      axpy(gb, l.y, gw);
-      axpy(gn, l.z, gw);
-      V3<T> gl{dot(gw, fr.t), dot(gw, fr.b), dot(gw, n)};
-      gl.z += NoL <= T(1) ? gNoLc : T(0);
-      // l = 2 VoH hv - vl
-      T gVoH = (VoH <= T(1) ? gVoHc : T(0)) + T(2) * dot(gl, hv);
-      V3<T> ghv{T(2) * VoH * gl.x, T(2) * VoH * gl.y, T(2) * VoH * gl.z};
-      axpy(gvl, T(-1), gl);
-      // VoH = vl . hv
-      axpy(gvl, gVoH, hv);
-      axpy(ghv, gVoH, vl);
-      // hv = (sh cos phi, sh sin phi, ch); ch, sh functions of alpha
-      const T gsh = ghv.x * cp + ghv.y * sp;
-      gch += ghv.z;
-      galpha += gch * (-ch * alpha * u1 / d) + gsh * su * (T(1) - a2 * u1 / d);
-    }
-    if (!grad)
-      for (int c = 0; c < 3; ++c) out_s[c] = sum[c] * scale;
+  // --- Specular: the mirror below kMirrorRoughness, else GGX samples ---
+  void specular(Pcg32& rng, T* out_s) {
+    SpecularTerms<T> sp;
+    for (int c = 0; c < 3; ++c) sp.F0[c] = T(0.04) * (T(1) - M_) + M_ * B_[c];
+    sp.k = (R_ + T(1)) * (R_ + T(1)) / T(8);
+    if (R_ < T(kMirrorRoughness))
+      mirror(sp, out_s);
+    else if (sz_.ns > 0)
+      ggx(sp, rng, out_s);
   }
-  if (!grad) return;
 
   // --- Pixel-level backward: F0, k, alpha, NoV, vl, frame, normalisation ---
-  for (int c = 0; c < 3; ++c) {
-    gBc[c] += gF0[c] * M;
-    *grad->gM += gF0[c] * (B[c] - T(0.04)) * inside01(in.M);
-    grad->gB[c] += gBc[c] * inside01(in.B[c]);
+  void backward_to_inputs() {
+    material_backward();
+    if (geo_) geometry_backward();
   }
-  *grad->gR += (galpha * T(2) * R + gk * (R + T(1)) / T(4)) * inside01(in.R);
-  if (!geo) return;
-  if (vl.z <= T(1)) gvl.z += gNoV;  // NoV = clamp(vl.z, kMinCosine, 1)
-  // vl = (v.t, v.b, v.n)
-  axpy(gt, gvl.x, v);
-  axpy(gb, gvl.y, v);
-  axpy(gn, gvl.z, v);
-  const V3<T> gf = fr.backward(gt, gb);
-  gn.x += gf.x;
-  gn.y += gf.y;
-  gn.z += gf.z;
-  // n = m / sqrt(max(|m|^2, kNormalMinLength2))
-  if (len2 >= T(kNormalMinLength2)) {
-    const T ng = dot(n, gn);
-    grad->gn[0] += (gn.x - n.x * ng) * inv_len;
-    grad->gn[1] += (gn.y - n.y * ng) * inv_len;
-    grad->gn[2] += (gn.z - n.z * ng) * inv_len;
-  } else {
-    grad->gn[0] += gn.x * inv_len;
-    grad->gn[1] += gn.y * inv_len;
-    grad->gn[2] += gn.z * inv_len;
+
+ private:
+  // Mirror: the delta reflection F(NoV) G1(NoV)^2 L(reflect(v, n)).
+  void mirror(const SpecularTerms<T>& sp, T* out_s) {
+    const T VoN = dot(v_, n_);
+    const V3<T> refl{T(2) * VoN * n_.x - v_.x, T(2) * VoN * n_.y - v_.y, T(2) * VoN * n_.z - v_.z};
+    const Lookup<T> lk(refl, h_, w_, geo_);
+    T L[3];
+    lk.value(in_.probe, L);
+    const T NoV = no_v();
+    const T fc = fresnel_weight(NoV);
+    const T q = NoV * (T(1) - sp.k) + sp.k;
+    const T G1 = NoV / q;
+    T Fv[3];
+    for (int c = 0; c < 3; ++c) Fv[c] = sp.F0[c] + (T(1) - sp.F0[c]) * fc;
+    if (!grad_) {
+      for (int c = 0; c < 3; ++c) out_s[c] = Fv[c] * G1 * G1 * L[c];
+      return;
+    }
+    T gL[3], gfc = 0, gG1 = 0;
+    for (int c = 0; c < 3; ++c) {
+      gL[c] = grad_->gs[c] * Fv[c] * G1 * G1;
+      const T gF = grad_->gs[c] * G1 * G1 * L[c];
+      gF0_[c] += gF * (T(1) - fc);
+      gfc += gF * (T(1) - sp.F0[c]);
+      gG1 += grad_->gs[c] * Fv[c] * T(2) * G1 * L[c];
+    }
+    gNoV_ += gfc * fresnel_weight_grad(NoV, fc) + gG1 * sp.k / (q * q);
+    gk_ += gG1 * (-NoV * (T(1) - NoV)) / (q * q);
+    const V3<T> gr = direction_grad(lk.backward(in_.probe, gL, grad_->gprobe, geo_));
+    if (geo_) {  // refl = 2 (v.n) n - v
+      axpy(gn_, T(2) * VoN, gr);
+      axpy(gn_, T(2) * dot(gr, n_), v_);
+    }
   }
+
+  // GGX half vectors, each sample weighted by ggx_weight.
+  void ggx(const SpecularTerms<T>& sp, Pcg32& rng, T* out_s) {
+    const T alpha = R_ * R_, a2 = alpha * alpha;
+    const T scale = T(1) / T(sz_.ns);
+    const T qv = no_v() * (T(1) - sp.k) + sp.k;
+    T sum[3] = {0, 0, 0}, L[3];
+    for (int s = 0; s < sz_.ns; ++s) {
+      T u1, u2;
+      draw(rng, kSpecularUMin, kSpecularUMax, u1, u2);
+      const GgxSample<T> g = ggx_sample(u1, u2, alpha, a2, vl_);
+      if (!(g.NoL >= T(kMinCosine) && g.VoH > T(0))) continue;  // reflected below the horizon: 0
+      const Lookup<T> lk(fr_.to_world(g.l), h_, w_, geo_);
+      lk.value(in_.probe, L);
+      const GgxWeight<T> e = ggx_weight(g, sp, qv);
+      if (!grad_) {
+        for (int c = 0; c < 3; ++c) sum[c] += e.F[c] * e.common * L[c];
+        continue;
+      }
+      ggx_sample_backward(g, e, lk, L, sp, scale, qv, alpha, a2);
+    }
+    if (!grad_)
+      for (int c = 0; c < 3; ++c) out_s[c] = sum[c] * scale;
+  }
+
+  // Backward of: sum_c += F_c common L_c (scaled by 1/Ns).
+  void ggx_sample_backward(const GgxSample<T>& g, const GgxWeight<T>& e, const Lookup<T>& lk, const T* L,
+                           const SpecularTerms<T>& sp, T scale, T qv, T alpha, T a2) {
+    T gL[3], gcommon = 0, gfc = 0;
+    for (int c = 0; c < 3; ++c) {
+      const T a = grad_->gs[c] * scale;
+      gL[c] = a * e.F[c] * e.common;
+      const T gF = a * e.common * L[c];
+      gF0_[c] += gF * (T(1) - e.fc);
+      gfc += gF * (T(1) - sp.F0[c]);
+      gcommon += a * e.F[c] * L[c];
+    }
+    // common = G1L VoHc / den
+    const T gG1L = gcommon * e.VoHc / e.den;
+    const T gVoHc = gcommon * e.G1L / e.den + gfc * fresnel_weight_grad(e.VoHc, e.fc);
+    const T gden = -gcommon * e.common / e.den;
+    // G1L = NoLc / (NoLc (1-k) + k);  den = (NoV (1-k) + k) ch
+    const T gNoLc = gG1L * sp.k / (e.qL * e.qL);
+    gk_ += gG1L * (-e.NoLc * (T(1) - e.NoLc)) / (e.qL * e.qL) + gden * (T(1) - no_v()) * g.ch;
+    gNoV_ += gden * (T(1) - sp.k) * g.ch;
+    const T gch = gden * qv;
+    const V3<T> gw = direction_grad(lk.backward(in_.probe, gL, grad_->gprobe, geo_));
+    if (geo_) ggx_direction_backward(g, gw, gVoHc, gNoLc, gch, alpha, a2);
+  }
+
+  // The sample direction's share: through l to the frame, the half vector and alpha.
+  void ggx_direction_backward(const GgxSample<T>& g, const V3<T>& gw, T gVoHc, T gNoLc, T gch, T alpha, T a2) {
+    to_world_backward(g.l, gw);
+    V3<T> gl{dot(gw, fr_.t), dot(gw, fr_.b), dot(gw, n_)};
+    gl.z += g.NoL <= T(1) ? gNoLc : T(0);
+    // l = 2 VoH hv - vl
+    T gVoH = (g.VoH <= T(1) ? gVoHc : T(0)) + T(2) * dot(gl, g.hv);
+    V3<T> ghv{T(2) * g.VoH * gl.x, T(2) * g.VoH * gl.y, T(2) * g.VoH * gl.z};
+    axpy(gvl_, T(-1), gl);
+    // VoH = vl . hv
+    axpy(gvl_, gVoH, g.hv);
+    axpy(ghv, gVoH, vl_);
+    // hv = (sh cos phi, sh sin phi, ch); ch, sh functions of alpha
+    const T gsh = ghv.x * g.cp + ghv.y * g.sp;
+    gch += ghv.z;
+    galpha_ += gch * (-g.ch * alpha * g.u1 / g.d) + gsh * g.su * (T(1) - a2 * g.u1 / g.d);
+  }
+
+  // F0, k and alpha onto base colour, metalness and roughness (through their clamps).
+  void material_backward() {
+    for (int c = 0; c < 3; ++c) {
+      gBc_[c] += gF0_[c] * M_;
+      *grad_->gM += gF0_[c] * (B_[c] - T(0.04)) * inside01(in_.M);
+      grad_->gB[c] += gBc_[c] * inside01(in_.B[c]);
+    }
+    *grad_->gR += (galpha_ * T(2) * R_ + gk_ * (R_ + T(1)) / T(4)) * inside01(in_.R);
+  }
+
+  // NoV and vl onto the frame, the frame onto n, n onto the unnormalised normal.
+  void geometry_backward() {
+    if (vl_.z <= T(1)) gvl_.z += gNoV_;  // NoV = clamp(vl.z, kMinCosine, 1)
+    // vl = (v.t, v.b, v.n)
+    axpy(gt_, gvl_.x, v_);
+    axpy(gb_, gvl_.y, v_);
+    axpy(gn_, gvl_.z, v_);
+    const V3<T> gf = fr_.backward(gt_, gb_);
+    gn_.x += gf.x;
+    gn_.y += gf.y;
+    gn_.z += gf.z;
+    // n = m / sqrt(max(|m|^2, kNormalMinLength2))
+    if (len2_ >= T(kNormalMinLength2)) {
+      const T ng = dot(n_, gn_);
+      grad_->gn[0] += (gn_.x - n_.x * ng) * inv_len_;
+      grad_->gn[1] += (gn_.y - n_.y * ng) * inv_len_;
+      grad_->gn[2] += (gn_.z - n_.z * ng) * inv_len_;
+    } else {
+      grad_->gn[0] += gn_.x * inv_len_;
+      grad_->gn[1] += gn_.y * inv_len_;
+      grad_->gn[2] += gn_.z * inv_len_;
+    }
+  }
+
+  T no_v() const { return std::min(vl_.z, T(1)); }
+  // A lookup's direction gradient is per texel: times w and h.
+  V3<T> direction_grad(const V3<T>& g) const { return V3<T>{g.x * T(w_), g.y * T(h_), g.z * T(w_)}; }
+  void to_world_backward(const V3<T>& l, const V3<T>& gw) {  // wd = l.x t + l.y b + l.z n
+    axpy(gt_, l.x, gw);
+    axpy(gb_, l.y, gw);
+    axpy(gn_, l.z, gw);
+  }
+
+  const PixelIn<T>& in_;
+  const Sizes& sz_;
+  const PixelGrad<T>* grad_;
+  const int h_, w_;
+  T B_[3];
+  const T R_, M_;
+  const V3<T> m_;
+  const T len2_, inv_len_;
+  const V3<T> n_;
+  const Frame<T> fr_;
+  const V3<T> v_, vl_;
+  const bool geo_;  // n or R need a gradient: differentiate the sample directions too
+  // Gradients accumulated over the samples.
+  T gBc_[3] = {0, 0, 0}, gF0_[3] = {0, 0, 0};
+  V3<T> gt_{0, 0, 0}, gb_{0, 0, 0}, gn_{0, 0, 0}, gvl_{0, 0, 0};
+  T gNoV_ = 0, gk_ = 0, galpha_ = 0;
+};
+
+template <typename T>
+void shade_pixel(const PixelIn<T>& in, const Sizes& sz, uint64_t pixel, T* out_d, T* out_s,
+                 const PixelGrad<T>* grad) {
+  PixelShader<T> shader(in, sz, grad);
+  if (!grad) {
+    for (int c = 0; c < 3; ++c) out_d[c] = out_s[c] = T(0);
+  }
+  if (!shader.faces_viewer()) return;
+  Pcg32 rng(mix64(sz.seed), sz.first_stream + pixel);
+  shader.diffuse(rng, out_d);
+  shader.specular(rng, out_s);
+  if (grad) shader.backward_to_inputs();
 }
 
 struct Inputs {
