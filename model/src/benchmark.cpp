@@ -134,6 +134,172 @@ torch::Tensor sum_of(const GMOutput& o) {
   return o.depth.sum() + o.normal.sum() + o.base_color.sum() + o.roughness.sum() + o.metalness.sum();
 }
 
+void set_forward(ModuleCost& c, const Measure& m) {
+  c.forward_ms = m.ms, c.forward_peak_mib = m.peak_mib, c.forward_cpu_ms = m.cpu_ms;
+}
+void set_forward_backward(ModuleCost& c, const Measure& m) {
+  c.forward_backward_ms = m.ms, c.forward_backward_peak_mib = m.peak_mib, c.forward_backward_cpu_ms = m.cpu_ms;
+}
+
+// Bad names fail before minutes of measuring, not after.
+void check_options(const ModelBenchOptions& o) {
+  for (const std::string& name : o.settings) setting_named(name);
+  for (const std::string& head : o.lnet_heads)
+    if (head != "paper" && head != "light") fail("bench model: LNet head '{}': paper or light", head);
+  if (o.threads < 1 || o.repeats < 0) fail("bench model: threads {} and repeats {}: at least 1 and 0", o.threads, o.repeats);
+}
+
+// The modules of one setting, measured in this order (the weights and inputs are drawn from
+// the seed in this order): inference's first call, GMNet and its parts, GSNet, the rendering
+// layer, then LNet and full inference per head. Each result goes to `report` as it comes.
+class SettingBench {
+ public:
+  using Report = std::function<void(const ModuleCost&)>;
+
+  SettingBench(const ModelBenchOptions& o, const std::string& sname, const Report& report)
+      : o_(o), sname_(sname), s_(setting_named(sname)), report_(report) {
+    torch::manual_seed(static_cast<int64_t>(o.seed));
+    in_shape_ = fmt::format("input {}x{}", s_.Wi, s_.Hi);
+    render_shape_ = fmt::format("{}x{}, {}x{} probes, {}/{} samples", s_.Wr, s_.Hr, s_.w, s_.h, s_.nd, s_.ns);
+    gm_ = GMNet();
+    gs_ = GSNet(2);
+    image_ = torch::rand({1, 3, s_.Hi, s_.Wi});
+  }
+
+  void run() {
+    if (!o_.lnet_heads.empty()) first_inference();
+    {
+      torch::NoGradGuard ng;
+      gm_->eval();
+      gm_out_ = gm_->forward(image_);
+    }
+    gmnet();
+    gmnet_parts();
+    gsnet();
+    rendering_layer();
+    for (const std::string& head : o_.lnet_heads) lnet_and_inference(head);
+  }
+
+ private:
+  // First, before anything has run at these sizes: the first head's inference, once.
+  void first_inference() {
+    const std::string& head = o_.lnet_heads.front();
+    LNet ln(s_.h, s_.w, 1, head == "light");
+    gm_->eval(), gs_->eval(), ln->eval();
+    ModuleCost c{sname_, "inference", head + ", first call", in_shape_ + ", " + render_shape_};
+    const Measure m = measure_once([&] { full_inference(gm_, gs_, ln, image_, s_); });
+    c.forward_ms = m.ms, c.forward_cpu_ms = m.cpu_ms;
+    report_(c);
+  }
+
+  // Forward in eval mode without gradient; with o.backward, forward + backward (`train_step`)
+  // in training mode too. Leaves `net` in eval mode.
+  template <typename Net, typename Forward, typename TrainStep>
+  void time_net(ModuleCost& c, Net& net, const Forward& forward, const TrainStep& train_step) {
+    {
+      torch::NoGradGuard ng;
+      net->eval();
+      set_forward(c, measure(forward, o_.repeats));
+    }
+    if (o_.backward) {
+      net->train();
+      set_forward_backward(c, measure([&] {
+        train_step();
+        net->zero_grad();
+      }, o_.repeats));
+      net->eval();
+    }
+  }
+
+  void gmnet() {
+    ModuleCost c{sname_, "gmnet", "", in_shape_};
+    time_net(c, gm_, [&] { gm_->forward(image_); }, [&] { sum_of(gm_->forward(image_)).backward(); });
+    report_(c);
+  }
+
+  // GMNet's parts: the encoder, and the five decoders on its features.
+  void gmnet_parts() {
+    torch::NoGradGuard ng;
+    const torch::Tensor x = image_ * 2.0 - 1.0;  // as GMNet's forward
+    ModuleCost e{sname_, "gmnet_encoder", "", in_shape_};
+    set_forward(e, measure([&] { gm_->encoder->forward(x); }, o_.repeats));
+    report_(e);
+    const std::vector<torch::Tensor> f = gm_->encoder->forward(x);
+    ModuleCost d{sname_, "gmnet_decoders", "", "5 decoders, " + in_shape_};
+    set_forward(d, measure([&] {
+      for (Decoder* dec : {&gm_->depth, &gm_->normal, &gm_->base_color, &gm_->roughness, &gm_->metalness})
+        (*dec)->forward(f);
+    }, o_.repeats));
+    report_(d);
+  }
+
+  void gsnet() {
+    ModuleCost c{sname_, "gsnet", "", in_shape_ + " (filter at half resolution)"};
+    time_net(c, gs_, [&] { gs_->forward(image_, gm_out_); },
+             [&] { sum_of(gs_->forward(image_, gm_out_)).backward(); });
+    report_(c);
+  }
+
+  // Rendering layer: maps and probes at the rendering resolution.
+  void rendering_layer() {
+    ModuleCost c{sname_, "render_layer", "", render_shape_};
+    const RenderSettings rs = render_settings(s_);
+    const torch::Tensor n = torch::nn::functional::normalize(
+        torch::rand({1, 3, s_.Hr, s_.Wr}) - 0.5, torch::nn::functional::NormalizeFuncOptions().dim(1));
+    const torch::Tensor B = torch::rand({1, 3, s_.Hr, s_.Wr}), R = torch::rand({1, 1, s_.Hr, s_.Wr}),
+                        M = torch::rand({1, 1, s_.Hr, s_.Wr});
+    const torch::Tensor probes = torch::rand({1, s_.Hr, s_.Wr, s_.h, s_.w, 3}) * 2.0;
+    {
+      torch::NoGradGuard ng;
+      set_forward(c, measure([&] { render_layer(n, B, R, M, probes, rs); }, o_.repeats));
+    }
+    if (o_.backward) {
+      // As in the joint stage: every input needs a gradient.
+      std::vector<torch::Tensor> leaves;
+      for (const torch::Tensor& t : {n, B, R, M, probes}) leaves.push_back(t.clone().set_requires_grad(true));
+      set_forward_backward(c, measure([&] {
+        render_layer(leaves[0], leaves[1], leaves[2], leaves[3], leaves[4], rs).image.sum().backward();
+        for (auto& t : leaves) t.mutable_grad() = torch::Tensor();
+      }, o_.repeats));
+    }
+    report_(c);
+  }
+
+  // LNet, then full inference as `phyir infer` runs it (after the warm-up); for the first head
+  // also under InferenceMode.
+  void lnet_and_inference(const std::string& head) {
+    if (head != "paper" && head != "light") fail("bench model: LNet head '{}': paper or light", head);
+    LNet ln(s_.h, s_.w, 1, head == "light");
+    torch::Tensor in;
+    {
+      torch::NoGradGuard ng;
+      in = lnet_input(image_, gm_out_, s_.Hr, s_.Wr);
+    }
+    ModuleCost c{sname_, "lnet", head, fmt::format("{}x{}, {}x{} probes", s_.Wr, s_.Hr, s_.w, s_.h)};
+    time_net(c, ln, [&] { ln->forward(in); }, [&] { ln->forward(in).sum().backward(); });
+    report_(c);
+    ModuleCost f{sname_, "inference", head, in_shape_ + ", " + render_shape_};
+    set_forward(f, measure([&] { full_inference(gm_, gs_, ln, image_, s_); }, o_.repeats));
+    report_(f);
+    if (head == o_.lnet_heads.front()) {
+      ModuleCost g = f;
+      g.variant = head + ", InferenceMode";
+      set_forward(g, measure([&] { full_inference(gm_, gs_, ln, image_, s_, true); }, o_.repeats));
+      report_(g);
+    }
+  }
+
+  const ModelBenchOptions& o_;
+  const std::string sname_;
+  const Setting s_;
+  const Report& report_;
+  std::string in_shape_, render_shape_;
+  GMNet gm_{nullptr};
+  GSNet gs_{nullptr};
+  torch::Tensor image_;
+  GMOutput gm_out_;
+};
+
 }  // namespace
 
 std::string peak_memory_method() {
@@ -146,168 +312,15 @@ std::string peak_memory_method() {
 std::vector<ModuleCost> benchmark_modules(const ModelBenchOptions& o,
                                           const std::function<void(const ModuleCost&)>& progress) {
   init_logging();
-  // Bad names fail before minutes of measuring, not after.
-  for (const std::string& name : o.settings) setting_named(name);
-  for (const std::string& head : o.lnet_heads)
-    if (head != "paper" && head != "light") fail("bench model: LNet head '{}': paper or light", head);
-  if (o.threads < 1 || o.repeats < 0) fail("bench model: threads {} and repeats {}: at least 1 and 0", o.threads, o.repeats);
+  check_options(o);
   set_threads(o.threads);
   retain_freed_memory();  // the commands' memory policy: timed as `phyir infer` runs
   std::vector<ModuleCost> out;
-  auto report = [&](ModuleCost c) {
+  const SettingBench::Report report = [&](const ModuleCost& c) {
     out.push_back(c);
     if (progress) progress(out.back());
   };
-  for (const std::string& sname : o.settings) {
-    const Setting s = setting_named(sname);
-    torch::manual_seed(static_cast<int64_t>(o.seed));
-    const std::string in_shape = fmt::format("input {}x{}", s.Wi, s.Hi);
-    const std::string render_shape =
-        fmt::format("{}x{}, {}x{} probes, {}/{} samples", s.Wr, s.Hr, s.w, s.h, s.nd, s.ns);
-    GMNet gm;
-    GSNet gs(2);
-    const torch::Tensor image = torch::rand({1, 3, s.Hi, s.Wi});
-    if (!o.lnet_heads.empty()) {
-      // First, before anything has run at these sizes: the first head's inference, once.
-      const std::string& head = o.lnet_heads.front();
-      LNet ln(s.h, s.w, 1, head == "light");
-      gm->eval(), gs->eval(), ln->eval();
-      ModuleCost c{sname, "inference", head + ", first call", in_shape + ", " + render_shape};
-      const Measure m = measure_once([&] { full_inference(gm, gs, ln, image, s); });
-      c.forward_ms = m.ms, c.forward_cpu_ms = m.cpu_ms;
-      report(c);
-    }
-    GMOutput gm_out;
-    {
-      torch::NoGradGuard ng;
-      gm->eval();
-      gm_out = gm->forward(image);
-    }
-    // GMNet
-    {
-      ModuleCost c{sname, "gmnet", "", in_shape};
-      {
-        torch::NoGradGuard ng;
-        gm->eval();
-        const Measure m = measure([&] { gm->forward(image); }, o.repeats);
-        c.forward_ms = m.ms, c.forward_peak_mib = m.peak_mib, c.forward_cpu_ms = m.cpu_ms;
-      }
-      if (o.backward) {
-        gm->train();
-        const Measure m = measure([&] {
-          sum_of(gm->forward(image)).backward();
-          gm->zero_grad();
-        }, o.repeats);
-        c.forward_backward_ms = m.ms, c.forward_backward_peak_mib = m.peak_mib, c.forward_backward_cpu_ms = m.cpu_ms;
-        gm->eval();
-      }
-      report(c);
-    }
-    // GMNet's parts: the encoder, and the five decoders on its features.
-    {
-      torch::NoGradGuard ng;
-      const torch::Tensor x = image * 2.0 - 1.0;  // as GMNet's forward
-      ModuleCost e{sname, "gmnet_encoder", "", in_shape};
-      const Measure me = measure([&] { gm->encoder->forward(x); }, o.repeats);
-      e.forward_ms = me.ms, e.forward_peak_mib = me.peak_mib, e.forward_cpu_ms = me.cpu_ms;
-      report(e);
-      const std::vector<torch::Tensor> f = gm->encoder->forward(x);
-      ModuleCost d{sname, "gmnet_decoders", "", "5 decoders, " + in_shape};
-      const Measure md = measure([&] {
-        for (Decoder* dec : {&gm->depth, &gm->normal, &gm->base_color, &gm->roughness, &gm->metalness})
-          (*dec)->forward(f);
-      }, o.repeats);
-      d.forward_ms = md.ms, d.forward_peak_mib = md.peak_mib, d.forward_cpu_ms = md.cpu_ms;
-      report(d);
-    }
-    // GSNet
-    {
-      ModuleCost c{sname, "gsnet", "", in_shape + " (filter at half resolution)"};
-      {
-        torch::NoGradGuard ng;
-        gs->eval();
-        const Measure m = measure([&] { gs->forward(image, gm_out); }, o.repeats);
-        c.forward_ms = m.ms, c.forward_peak_mib = m.peak_mib, c.forward_cpu_ms = m.cpu_ms;
-      }
-      if (o.backward) {
-        gs->train();
-        const Measure m = measure([&] {
-          sum_of(gs->forward(image, gm_out)).backward();
-          gs->zero_grad();
-        }, o.repeats);
-        c.forward_backward_ms = m.ms, c.forward_backward_peak_mib = m.peak_mib, c.forward_backward_cpu_ms = m.cpu_ms;
-        gs->eval();
-      }
-      report(c);
-    }
-    // Rendering layer: maps and probes at the rendering resolution.
-    {
-      ModuleCost c{sname, "render_layer", "", render_shape};
-      RenderSettings rs;
-      rs.diffuse_samples = s.nd;
-      rs.specular_samples = s.ns;
-      const torch::Tensor n = torch::nn::functional::normalize(
-          torch::rand({1, 3, s.Hr, s.Wr}) - 0.5, torch::nn::functional::NormalizeFuncOptions().dim(1));
-      const torch::Tensor B = torch::rand({1, 3, s.Hr, s.Wr}), R = torch::rand({1, 1, s.Hr, s.Wr}),
-                          M = torch::rand({1, 1, s.Hr, s.Wr});
-      const torch::Tensor probes = torch::rand({1, s.Hr, s.Wr, s.h, s.w, 3}) * 2.0;
-      {
-        torch::NoGradGuard ng;
-        const Measure m = measure([&] { render_layer(n, B, R, M, probes, rs); }, o.repeats);
-        c.forward_ms = m.ms, c.forward_peak_mib = m.peak_mib, c.forward_cpu_ms = m.cpu_ms;
-      }
-      if (o.backward) {
-        // As in the joint stage: every input needs a gradient.
-        std::vector<torch::Tensor> leaves;
-        for (const torch::Tensor& t : {n, B, R, M, probes}) leaves.push_back(t.clone().set_requires_grad(true));
-        const Measure m = measure([&] {
-          render_layer(leaves[0], leaves[1], leaves[2], leaves[3], leaves[4], rs).image.sum().backward();
-          for (auto& t : leaves) t.mutable_grad() = torch::Tensor();
-        }, o.repeats);
-        c.forward_backward_ms = m.ms, c.forward_backward_peak_mib = m.peak_mib, c.forward_backward_cpu_ms = m.cpu_ms;
-      }
-      report(c);
-    }
-    // LNet and full inference, once per head.
-    for (const std::string& head : o.lnet_heads) {
-      if (head != "paper" && head != "light") fail("bench model: LNet head '{}': paper or light", head);
-      LNet ln(s.h, s.w, 1, head == "light");
-      torch::Tensor in;
-      {
-        torch::NoGradGuard ng;
-        in = lnet_input(image, gm_out, s.Hr, s.Wr);
-      }
-      ModuleCost c{sname, "lnet", head, fmt::format("{}x{}, {}x{} probes", s.Wr, s.Hr, s.w, s.h)};
-      {
-        torch::NoGradGuard ng;
-        ln->eval();
-        const Measure m = measure([&] { ln->forward(in); }, o.repeats);
-        c.forward_ms = m.ms, c.forward_peak_mib = m.peak_mib, c.forward_cpu_ms = m.cpu_ms;
-      }
-      if (o.backward) {
-        ln->train();
-        const Measure m = measure([&] {
-          ln->forward(in).sum().backward();
-          ln->zero_grad();
-        }, o.repeats);
-        c.forward_backward_ms = m.ms, c.forward_backward_peak_mib = m.peak_mib, c.forward_backward_cpu_ms = m.cpu_ms;
-        ln->eval();
-      }
-      report(c);
-      // Full inference as `phyir infer` runs it, after the warm-up.
-      ModuleCost f{sname, "inference", head, in_shape + ", " + render_shape};
-      const Measure m = measure([&] { full_inference(gm, gs, ln, image, s); }, o.repeats);
-      f.forward_ms = m.ms, f.forward_peak_mib = m.peak_mib, f.forward_cpu_ms = m.cpu_ms;
-      report(f);
-      if (head == o.lnet_heads.front()) {
-        ModuleCost g = f;
-        g.variant = head + ", InferenceMode";
-        const Measure mi = measure([&] { full_inference(gm, gs, ln, image, s, true); }, o.repeats);
-        g.forward_ms = mi.ms, g.forward_peak_mib = mi.peak_mib, g.forward_cpu_ms = mi.cpu_ms;
-        report(g);
-      }
-    }
-  }
+  for (const std::string& sname : o.settings) SettingBench(o, sname, report).run();
   return out;
 }
 
