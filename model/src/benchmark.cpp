@@ -12,8 +12,8 @@
 
 #include "host_memory.h"
 #include "nets.h"
-#include "phyir/core/error.h"
 #include "phyir/core/log.h"
+#include "phyir/core/setting_error.h"
 #include "phyir/model/training.h"
 #include "render_layer.h"
 #include "stage_loss.h"
@@ -101,7 +101,7 @@ struct Setting {
 Setting setting_named(const std::string& name) {
   if (name == "default") return {name, 128, 256, 32, 64, 8, 16, 64, 32};
   if (name == "paper") return {name, 256, 512, 128, 256, 16, 32, 512, 256};
-  fail("bench model: setting '{}': default or paper", name);
+  fail_setting("settings", "'{}' is not one of: default, paper", name);
 }
 
 RenderSettings render_settings(const Setting& s) {
@@ -141,12 +141,16 @@ void set_forward_backward(ModuleCost& c, const Measure& m) {
   c.forward_backward_ms = m.ms, c.forward_backward_peak_mib = m.peak_mib, c.forward_backward_cpu_ms = m.cpu_ms;
 }
 
-// Bad names fail before minutes of measuring, not after.
+void check_lnet_head(const std::string& head) {
+  if (head != "paper" && head != "light") fail_setting("lnet_heads", "'{}' is not one of: paper, light", head);
+}
+
+// Bad values fail before minutes of measuring, not after.
 void check_options(const ModelBenchOptions& o) {
   for (const std::string& name : o.settings) setting_named(name);
-  for (const std::string& head : o.lnet_heads)
-    if (head != "paper" && head != "light") fail("bench model: LNet head '{}': paper or light", head);
-  if (o.threads < 1 || o.repeats < 0) fail("bench model: threads {} and repeats {}: at least 1 and 0", o.threads, o.repeats);
+  for (const std::string& head : o.lnet_heads) check_lnet_head(head);
+  if (o.threads < 1) fail_setting("threads", "{} must be at least 1", o.threads);
+  if (o.repeats < 0) fail_setting("repeats", "{} must be >= 0", o.repeats);
 }
 
 // The modules of one setting, measured in this order (the weights and inputs are drawn from
@@ -268,7 +272,7 @@ class SettingBench {
   // LNet, then full inference as `phyir infer` runs it (after the warm-up); for the first head
   // also under InferenceMode.
   void lnet_and_inference(const std::string& head) {
-    if (head != "paper" && head != "light") fail("bench model: LNet head '{}': paper or light", head);
+    check_lnet_head(head);
     LNet ln(s_.h, s_.w, 1, head == "light");
     torch::Tensor in;
     {
