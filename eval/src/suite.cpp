@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <utility>
 
 #include <spdlog/spdlog.h>
 
@@ -86,14 +87,17 @@ nlohmann::json method_json(const MethodResults& r, const std::vector<std::string
   return j;
 }
 
-}  // namespace
-
-nlohmann::json run_eval(const EvalOptions& o) {
-  const std::vector<nlohmann::json> records = split_views(o.gt_dir, o.split);
+// The views evaluated: the split's, the first max_views of them when that is set.
+std::vector<nlohmann::json> views_to_evaluate(const std::vector<nlohmann::json>& records, const EvalOptions& o) {
   std::vector<nlohmann::json> views = records;
   if (o.max_views > 0 && static_cast<int>(views.size()) > o.max_views) views.resize(size_t(o.max_views));
+  return views;
+}
+
+// Every prediction folder and its required files exist: checked before any work, so a wrong
+// prediction folder (pred_dir) fails at once.
+void check_predictions(const EvalOptions& o, const std::vector<nlohmann::json>& views) {
   if (!fs::is_directory(o.pred_dir)) fail("{}: prediction folder missing", o.pred_dir.string());
-  // Check every prediction folder exists before any work, so a wrong --pred fails at once.
   for (const nlohmann::json& v : views) {
     const fs::path d = o.pred_dir / v.at("id").get<std::string>();
     if (!fs::is_directory(d))
@@ -102,63 +106,110 @@ nlohmann::json run_eval(const EvalOptions& o) {
     for (const std::string& f : required_prediction_files())
       if (!fs::is_regular_file(d / f)) fail("{}: missing (prediction of view {})", (d / f).string(), v.at("id").get<std::string>());
   }
-  fs::create_directories(o.out_dir);
+}
 
-  // Baseline reference: the training split, else the evaluated split itself.
-  BaselineStats stats;
-  if (o.baselines) {
-    std::vector<nlohmann::json> reference;
-    std::string source;
-    try {
-      reference = split_views(o.gt_dir, "train");
-      source = "train split";
-    } catch (const Error&) {
-      reference = records;
-      source = "the evaluated split itself ('" + o.split + "'): there is no train split, so this is an oracle constant";
-    }
-    if (o.baseline_max_views > 0 && static_cast<int>(reference.size()) > o.baseline_max_views)
-      reference.resize(size_t(o.baseline_max_views));
-    source += ", " + std::to_string(reference.size()) + " views";
-    spdlog::info("eval: constant-mean baseline from {}", source);
-    stats = compute_baseline_stats(o.gt_dir, reference, source);
+// Baseline reference: the training split, else the evaluated split itself.
+BaselineStats baseline_stats(const EvalOptions& o, const std::vector<nlohmann::json>& records) {
+  std::vector<nlohmann::json> reference;
+  std::string source;
+  try {
+    reference = split_views(o.gt_dir, "train");
+    source = "train split";
+  } catch (const Error&) {
+    reference = records;
+    source = "the evaluated split itself ('" + o.split + "'): there is no train split, so this is an oracle constant";
   }
+  if (o.baseline_max_views > 0 && static_cast<int>(reference.size()) > o.baseline_max_views)
+    reference.resize(size_t(o.baseline_max_views));
+  source += ", " + std::to_string(reference.size()) + " views";
+  spdlog::info("eval: constant-mean baseline from {}", source);
+  return compute_baseline_stats(o.gt_dir, reference, source);
+}
 
-  MethodResults pred{"prediction", o.model.empty() ? "Prediction (" + o.pred_dir.filename().string() + ")"
-                                                   : "PhyIR (ours, " + fs::path(o.model).filename().string() + ")", {}};
+// Writes the view's side-by-side PNG into figure_dir; returns its path relative to the report.
+std::string write_figure(const fs::path& figure_dir, const GroundTruthView& gt, const ViewImages& images) {
+  fs::create_directories(figure_dir);
+  std::string name = gt.id;
+  for (char& c : name)
+    if (c == '/') c = '_';
+  const fs::path file = figure_dir / (name + ".png");
+  write_side_by_side(file, gt, images);
+  return "figures/" + file.filename().string();
+}
+
+// What evaluating the views gathers: each method's metrics per view, the views' ids and
+// scenes, the optional prediction files missing (file -> views) and the figures written.
+struct ViewResults {
+  MethodResults pred;
   MethodResults constant{"constant_mean", "Constant mean (baseline)", {}};
   MethodResults input_bc{"input_as_basecolor", "Input image as base colour (baseline)", {}};
   std::vector<std::string> ids, scenes;
   std::map<std::string, std::vector<std::string>> missing;
-  const fs::path figure_dir = o.out_dir / "figures";
   std::vector<std::string> figure_files;
+};
 
-  Progress progress("eval", views.size(), "views", o.progress);
-  for (size_t k = 0; k < views.size(); ++k) {
-    const GroundTruthView gt = load_ground_truth(o.gt_dir, views[k]);
-    const Prediction p = load_prediction(o.pred_dir / gt.id);
-    for (const std::string& f : p.missing) missing[f].push_back(gt.id);
-    ids.push_back(gt.id);
-    scenes.push_back(gt.scene);
-    const bool figure = static_cast<int>(k) < o.figures;
-    ViewImages images;
-    pred.views.push_back(evaluate_view(gt, p, o.settings, figure ? &images : nullptr));
-    if (o.baselines) {
-      constant.views.push_back(evaluate_view(gt, constant_mean_prediction(stats, gt, o.settings.radiance_units), o.settings));
-      input_bc.views.push_back(evaluate_view(gt, input_as_basecolor_prediction(gt), o.settings));
+std::string prediction_label(const EvalOptions& o) {
+  return o.model.empty() ? "Prediction (" + o.pred_dir.filename().string() + ")"
+                         : "PhyIR (ours, " + fs::path(o.model).filename().string() + ")";
+}
+
+// The views evaluated one by one, in order: the prediction, then the baselines.
+class ViewEvaluation {
+ public:
+  ViewEvaluation(const EvalOptions& o, const BaselineStats& stats) : o_(o), stats_(stats) {}
+
+  ViewResults run(const std::vector<nlohmann::json>& views) {
+    r_.pred = {"prediction", prediction_label(o_), {}};
+    Progress progress("eval", views.size(), "views", o_.progress);
+    for (size_t k = 0; k < views.size(); ++k) {
+      evaluate(views[k], static_cast<int>(k) < o_.figures);
+      progress.advance();
     }
-    if (figure) {
-      fs::create_directories(figure_dir);
-      std::string name = gt.id;
-      for (char& c : name)
-        if (c == '/') c = '_';
-      const fs::path file = figure_dir / (name + ".png");
-      write_side_by_side(file, gt, images);
-      figure_files.push_back("figures/" + file.filename().string());
-    }
-    progress.advance();
+    progress.finish();
+    return std::move(r_);
   }
-  progress.finish();
 
+ private:
+  void evaluate(const nlohmann::json& view, bool figure) {
+    const GroundTruthView gt = load_ground_truth(o_.gt_dir, view);
+    const Prediction p = load_prediction(o_.pred_dir / gt.id);
+    for (const std::string& f : p.missing) r_.missing[f].push_back(gt.id);
+    r_.ids.push_back(gt.id);
+    r_.scenes.push_back(gt.scene);
+    ViewImages images;
+    r_.pred.views.push_back(evaluate_view(gt, p, o_.settings, figure ? &images : nullptr));
+    if (o_.baselines) {
+      r_.constant.views.push_back(
+          evaluate_view(gt, constant_mean_prediction(stats_, gt, o_.settings.radiance_units), o_.settings));
+      r_.input_bc.views.push_back(evaluate_view(gt, input_as_basecolor_prediction(gt), o_.settings));
+    }
+    if (figure) r_.figure_files.push_back(write_figure(o_.out_dir / "figures", gt, images));
+  }
+
+  const EvalOptions& o_;
+  const BaselineStats& stats_;
+  ViewResults r_;
+};
+
+nlohmann::json scene_counts(const std::vector<std::string>& scenes) {
+  std::map<std::string, int> n;
+  for (const auto& s : scenes) ++n[s];
+  return nlohmann::json(n);
+}
+
+nlohmann::json settings_json(const EvalSettings& s) {
+  return {{"relight", s.relight},
+          {"relight_positions", s.relight_positions},
+          {"sphere_size", s.sphere.size},
+          {"sphere_spp", s.sphere.spp},
+          {"sphere_max_bounces", s.sphere.max_bounces},
+          {"seed", s.sphere.seed},
+          {"depth_protocol", depth_protocol_name(s.depth_protocol)},
+          {"radiance_units", radiance_units_name(s.radiance_units)}};
+}
+
+// metrics.json's content.
+nlohmann::json eval_json(const EvalOptions& o, const ViewResults& e, const BaselineStats& stats) {
   nlohmann::json j;
   j["format"] = "phyir-eval";
   j["format_version"] = 1;
@@ -166,32 +217,33 @@ nlohmann::json run_eval(const EvalOptions& o) {
   j["split"] = o.split;
   j["predictions"] = o.pred_dir.string();
   j["model"] = o.model.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.model);
-  j["views"] = ids;
-  j["scenes"] = [&] {
-    std::map<std::string, int> n;
-    for (const auto& s : scenes) ++n[s];
-    return nlohmann::json(n);
-  }();
-  j["settings"] = {{"relight", o.settings.relight},
-                   {"relight_positions", o.settings.relight_positions},
-                   {"sphere_size", o.settings.sphere.size},
-                   {"sphere_spp", o.settings.sphere.spp},
-                   {"sphere_max_bounces", o.settings.sphere.max_bounces},
-                   {"seed", o.settings.sphere.seed},
-                   {"depth_protocol", depth_protocol_name(o.settings.depth_protocol)},
-                   {"radiance_units", radiance_units_name(o.settings.radiance_units)}};
+  j["views"] = e.ids;
+  j["scenes"] = scene_counts(e.scenes);
+  j["settings"] = settings_json(o.settings);
   j["baseline_source"] = o.baselines ? nlohmann::json(stats.source) : nlohmann::json(nullptr);
-  j["missing_optional_files"] = missing;
-  j["figures"] = figure_files;
+  j["missing_optional_files"] = e.missing;
+  j["figures"] = e.figure_files;
   nlohmann::json methods;
-  methods[pred.key] = method_json(pred, ids, scenes);
+  methods[e.pred.key] = method_json(e.pred, e.ids, e.scenes);
   if (o.baselines) {
-    methods[constant.key] = method_json(constant, ids, scenes);
-    methods[input_bc.key] = method_json(input_bc, ids, scenes);
+    methods[e.constant.key] = method_json(e.constant, e.ids, e.scenes);
+    methods[e.input_bc.key] = method_json(e.input_bc, e.ids, e.scenes);
   }
   j["methods"] = methods;
-  j["method_order"] = o.baselines ? nlohmann::json({pred.key, constant.key, input_bc.key}) : nlohmann::json({pred.key});
+  j["method_order"] = o.baselines ? nlohmann::json({e.pred.key, e.constant.key, e.input_bc.key}) : nlohmann::json({e.pred.key});
+  return j;
+}
 
+}  // namespace
+
+nlohmann::json run_eval(const EvalOptions& o) {
+  const std::vector<nlohmann::json> records = split_views(o.gt_dir, o.split);
+  const std::vector<nlohmann::json> views = views_to_evaluate(records, o);
+  check_predictions(o, views);
+  fs::create_directories(o.out_dir);
+  const BaselineStats stats = o.baselines ? baseline_stats(o, records) : BaselineStats{};
+  const ViewResults results = ViewEvaluation(o, stats).run(views);
+  const nlohmann::json j = eval_json(o, results, stats);
   write_file_atomic(o.out_dir / "metrics.json", j.dump(2) + "\n");
   write_file_atomic(o.out_dir / "report.md", report_markdown(j));
   return j;
