@@ -112,7 +112,7 @@ void add_eval_command(CLI::App& app) {
       fail("phyir eval --depth-protocol: {}", e.what());
     }
     try {
-      o.settings.radiance_units = eval::parse_radiance_units(f->radiance_units);
+      o.settings.radiance_units = view::parse_radiance_units(f->radiance_units);
     } catch (const Error& e) {
       fail("phyir eval --radiance: {}", e.what());
     }

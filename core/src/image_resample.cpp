@@ -1,4 +1,4 @@
-#include "phyir/eval/resample.h"
+#include "phyir/core/image_resample.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "phyir/core/error.h"
 
-namespace phyir::eval {
+namespace phyir {
 namespace {
 
 // One output coordinate's source span: the pixels it overlaps and their overlap lengths.
@@ -115,4 +115,4 @@ Image take_channels(const Image& image, int channels, const std::string& what) {
   return out;
 }
 
-}  // namespace phyir::eval
+}  // namespace phyir

@@ -1,5 +1,7 @@
 #include "phyir/dataset/dataset_stats.h"
 
+#include "phyir/view/input_exposure.h"
+
 #include <tbb/combinable.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -20,6 +22,7 @@
 #include "phyir/core/progress.h"
 #include "phyir/dataset/layout.h"
 #include "phyir/dataset/manifest.h"
+#include "phyir/view/view_files.h"
 
 namespace phyir::dataset {
 
@@ -61,14 +64,14 @@ Image read_map(const fs::path& dir, const char* name, int width, int height) {
 
 // One view's pixels into `acc`; returns the sum of its luminance.
 double measure_view(const fs::path& dir, Accumulator& acc) {
-  const Image color = read_image(dir / "color.exr");
+  const Image color = read_image(dir / view::kColorFile);
   const int W = color.width, H = color.height;
-  if (color.channels < 3) fail("{}: {} channels, expected RGB", (dir / "color.exr").string(), color.channels);
-  const Image geometry = read_map(dir, "mask_geometry.exr", W, H);
-  const Image emissive = read_map(dir, "mask_emissive.exr", W, H);
-  const Image transparent = read_map(dir, "mask_transparent.exr", W, H);
-  const Image roughness = read_map(dir, "roughness.exr", W, H);
-  const Image metalness = read_map(dir, "metalness.exr", W, H);
+  if (color.channels < 3) fail("{}: {} channels, expected RGB", (dir / view::kColorFile).string(), color.channels);
+  const Image geometry = read_map(dir, view::kMaskGeometryFile, W, H);
+  const Image emissive = read_map(dir, view::kMaskEmissiveFile, W, H);
+  const Image transparent = read_map(dir, view::kMaskTransparentFile, W, H);
+  const Image roughness = read_map(dir, view::kRoughnessFile, W, H);
+  const Image metalness = read_map(dir, view::kMetalnessFile, W, H);
   MaterialCounts& m = acc.material;
   double sum = 0;
   for (int y = 0; y < H; ++y)
@@ -185,7 +188,8 @@ DatasetStats compute_dataset_stats(const fs::path& dir, const StatsOptions& o) {
   for (const json& v : manifest.views) {
     ++st.views_per_split[v.value("split", "?")];
     ++st.views_per_scene[v.at("scene").value("name", "?")];
-    exposure.push_back(number(v, {"input", "exposure_stops"}));
+    const view::InputExposure input = view::InputExposure::from_json(v.value("input", json()), kManifestFile);
+    exposure.push_back(input.recorded ? input.stops : NAN);
     rays.push_back(number(v, {"render", "counters", "rays_traced"}));
     probe_rays.push_back(number(v, {"render", "probes", "rays"}));
     // Wall-clock figures live outside the manifest (they differ between runs).
@@ -359,7 +363,7 @@ json stats_to_json(const DatasetStats& s) {
        {{"luminance_mean", s.luminance_mean},
         {"luminance_max", s.luminance_max},
         {"luminance_percentiles", s.luminance_percentiles},
-        {"exposure_stops", summary_json(s.exposure_stops)},
+        {view::kExposureStopsKey, summary_json(s.exposure_stops)},
         {"input_clipped_fraction", s.input_clipped}}},
       {"render_cost",
        {{"view_seconds", summary_json(s.view_seconds)},

@@ -16,6 +16,7 @@
 #include "phyir/dataset/futurehouse.h"
 #include "phyir/dataset/futurehouse_layout.h"
 #include "phyir/dataset/manifest.h"
+#include "phyir/view/view_files.h"
 
 namespace phyir::dataset {
 
@@ -67,9 +68,9 @@ Image encode_normals(const Image& normal, const fh::NormalAxes& axes) {
 
 // The paper's M_mask: a surface, not emissive, not transparent.
 Image render_mask(const fs::path& dir) {
-  const Image geometry = read_image(dir / "mask_geometry.exr");
-  const Image emissive = read_image(dir / "mask_emissive.exr");
-  const Image transparent = read_image(dir / "mask_transparent.exr");
+  const Image geometry = read_image(dir / view::kMaskGeometryFile);
+  const Image emissive = read_image(dir / view::kMaskEmissiveFile);
+  const Image transparent = read_image(dir / view::kMaskTransparentFile);
   Image mask(geometry.width, geometry.height, 1);
   for (size_t i = 0; i < mask.pixels.size(); ++i)
     mask.pixels[i] = geometry.pixels[i * size_t(geometry.channels)] > 0.5f &&
@@ -82,19 +83,19 @@ Image render_mask(const fs::path& dir) {
 
 void export_view(const fs::path& out, const ExportView& v, const fh::NormalAxes& axes) {
   const auto map = [&](fh::Map m) { return fh::map_path(out, v.plan, v.index, m); };
-  write_image(map(fh::Map::Image), rgb(read_image(v.dir / "color.exr")));
-  write_image(map(fh::Map::Albedo), rgb(read_image(v.dir / "basecolor.exr")));
-  write_image(map(fh::Map::Roughness), grey(read_image(v.dir / "roughness.exr"), nullptr));
-  write_image(map(fh::Map::Metallic), grey(read_image(v.dir / "metalness.exr"), nullptr));
+  write_image(map(fh::Map::Image), rgb(read_image(v.dir / view::kColorFile)));
+  write_image(map(fh::Map::Albedo), rgb(read_image(v.dir / view::kBaseColorFile)));
+  write_image(map(fh::Map::Roughness), grey(read_image(v.dir / view::kRoughnessFile), nullptr));
+  write_image(map(fh::Map::Metallic), grey(read_image(v.dir / view::kMetalnessFile), nullptr));
   write_image(map(fh::Map::Mask), grey(render_mask(v.dir), nullptr));
-  write_image(map(fh::Map::Normal), encode_normals(read_image(v.dir / "normal.exr"), axes));
-  write_image(map(fh::Map::Depth), grey(read_image(v.dir / "depth.exr"), fh::encode_depth));
+  write_image(map(fh::Map::Normal), encode_normals(read_image(v.dir / view::kNormalFile), axes));
+  write_image(map(fh::Map::Depth), grey(read_image(v.dir / view::kDepthFile), fh::encode_depth));
   // What FutureHouse has no slot for, outside the loader's paths.
   for (const char* name : {"mask_emissive", "mask_transparent"})
     write_image(fh::sidecar_path(out, v.plan, v.index, name), read_image(v.dir / (std::string(name) + ".exr")));
   if (!v.light) return;
-  write_image(fh::light_path(out, v.plan, v.index), rgb(read_image(v.dir / "probes.exr")));
-  write_image(fh::sidecar_path(out, v.plan, v.index, "probe_mask"), read_image(v.dir / "probe_mask.exr"));
+  write_image(fh::light_path(out, v.plan, v.index), rgb(read_image(v.dir / view::kProbesFile)));
+  write_image(fh::sidecar_path(out, v.plan, v.index, "probe_mask"), read_image(v.dir / view::kProbeMaskFile));
 }
 
 std::vector<ExportView> plan_export(const fs::path& dataset, const Manifest& m, ExportProbes probes) {

@@ -26,6 +26,9 @@
 #include "phyir/dataset/layout.h"
 #include "phyir/dataset/manifest.h"
 #include "phyir/dataset/verify.h"
+#include "phyir/view/probe_mosaic.h"
+#include "phyir/view/view_files.h"
+#include "phyir/view/view_record.h"
 
 namespace phyir::dataset {
 
@@ -226,26 +229,28 @@ void convert_masks(const ImportContext& ctx, const ImportView& v, const Image& m
 // FutureHouse has no validity map).
 void convert_probes(const ImportContext& ctx, const ImportView& v, const fs::path& folder, uint64_t& nonfinite) {
   const fs::path light = fh::light_path(ctx.src, v.plan, v.source_index);
-  const Image mosaic = rgb(read_image(light), nonfinite);
-  const int gh = mosaic.height / ctx.probe_height, gw = mosaic.width / ctx.probe_width;
-  if (mosaic.height % ctx.probe_height != 0 || mosaic.width % ctx.probe_width != 0 || gh < 1 || gw < 1)
-    fail("{}: {}x{} is not a mosaic of {}x{} probes (--probe-resolution)", light.string(), mosaic.width,
-         mosaic.height, ctx.probe_width, ctx.probe_height);
+  view::ProbeMosaic probes;
+  probes.radiance = rgb(read_image(light), nonfinite);
+  const int gh = probes.radiance.height / ctx.probe_height, gw = probes.radiance.width / ctx.probe_width;
+  if (probes.radiance.height % ctx.probe_height != 0 || probes.radiance.width % ctx.probe_width != 0 || gh < 1 ||
+      gw < 1)
+    fail("{}: {}x{} is not a mosaic of {}x{} probes (the import's probe resolution)", light.string(),
+         probes.radiance.width, probes.radiance.height, ctx.probe_width, ctx.probe_height);
   if (gh != ctx.grid_height || gw != ctx.grid_width)
     fail("{}: a grid of {}x{} probes, but the first view's is {}x{}", light.string(), gw, gh, ctx.grid_width,
          ctx.grid_height);
-  write_image(folder / "probes.exr", mosaic);
+  probes.layout = {gh, gw, ctx.probe_height, ctx.probe_width};
   const fs::path side = fh::sidecar_path(ctx.src, v.plan, v.source_index, "probe_mask");
   std::error_code ec;
-  Image probe_mask(gw, gh, 1, 1.0f);
+  probes.mask = Image(gw, gh, 1, 1.0f);
   if (ctx.sidecar && fs::is_regular_file(side, ec)) {
     uint64_t ignored = 0;
-    probe_mask = channel(read_image(side), 0, ignored);
-    if (probe_mask.width != gw || probe_mask.height != gh)
-      fail("{}: {}x{}, but {} is a grid of {}x{} probes", side.string(), probe_mask.width, probe_mask.height,
+    probes.mask = channel(read_image(side), 0, ignored);
+    if (probes.mask.width != gw || probes.mask.height != gh)
+      fail("{}: {}x{}, but {} is a grid of {}x{} probes", side.string(), probes.mask.width, probes.mask.height,
            light.string(), gw, gh);
   }
-  write_image(folder / "probe_mask.exr", probe_mask);
+  view::write_probe_mosaic(folder, probes);
 }
 
 // The view's files under OUT/views/<plan>/vNNN and its record (view.json).
@@ -257,23 +262,23 @@ json convert_view(const ImportContext& ctx, const ImportView& v, FacingCount& fa
   const auto source = [&](fh::Map map) { return fh::map_path(ctx.src, v.plan, v.source_index, map); };
   uint64_t nonfinite = 0;
   const Image color = rgb(read_panorama(ctx, source(fh::Map::Image)), nonfinite);
-  write_image(folder / "color.exr", color);
-  write_image(folder / "basecolor.exr", rgb(read_panorama(ctx, source(fh::Map::Albedo)), nonfinite));
-  write_image(folder / "roughness.exr", channel(read_panorama(ctx, source(fh::Map::Roughness)), fh::kScalarChannel, nonfinite));
-  write_image(folder / "metalness.exr", channel(read_panorama(ctx, source(fh::Map::Metallic)), fh::kScalarChannel, nonfinite));
+  write_image(folder / view::kColorFile, color);
+  write_image(folder / view::kBaseColorFile, rgb(read_panorama(ctx, source(fh::Map::Albedo)), nonfinite));
+  write_image(folder / view::kRoughnessFile, channel(read_panorama(ctx, source(fh::Map::Roughness)), fh::kScalarChannel, nonfinite));
+  write_image(folder / view::kMetalnessFile, channel(read_panorama(ctx, source(fh::Map::Metallic)), fh::kScalarChannel, nonfinite));
   Image depth, geometry, emissive, transparent;
   convert_depth(read_panorama(ctx, source(fh::Map::Depth)), nonfinite, depth, geometry);
-  write_image(folder / "depth.exr", depth);
-  write_image(folder / "mask_geometry.exr", geometry);
+  write_image(folder / view::kDepthFile, depth);
+  write_image(folder / view::kMaskGeometryFile, geometry);
   const Image normal = convert_normals(read_panorama(ctx, source(fh::Map::Normal)), geometry, ctx.axes, nonfinite);
-  write_image(folder / "normal.exr", normal);
+  write_image(folder / view::kNormalFile, normal);
   const FacingCount f = count_normals_facing_camera(normal, geometry);
   facing.facing += f.facing;
   facing.surface += f.surface;
   const Image mask = channel(read_panorama(ctx, source(fh::Map::Mask)), fh::kScalarChannel, nonfinite);
   convert_masks(ctx, v, mask, geometry, emissive, transparent);
-  write_image(folder / "mask_emissive.exr", emissive);
-  write_image(folder / "mask_transparent.exr", transparent);
+  write_image(folder / view::kMaskEmissiveFile, emissive);
+  write_image(folder / view::kMaskTransparentFile, transparent);
   if (ctx.probes) convert_probes(ctx, v, folder, nonfinite);
   const uint64_t seed = view_seed(ctx.seed, v.plan, v.index);
   const InputExposure exposure = choose_input_exposure(color, ctx.input, seed);
@@ -295,7 +300,7 @@ json convert_view(const ImportContext& ctx, const ImportView& v, FacingCount& fa
        {"split", v.split},
        {"dir", rel.generic_string()},
        {"seed", seed},
-       {"input", exposure.to_json(ctx.input)},
+       {"input", exposure.to_json()},
        {"source",
         {{"format", "futurehouse"},
          {"plan", v.plan},
@@ -305,7 +310,7 @@ json convert_view(const ImportContext& ctx, const ImportView& v, FacingCount& fa
          {"normals_facing_camera", f.surface ? double(f.facing) / double(f.surface) : 1.0}}},
        {"settings_sha256", ctx.settings_sha256},
        {"files", files}});
-  write_file_atomic(folder / kViewRecordFile, record.dump(2) + "\n");
+  view::write_view_record(folder, record);
   return record;
 }
 

@@ -13,37 +13,30 @@
 
 namespace phyir::dataset {
 
-nlohmann::json InputExposure::to_json(const InputSettings& settings) const {
-  nlohmann::json j = {{"file", "input.png"},
-                      {"exposure_stops", stops},
-                      {"base_stops", base_stops},
-                      {"jitter_stops", jitter_stops},
-                      {"display", "sRGB"},
-                      {"view", settings.view}};
-  if (settings.auto_exposure) j["percentile_value"] = percentile_value;
-  return j;
-}
-
 InputExposure choose_input_exposure(const Image& color, const InputSettings& settings, uint64_t view_seed) {
+  // Stops are computed in float (the record's precision since the first datasets) and stored.
+  float base = settings.exposure_stops, jitter = 0.0f;
   InputExposure e;
   if (settings.auto_exposure) {
     const AutoExposure a = auto_exposure(color, settings.percentile, settings.target);
     e.percentile_value = a.percentile_value;
-    e.base_stops = a.stops;
-  } else {
-    e.base_stops = settings.exposure_stops;
+    base = a.stops;
   }
   if (settings.jitter_stops > 0.0f) {
     const double u = hash_unit(fmt::format("phyir-dataset exposure|{}", view_seed));
-    e.jitter_stops = float(double(settings.jitter_stops) * (2.0 * u - 1.0));
+    jitter = float(double(settings.jitter_stops) * (2.0 * u - 1.0));
   }
-  e.stops = e.base_stops + e.jitter_stops;
+  e.base_stops = base;
+  e.jitter_stops = jitter;
+  e.stops = base + jitter;
+  e.view = settings.view;
+  e.recorded = true;
   return e;
 }
 
 void write_input_image(const std::filesystem::path& path, const Image& color, const InputExposure& exposure,
                        const InputSettings& settings) {
-  write_image(path, linear_to_display(color, exposure.stops, settings.view));
+  write_image(path, linear_to_display(color, float(exposure.stops), settings.view));
 }
 
 }  // namespace phyir::dataset

@@ -228,11 +228,7 @@ std::string manifest_text(const Manifest& m) {
 }
 
 Manifest parse_manifest(const json& j, const std::string& source) {
-  if (!j.is_object() || j.value("format", "") != kManifestFormat)
-    fail("{}: not a phyir dataset manifest (\"format\" is not \"{}\")", source, kManifestFormat);
-  if (j.value("format_version", 0) != kManifestVersion)
-    fail("{}: manifest format_version {} is not supported (this phyir reads {})", source, j.value("format_version", 0),
-         kManifestVersion);
+  view::check_manifest_format(j, source);
   Manifest m;
   try {
     m.settings = require(j, "settings", source);
@@ -243,8 +239,8 @@ Manifest parse_manifest(const json& j, const std::string& source) {
     for (const json& s : require(j, "scenes", source)) m.scenes.push_back(s);
     for (const json& v : require(j, "views", source)) {
       for (const char* key : {"id", "scene", "index", "split", "dir", "files", "seed"}) require(v, key, source);
-      json record = view_record_without_path(v);
-      m.views.push_back(std::move(record));
+      view::parse_view_record(v, "", source);
+      m.views.push_back(view_record_without_path(v));
     }
     m.views_per_scene();
   } catch (const nlohmann::json::exception& e) {
@@ -254,15 +250,7 @@ Manifest parse_manifest(const json& j, const std::string& source) {
 }
 
 Manifest read_manifest(const fs::path& dir) {
-  const fs::path path = dir / kManifestFile;
-  std::error_code ec;
-  if (!fs::exists(path, ec))
-    fail("{}: no {} (the run that writes this folder has not finished; run the same 'phyir dataset generate' "
-         "command again to complete it)",
-         dir.string(), kManifestFile);
-  const json j = json::parse(read_file(path), nullptr, false);
-  if (j.is_discarded()) fail("{}: not valid JSON", path.string());
-  return parse_manifest(j, path.string());
+  return parse_manifest(view::read_manifest_document(dir), (dir / kManifestFile).string());
 }
 
 void write_manifest(const fs::path& dir, const Manifest& manifest) {

@@ -1,5 +1,7 @@
 #include "phyir/dataset/merge.h"
 
+#include "phyir/view/view_record.h"
+
 #include <algorithm>
 #include <map>
 #include <string>
@@ -125,7 +127,11 @@ MergeSummary merge_shards(const fs::path& out, const std::vector<fs::path>& shar
     const fs::path target = out / relative;
     // Already merged by an earlier (interrupted) run?
     if (fs::exists(target / kViewRecordFile, ec)) {
-      const json existing = json::parse(read_file(target / kViewRecordFile), nullptr, false);
+      json existing;
+      try {
+        existing = view::read_view_json(target);
+      } catch (const Error&) {  // unreadable: merged again below
+      }
       if (existing == *view) {
         ++summary.kept;
         continue;

@@ -1,5 +1,7 @@
 #include "phyir/dataset/verify.h"
 
+#include "phyir/view/view_record.h"
+
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
@@ -139,7 +141,7 @@ VerifyReport verify_dataset(const fs::path& dir, int threads) {
     }
     // view.json must say what the manifest says.
     try {
-      const json record = json::parse(read_file(folder / kViewRecordFile));
+      const json record = view::read_view_json(folder);
       if (record != view)
         damage(dir_name, fmt::format("{}/{}: differs from the manifest ({})", dir_name, kViewRecordFile,
                             describe_difference(record, view, "view")));

@@ -4,8 +4,8 @@
 
 #include "phyir/core/colour.h"
 #include "phyir/core/error.h"
-#include "phyir/eval/radiance_units.h"
-#include "phyir/eval/resample.h"
+#include "phyir/view/radiance_units.h"
+#include "phyir/core/image_resample.h"
 
 namespace phyir::eval {
 
@@ -19,7 +19,7 @@ BaselineStats compute_baseline_stats(const std::filesystem::path& root, const st
   long probes = 0;
   for (const nlohmann::json& record : records) {
     const GroundTruthView v = load_ground_truth(root, record);
-    const double to_input = radiance_scale(RadianceUnits::kInput, v.exposure_stops);
+    const double to_input = view::radiance_scale(view::RadianceUnits::kInput, v.exposure_stops);
     for (int y = 0; y < v.color.height; ++y)
       for (int x = 0; x < v.color.width; ++x) {
         if (v.valid.at(x, y) < 0.5f) continue;
@@ -38,9 +38,9 @@ BaselineStats compute_baseline_stats(const std::filesystem::path& root, const st
         sums[12] += 1.0;
       }
     if (v.probes) {
-      if (probe_sum.empty()) probe_sum = input_probe_sum = Image(v.probes->w, v.probes->h, 3);
-      for (int i = 0; i < v.probes->grid_h; ++i)
-        for (int j = 0; j < v.probes->grid_w; ++j) {
+      if (probe_sum.empty()) probe_sum = input_probe_sum = Image(v.probes->layout.res_width, v.probes->layout.res_height, 3);
+      for (int i = 0; i < v.probes->layout.grid_height; ++i)
+        for (int j = 0; j < v.probes->layout.grid_width; ++j) {
           if (!v.probes->valid(i, j)) continue;
           const Image p = at_size(v.probes->probe(i, j), {probe_sum.width, probe_sum.height});
           for (size_t k = 0; k < p.pixels.size(); ++k) {
@@ -73,7 +73,7 @@ BaselineStats compute_baseline_stats(const std::filesystem::path& root, const st
   return s;
 }
 
-Prediction constant_mean_prediction(const BaselineStats& s, const GroundTruthView& gt, RadianceUnits units) {
+Prediction constant_mean_prediction(const BaselineStats& s, const GroundTruthView& gt, view::RadianceUnits units) {
   const int w = gt.color.width, h = gt.color.height;
   auto constant = [&](int channels, const double* values) {
     Image im(w, h, channels);
@@ -88,14 +88,14 @@ Prediction constant_mean_prediction(const BaselineStats& s, const GroundTruthVie
   p.normal = constant(3, s.normal);
   // In input units the constant is the mean of the input-unit targets, handed over in this
   // view's absolute unit (evaluate_view scales it back by the view's exposure).
-  const bool input = units == RadianceUnits::kInput;
-  const double to_absolute = 1.0 / radiance_scale(units, gt.exposure_stops);
+  const bool input = units == view::RadianceUnits::kInput;
+  const double to_absolute = 1.0 / view::radiance_scale(units, gt.exposure_stops);
   double color[3];
   for (int c = 0; c < 3; ++c) color[c] = (input ? s.input_color[c] : s.color[c]) * to_absolute;
   p.rerender = constant(3, color);
   const std::optional<Image>& probe = input ? s.input_probe : s.probe;
   if (probe && gt.probes)
-    p.probes = scaled_probe_set(constant_probe_set(*probe, gt.probes->grid_h, gt.probes->grid_w), to_absolute);
+    p.probes = view::constant_probe_mosaic(*probe, gt.probes->layout.grid_height, gt.probes->layout.grid_width).scaled(to_absolute);
   return p;
 }
 

@@ -1,7 +1,7 @@
 #include "phyir/eval/depth_protocol.h"
 
 #include "phyir/core/error.h"
-#include "phyir/eval/resample.h"
+#include "phyir/core/image_resample.h"
 #include "phyir/eval/unifuse_depth.h"
 
 namespace phyir::eval {

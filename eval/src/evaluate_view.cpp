@@ -7,8 +7,8 @@
 
 #include "phyir/core/error.h"
 #include "phyir/eval/pixel_metrics.h"
-#include "phyir/eval/radiance_units.h"
-#include "phyir/eval/resample.h"
+#include "phyir/view/radiance_units.h"
+#include "phyir/core/image_resample.h"
 
 namespace phyir::eval {
 namespace {
@@ -88,13 +88,13 @@ void score_maps(const GroundTruthView& gt, const Prediction& pred, const EvalSet
 // Table 5: every sphere material relit by the predicted and the true probe at the same
 // positions (probes already in the scoring unit). The first position's spheres go to the
 // figure divided by `scale`, back in color.exr's unit as the figure shows it.
-void score_relighting(const ProbeSet& pred, const ProbeSet& gt, const ProbeScore& score, const EvalSettings& settings,
+void score_relighting(const view::ProbeMosaic& pred, const view::ProbeMosaic& gt, const ProbeScore& score, const EvalSettings& settings,
                       double scale, Metrics* out, ViewImages* images) {
   // Positions on the compared grid where both sides are valid.
   Image both(score.grid_w, score.grid_h, 1);
   auto cells = [&](int i, int j, int* pi, int* pj, int* gi, int* gj) {
-    nearest_cell(i, j, score.grid_h, score.grid_w, pred.grid_h, pred.grid_w, pi, pj);
-    nearest_cell(i, j, score.grid_h, score.grid_w, gt.grid_h, gt.grid_w, gi, gj);
+    view::nearest_cell(i, j, score.grid_h, score.grid_w, pred.layout.grid_height, pred.layout.grid_width, pi, pj);
+    view::nearest_cell(i, j, score.grid_h, score.grid_w, gt.layout.grid_height, gt.layout.grid_width, gi, gj);
   };
   for (int i = 0; i < score.grid_h; ++i)
     for (int j = 0; j < score.grid_w; ++j) {
@@ -141,7 +141,7 @@ Metrics evaluate_view(const GroundTruthView& gt, const Prediction& pred, const E
   const Size gt_size{gt.color.width, gt.color.height};
   score_maps(gt, pred, settings, &m);
   // Radiance in the scoring unit: both sides times the same factor.
-  const double scale = radiance_scale(settings.radiance_units, gt.exposure_stops);
+  const double scale = view::radiance_scale(settings.radiance_units, gt.exposure_stops);
   if (pred.rerender) {
     const Size size = coarser(gt_size, {pred.rerender->width, pred.rerender->height});
     const Image mask = mask_resize(gt.valid, size.width, size.height);
@@ -160,10 +160,10 @@ Metrics evaluate_view(const GroundTruthView& gt, const Prediction& pred, const E
   // Probes (eq. 7) and relighting (Table 5).
   if (pred.probes && gt.probes) {
     // Copies only when the unit changes anything (absolute units: the probes as loaded).
-    std::optional<ProbeSet> scaled_pred, scaled_gt;
-    if (scale != 1.0) scaled_pred = scaled_probe_set(*pred.probes, scale), scaled_gt = scaled_probe_set(*gt.probes, scale);
-    const ProbeSet& pred_probes = scaled_pred ? *scaled_pred : *pred.probes;
-    const ProbeSet& gt_probes = scaled_gt ? *scaled_gt : *gt.probes;
+    std::optional<view::ProbeMosaic> scaled_pred, scaled_gt;
+    if (scale != 1.0) scaled_pred = pred.probes->scaled(scale), scaled_gt = gt.probes->scaled(scale);
+    const view::ProbeMosaic& pred_probes = scaled_pred ? *scaled_pred : *pred.probes;
+    const view::ProbeMosaic& gt_probes = scaled_gt ? *scaled_gt : *gt.probes;
     const ProbeScore score = probe_ssim(pred_probes, gt_probes);
     m["probe_ssim"] = score.ssim;
     m["probes_compared"] = double(score.probes);

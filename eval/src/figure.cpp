@@ -4,7 +4,7 @@
 
 #include "phyir/core/colour.h"
 #include "phyir/core/image_io.h"
-#include "phyir/eval/resample.h"
+#include "phyir/core/image_resample.h"
 
 namespace phyir::eval {
 namespace {

@@ -2,10 +2,13 @@
 
 #include <cmath>
 
+#include <fmt/ranges.h>
+
 #include "phyir/core/colour.h"
 #include "phyir/core/error.h"
 #include "phyir/core/image_io.h"
-#include "phyir/eval/resample.h"
+#include "phyir/core/image_resample.h"
+#include "phyir/view/view_files.h"
 
 namespace fs = std::filesystem;
 
@@ -28,73 +31,65 @@ void check_size(const Image& image, const Image& reference, const fs::path& path
 
 }  // namespace
 
-const std::vector<std::string>& required_prediction_files() {
-  static const std::vector<std::string> files = {"depth.exr", "normal.exr", "basecolor.exr", "roughness.exr",
-                                                 "metalness.exr"};
-  return files;
-}
-
-GroundTruthView load_ground_truth(const fs::path& root, const nlohmann::json& record) {
+GroundTruthView load_ground_truth(const view::ViewRecord& record) {
+  using namespace view;
   GroundTruthView v;
-  v.id = record.at("id").get<std::string>();
-  v.scene = record.at("scene").at("name").get<std::string>();
-  v.dir = root / record.at("dir").get<std::string>();
-  if (record.contains("input") && record["input"].contains("exposure_stops"))
-    v.exposure_stops = record["input"]["exposure_stops"].get<float>();
+  v.id = record.id;
+  v.scene = record.scene;
+  v.dir = record.dir;
+  v.exposure_stops = float(record.input.stops);
   if (!fs::is_directory(v.dir)) fail("{}: view folder of {} missing", v.dir.string(), v.id);
-  v.color = read_checked(v.dir / "color.exr", 3, "ground-truth colour");
-  v.input = read_checked(v.dir / "input.png", 3, "the network's input");
-  v.depth = read_checked(v.dir / "depth.exr", 1, "ground-truth depth");
-  v.normal = read_checked(v.dir / "normal.exr", 3, "ground-truth normal");
-  v.basecolor = read_checked(v.dir / "basecolor.exr", 3, "ground-truth base colour");
-  v.roughness = read_checked(v.dir / "roughness.exr", 1, "ground-truth roughness");
-  v.metalness = read_checked(v.dir / "metalness.exr", 1, "ground-truth metalness");
-  for (const auto& [image, name] : {std::pair{&v.depth, "depth.exr"}, {&v.normal, "normal.exr"},
-                                    {&v.basecolor, "basecolor.exr"}, {&v.roughness, "roughness.exr"},
-                                    {&v.metalness, "metalness.exr"}, {&v.input, "input.png"}})
-    check_size(*image, v.color, v.dir / name, v.dir / "color.exr");
+  v.color = read_checked(v.dir / kColorFile, 3, "ground-truth colour");
+  v.input = read_checked(v.dir / kInputFile, 3, "the network's input");
+  v.depth = read_checked(v.dir / kDepthFile, 1, "ground-truth depth");
+  v.normal = read_checked(v.dir / kNormalFile, 3, "ground-truth normal");
+  v.basecolor = read_checked(v.dir / kBaseColorFile, 3, "ground-truth base colour");
+  v.roughness = read_checked(v.dir / kRoughnessFile, 1, "ground-truth roughness");
+  v.metalness = read_checked(v.dir / kMetalnessFile, 1, "ground-truth metalness");
+  for (const auto& [image, name] : {std::pair{&v.depth, kDepthFile}, {&v.normal, kNormalFile},
+                                    {&v.basecolor, kBaseColorFile}, {&v.roughness, kRoughnessFile},
+                                    {&v.metalness, kMetalnessFile}, {&v.input, kInputFile}})
+    check_size(*image, v.color, v.dir / name, v.dir / kColorFile);
   // Valid pixels: a surface, not a light, not glass (the paper's mask; docs/eval.md).
   v.valid = Image(v.color.width, v.color.height, 1, 1.0f);
   const auto apply = [&](const char* name, bool keep_where_set) {
     const fs::path p = v.dir / name;
     const Image m = read_checked(p, 1, "mask");
-    check_size(m, v.color, p, v.dir / "color.exr");
+    check_size(m, v.color, p, v.dir / kColorFile);
     for (size_t i = 0; i < m.pixels.size(); ++i)
       if ((m.pixels[i] > 0.5f) != keep_where_set) v.valid.pixels[i] = 0.0f;
   };
-  apply("mask_geometry.exr", true);
-  apply("mask_emissive.exr", false);
-  apply("mask_transparent.exr", false);
-  const bool has_probes = fs::is_regular_file(v.dir / "probes.exr"), has_mask = fs::is_regular_file(v.dir / "probe_mask.exr");
-  if (has_probes != has_mask)
-    fail("{}: has {} but not {}", v.dir.string(), has_probes ? "probes.exr" : "probe_mask.exr",
-         has_probes ? "probe_mask.exr" : "probes.exr");
-  if (has_probes) v.probes = read_probe_set(v.dir / "probes.exr", v.dir / "probe_mask.exr");
+  apply(kMaskGeometryFile, true);
+  apply(kMaskEmissiveFile, false);
+  apply(kMaskTransparentFile, false);
+  if (has_probes(v.dir)) v.probes = read_probe_mosaic(v.dir);
   return v;
 }
 
+GroundTruthView load_ground_truth(const fs::path& root, const nlohmann::json& record) {
+  return load_ground_truth(view::parse_view_record(record, root, (root / view::kManifestFile).string()));
+}
+
 Prediction load_prediction(const fs::path& dir) {
+  using namespace view;
+  const std::vector<std::string>& maps = prediction_map_files();
   if (!fs::is_directory(dir)) fail("{}: prediction folder missing (expected {})", dir.string(), "PRED/<view id>/");
-  for (const std::string& f : required_prediction_files())
-    if (!fs::is_regular_file(dir / f)) fail("{}: missing (a prediction needs {})", (dir / f).string(),
-                                             "depth.exr, normal.exr, basecolor.exr, roughness.exr, metalness.exr");
+  for (const std::string& f : maps)
+    if (!fs::is_regular_file(dir / f))
+      fail("{}: missing (a prediction needs {})", (dir / f).string(), fmt::format("{}", fmt::join(maps, ", ")));
   Prediction p;
-  p.depth = read_checked(dir / "depth.exr", 1, "predicted depth");
-  p.normal = read_checked(dir / "normal.exr", 3, "predicted normal");
-  p.basecolor = read_checked(dir / "basecolor.exr", 3, "predicted base colour");
-  p.roughness = read_checked(dir / "roughness.exr", 1, "predicted roughness");
-  p.metalness = read_checked(dir / "metalness.exr", 1, "predicted metalness");
-  for (const auto& [image, name] : {std::pair{&*p.normal, "normal.exr"}, {&*p.basecolor, "basecolor.exr"},
-                                    {&*p.roughness, "roughness.exr"}, {&*p.metalness, "metalness.exr"}})
-    check_size(*image, *p.depth, dir / name, dir / "depth.exr");
-  if (fs::is_regular_file(dir / "rerender.exr")) p.rerender = read_checked(dir / "rerender.exr", 3, "re-rendered image");
-  else p.missing.push_back("rerender.exr");
-  const bool has_probes = fs::is_regular_file(dir / "probes.exr"), has_mask = fs::is_regular_file(dir / "probe_mask.exr");
-  if (has_probes != has_mask)
-    fail("{}: has {} but not {}", dir.string(), has_probes ? "probes.exr" : "probe_mask.exr",
-         has_probes ? "probe_mask.exr" : "probes.exr");
-  if (has_probes) p.probes = read_probe_set(dir / "probes.exr", dir / "probe_mask.exr");
-  else p.missing.push_back("probes.exr");
+  p.depth = read_checked(dir / kDepthFile, 1, "predicted depth");
+  p.normal = read_checked(dir / kNormalFile, 3, "predicted normal");
+  p.basecolor = read_checked(dir / kBaseColorFile, 3, "predicted base colour");
+  p.roughness = read_checked(dir / kRoughnessFile, 1, "predicted roughness");
+  p.metalness = read_checked(dir / kMetalnessFile, 1, "predicted metalness");
+  for (const auto& [image, name] : {std::pair{&*p.normal, kNormalFile}, {&*p.basecolor, kBaseColorFile},
+                                    {&*p.roughness, kRoughnessFile}, {&*p.metalness, kMetalnessFile}})
+    check_size(*image, *p.depth, dir / name, dir / kDepthFile);
+  if (fs::is_regular_file(dir / kRerenderFile)) p.rerender = read_checked(dir / kRerenderFile, 3, "re-rendered image");
+  else p.missing.push_back(kRerenderFile);
+  if (has_probes(dir)) p.probes = read_probe_mosaic(dir);
+  else p.missing.push_back(kProbesFile);
   return p;
 }
 

@@ -81,31 +81,31 @@ ViewTensors mirror_view(const ViewTensors& v) {
   return r;
 }
 
-ViewTensors expose_view(const ViewTensors& v, double stops, Radiance units) {
+ViewTensors expose_view(const ViewTensors& v, double stops, view::RadianceUnits units) {
   if (stops == 0.0) return v;
   ViewTensors r = v;
   const double f = std::exp2(stops);
-  r.image = reexpose_ldr(v.image, f, v.exposure.raw_view);
-  if (units == Radiance::kAbsolute) return r;
+  r.image = reexpose_ldr(v.image, f, v.exposure.raw_view());
+  if (units == view::RadianceUnits::kAbsolute) return r;
   r.color_lo = v.color_lo * f;
   if (v.probes.defined()) r.probes = v.probes * f;
   return r;
 }
 
-ViewTensors augment_view(const ViewTensors& v, const AugmentDraw& d, int divisions, Radiance units) {
+ViewTensors augment_view(const ViewTensors& v, const AugmentDraw& d, int divisions, view::RadianceUnits units) {
   ViewTensors r = rotate_view(v, d.yaw_steps, divisions);
   if (d.mirror) r = mirror_view(r);
   return expose_view(r, d.exposure_stops, units);
 }
 
 ViewTensors augment_for_epoch(const ViewTensors& view, size_t index, const AugmentOptions& options, int divisions,
-                              uint64_t seed, int epoch, Radiance units) {
+                              uint64_t seed, int epoch, view::RadianceUnits units) {
   if (!options.enabled) return view;
   return augment_view(view, draw_augment(options, divisions, seed, epoch, index), divisions, units);
 }
 
 Batch augmented_batch(const std::vector<ViewTensors>& views, const std::vector<size_t>& indices,
-                      const AugmentOptions& options, int divisions, uint64_t seed, int epoch, Radiance units) {
+                      const AugmentOptions& options, int divisions, uint64_t seed, int epoch, view::RadianceUnits units) {
   std::vector<ViewTensors> augmented;
   for (size_t i : indices) augmented.push_back(augment_for_epoch(views[i], i, options, divisions, seed, epoch, units));
   return collate(augmented);

@@ -42,21 +42,21 @@ ViewTensors rotate_view(const ViewTensors& view, int steps, int divisions);
 ViewTensors mirror_view(const ViewTensors& view);
 // The view written at 2^stops times its exposure (exposure.h's reexpose_ldr); targets in input
 // units scaled by the same factor, absolute ones unchanged (the scene's radiance is the same).
-ViewTensors expose_view(const ViewTensors& view, double stops, Radiance units = Radiance::kInputUnits);
+ViewTensors expose_view(const ViewTensors& view, double stops, view::RadianceUnits units = view::RadianceUnits::kInput);
 
 ViewTensors augment_view(const ViewTensors& view, const AugmentDraw& draw, int divisions,
-                         Radiance units = Radiance::kInputUnits);
+                         view::RadianceUnits units = view::RadianceUnits::kInput);
 
 // View number `index` of the dataset as training sees it in `epoch`: augmented by its draw
 // (as loaded when options.enabled is false); `units`: the targets' unit. The streaming reader
 // (view_stream.h) calls it on each view it decodes.
 ViewTensors augment_for_epoch(const ViewTensors& view, size_t index, const AugmentOptions& options, int divisions,
-                              uint64_t seed, int epoch, Radiance units = Radiance::kInputUnits);
+                              uint64_t seed, int epoch, view::RadianceUnits units = view::RadianceUnits::kInput);
 
 // The batch of views[indices] in `epoch`, each view through augment_for_epoch, then collate
 // (views held in memory: the reference the stream is tested against, and tests).
 Batch augmented_batch(const std::vector<ViewTensors>& views, const std::vector<size_t>& indices,
                       const AugmentOptions& options, int divisions, uint64_t seed, int epoch,
-                      Radiance units = Radiance::kInputUnits);
+                      view::RadianceUnits units = view::RadianceUnits::kInput);
 
 }  // namespace phyir::model

@@ -3,15 +3,14 @@
 
 #include <algorithm>
 #include <atomic>
-#include <fstream>
-#include <functional>
-#include <nlohmann/json.hpp>
 
 #include "nets.h"
 #include "phyir/core/colour.h"
 #include "phyir/core/error.h"
 #include "phyir/core/image_io.h"
 #include "phyir/core/log.h"
+#include "phyir/view/probe_mosaic.h"
+#include "phyir/view/view_files.h"
 
 namespace F = torch::nn::functional;
 namespace fs = std::filesystem;
@@ -19,10 +18,6 @@ namespace fs = std::filesystem;
 namespace phyir::model {
 
 namespace {
-
-bool is_view_folder(const fs::path& p) {
-  return fs::is_regular_file(p / "color.exr") || fs::is_regular_file(p / "input.png");
-}
 
 // [C,H,W] from a file, or an undefined tensor when the file is absent and optional.
 torch::Tensor read_chw(const fs::path& path, bool required) {
@@ -88,8 +83,9 @@ torch::Tensor resize(const torch::Tensor& x, int height, int width) {
                                .align_corners(false));
 }
 
-torch::Tensor resample_probes(const torch::Tensor& mosaic, int grid_h, int grid_w, int Hr, int Wr, int h, int w) {
-  const int hp = static_cast<int>(mosaic.size(1)) / grid_h, wp = static_cast<int>(mosaic.size(2)) / grid_w;
+torch::Tensor resample_probes(const torch::Tensor& mosaic, const view::ProbeLayout& layout, int Hr, int Wr, int h,
+                              int w) {
+  const int grid_h = layout.grid_height, grid_w = layout.grid_width, hp = layout.res_height, wp = layout.res_width;
   torch::Tensor probes = mosaic_to_probes(mosaic.unsqueeze(0), hp, wp).squeeze(0);  // [Hg,Wg,hp,wp,3]
   if (hp != h || wp != w) {
     torch::Tensor imgs = probes.reshape({grid_h * grid_w, hp, wp, 3}).permute({0, 3, 1, 2});
@@ -105,59 +101,24 @@ torch::Tensor resample_probes(const torch::Tensor& mosaic, int grid_h, int grid_
   return probes.contiguous();
 }
 
-std::vector<fs::path> find_view_folders(const fs::path& root, const std::string& split) {
-  if (!fs::is_directory(root)) fail("{}: not a folder", root.string());
-  std::vector<fs::path> out;
-  const fs::path manifest = root / "manifest.json";
-  if (fs::is_regular_file(manifest)) {
-    nlohmann::json m;
-    try {
-      std::ifstream in(manifest);
-      m = nlohmann::json::parse(in);
-    } catch (const std::exception& e) {
-      fail("{}: not valid JSON ({})", manifest.string(), e.what());
-    }
-    if (!m.contains("views") || !m["views"].is_array()) fail("{}: no \"views\" array", manifest.string());
-    for (const auto& v : m["views"]) {
-      if (!split.empty() && v.value("split", "") != split) continue;
-      if (!v.contains("dir")) fail("{}: a view without \"dir\"", manifest.string());
-      out.push_back(root / v["dir"].get<std::string>());
-    }
-    if (out.empty()) fail("{}: no views in split '{}'", manifest.string(), split);
-    return out;
-  }
-  if (is_view_folder(root)) return {root};
-  std::function<void(const fs::path&, int)> scan = [&](const fs::path& dir, int depth) {
-    for (const auto& e : fs::directory_iterator(dir)) {
-      if (!e.is_directory() || e.path().filename().string().rfind(".tmp-", 0) == 0) continue;
-      if (is_view_folder(e.path())) out.push_back(e.path());
-      else if (depth < 3) scan(e.path(), depth + 1);
-    }
-  };
-  scan(root, 1);
-  std::sort(out.begin(), out.end());
-  if (out.empty()) fail("{}: no view folders (folders holding color.exr or input.png)", root.string());
-  return out;
-}
-
 namespace {
 
 // The network's input: input.png, or (a `phyir render` folder) color.exr through the
 // dataset's display transform at the view's exposure.
-torch::Tensor load_input(const fs::path& dir, const torch::Tensor& color, const InputExposure& exposure, int h,
+torch::Tensor load_input(const fs::path& dir, const torch::Tensor& color, const view::InputExposure& exposure, int h,
                          int w) {
-  torch::Tensor input = read_chw(dir / "input.png", false);
+  torch::Tensor input = read_chw(dir / view::kInputFile, false);
   if (!input.defined()) {
     if (!color.defined()) fail("{}: neither input.png nor color.exr", dir.string());
-    input = image_to_tensor(linear_to_display(read_image(dir / "color.exr"), static_cast<float>(exposure.stops),
-                                              exposure.raw_view ? "Raw" : "Standard"));
+    input = image_to_tensor(linear_to_display(read_image(dir / view::kColorFile), static_cast<float>(exposure.stops),
+                                              exposure.raw_view() ? "Raw" : "Standard"));
   } else if (!exposure.recorded) {
     static std::atomic<bool> warned{false};
     if (!warned.exchange(true))
       spdlog::warn("{}: input.png without a view.json exposure: taken as written at 0 stops (docs/model.md)",
                    dir.string());
   }
-  return to_size(channels(input, 3, dir / "input.png"), h, w).clamp(0.0, 1.0);
+  return to_size(channels(input, 3, dir / view::kInputFile), h, w).clamp(0.0, 1.0);
 }
 
 // Surface, not emissive, not transparent, at the rendering resolution. `emissive` and
@@ -184,20 +145,15 @@ torch::Tensor mask_or_zeros(const torch::Tensor& m, int h, int w) {
 }
 
 // probes.exr on the rendering grid and its validity (probe_mask.exr and the render mask).
-void load_probes(const fs::path& dir, const torch::Tensor& color, const ModelConfig& c, ViewTensors& v) {
-  const torch::Tensor mosaic = read_chw(dir / "probes.exr", false);
-  if (!mosaic.defined()) return;
+void load_probes(const fs::path& dir, const ModelConfig& c, ViewTensors& v) {
+  if (!view::has_probes(dir)) return;
+  const view::ProbeMosaic probes = view::read_probe_mosaic(dir);
   const int Hr = c.render_height, Wr = c.render_width;
-  torch::Tensor pmask = read_chw(dir / "probe_mask.exr", false);
-  // The probe grid is probe_mask.exr's size, or else the colour image's.
-  const int gh = static_cast<int>(pmask.defined() ? pmask.size(1) : color.size(1));
-  const int gw = static_cast<int>(pmask.defined() ? pmask.size(2) : color.size(2));
-  if (mosaic.size(1) % gh != 0 || mosaic.size(2) % gw != 0)
-    fail("{}: {}x{} is not a grid of {}x{} probes", (dir / "probes.exr").string(), mosaic.size(2), mosaic.size(1), gw,
-         gh);
-  v.probes = resample_probes(channels(mosaic, 3, dir / "probes.exr"), gh, gw, Hr, Wr, c.probe_height, c.probe_width);
-  if (!pmask.defined()) pmask = torch::ones({1, gh, gw}, mosaic.options());
-  v.probe_mask = (resample_probes(channels(pmask.narrow(0, 0, 1), 3, dir / "probe_mask.exr"), gh, gw, Hr, Wr, 1, 1)
+  v.probes = resample_probes(image_to_tensor(probes.radiance), probes.layout, Hr, Wr, c.probe_height, c.probe_width);
+  const torch::Tensor pmask = image_to_tensor(probes.mask);
+  const view::ProbeLayout mask_layout{probes.layout.grid_height, probes.layout.grid_width, 1, 1};
+  v.probe_mask = (resample_probes(channels(pmask.narrow(0, 0, 1), 3, dir / view::kProbeMaskFile), mask_layout, Hr, Wr,
+                                  1, 1)
                       .select(4, 0)
                       .reshape({1, Hr, Wr}) > 0.5)
                      .to(torch::kFloat) *
@@ -206,33 +162,39 @@ void load_probes(const fs::path& dir, const torch::Tensor& color, const ModelCon
 
 }  // namespace
 
-ViewTensors load_view(const fs::path& dir, const ModelConfig& c, Radiance radiance, bool with_probes) {
+ViewTensors load_view(const fs::path& folder, const ModelConfig& c, view::RadianceUnits radiance, bool with_probes) {
+  return load_view(view::read_view(folder), c, radiance, with_probes);
+}
+
+ViewTensors load_view(const view::ViewRecord& record, const ModelConfig& c, view::RadianceUnits radiance,
+                      bool with_probes) {
+  const fs::path& dir = record.dir;
   ViewTensors v;
   v.name = dir.filename().string();
-  v.exposure = read_input_exposure(dir);
+  v.exposure = record.input;
   const int Hi = c.input_height, Wi = c.input_width, Hr = c.render_height, Wr = c.render_width;
-  const torch::Tensor color = read_chw(dir / "color.exr", false);
+  const torch::Tensor color = read_chw(dir / view::kColorFile, false);
   v.image = load_input(dir, color, v.exposure, Hi, Wi);
-  if (!color.defined()) fail("{}: missing color.exr (the re-render target)", (dir / "color.exr").string());
-  v.color_lo = to_size(channels(color, 3, dir / "color.exr"), Hr, Wr);
-  v.depth = to_size(channels(read_chw(dir / "depth.exr", true), 1, dir / "depth.exr"), Hi, Wi);
-  v.normal = F::normalize(to_size(channels(read_chw(dir / "normal.exr", true), 3, dir / "normal.exr"), Hi, Wi),
+  if (!color.defined()) fail("{}: missing color.exr (the re-render target)", (dir / view::kColorFile).string());
+  v.color_lo = to_size(channels(color, 3, dir / view::kColorFile), Hr, Wr);
+  v.depth = to_size(channels(read_chw(dir / view::kDepthFile, true), 1, dir / view::kDepthFile), Hi, Wi);
+  v.normal = F::normalize(to_size(channels(read_chw(dir / view::kNormalFile, true), 3, dir / view::kNormalFile), Hi, Wi),
                           F::NormalizeFuncOptions().dim(0).eps(1e-6));
-  v.base_color = to_size(channels(read_chw(dir / "basecolor.exr", true), 3, dir / "basecolor.exr"), Hi, Wi);
-  v.roughness = to_size(channels(read_chw(dir / "roughness.exr", true), 1, dir / "roughness.exr"), Hi, Wi);
-  v.metalness = to_size(channels(read_chw(dir / "metalness.exr", true), 1, dir / "metalness.exr"), Hi, Wi);
-  torch::Tensor geometry = read_chw(dir / "mask_geometry.exr", false);
-  if (!geometry.defined()) geometry = (read_chw(dir / "depth.exr", true).narrow(0, 0, 1) > 0).to(torch::kFloat);
+  v.base_color = to_size(channels(read_chw(dir / view::kBaseColorFile, true), 3, dir / view::kBaseColorFile), Hi, Wi);
+  v.roughness = to_size(channels(read_chw(dir / view::kRoughnessFile, true), 1, dir / view::kRoughnessFile), Hi, Wi);
+  v.metalness = to_size(channels(read_chw(dir / view::kMetalnessFile, true), 1, dir / view::kMetalnessFile), Hi, Wi);
+  torch::Tensor geometry = read_chw(dir / view::kMaskGeometryFile, false);
+  if (!geometry.defined()) geometry = (read_chw(dir / view::kDepthFile, true).narrow(0, 0, 1) > 0).to(torch::kFloat);
   v.mask = mask_to_size(geometry, Hi, Wi);
-  const torch::Tensor emissive = read_chw(dir / "mask_emissive.exr", false);
-  const torch::Tensor transparent = read_chw(dir / "mask_transparent.exr", false);
+  const torch::Tensor emissive = read_chw(dir / view::kMaskEmissiveFile, false);
+  const torch::Tensor transparent = read_chw(dir / view::kMaskTransparentFile, false);
   v.mask_emissive = mask_or_zeros(emissive, Hi, Wi);
   v.mask_transparent = mask_or_zeros(transparent, Hi, Wi);
   v.render_mask = load_render_mask(geometry, emissive, transparent, Hr, Wr);
-  if (with_probes) load_probes(dir, color, c, v);
+  if (with_probes) load_probes(dir, c, v);
   for (const torch::Tensor* t : {&v.image, &v.depth, &v.normal, &v.base_color, &v.roughness, &v.metalness, &v.color_lo})
     if (!torch::isfinite(*t).all().item<bool>()) fail("{}: non-finite values in the maps", dir.string());
-  if (radiance == Radiance::kInputUnits) {
+  if (radiance == view::RadianceUnits::kInput) {
     const double f = v.exposure.factor();
     v.color_lo = v.color_lo * f;
     if (v.probes.defined()) v.probes = v.probes * f;

@@ -1,8 +1,8 @@
 #pragma once
-// Training data: one view folder as written by the dataset generator (issue 5) and
-// `phyir render`, read at the network's resolutions (load_view: the one reader, under the
-// torch::data dataset of torch_dataset.h), and views stacked into a batch (collate: the one
-// batching). Private header.
+// Training data: one view (view/view_record.h: a dataset's or `phyir render`'s folder) turned
+// into tensors at the network's resolutions (load_view: the one reader, under the torch::data
+// dataset of torch_dataset.h), and views stacked into a batch (collate: the one batching).
+// Private header.
 #include <torch/torch.h>
 
 #include <cstdint>
@@ -14,6 +14,8 @@
 #include "exposure.h"
 #include "phyir/core/image.h"
 #include "phyir/model/training.h"
+#include "phyir/view/probe_layout.h"
+#include "phyir/view/view_record.h"
 
 namespace phyir::model {
 
@@ -24,7 +26,7 @@ struct ViewTensors {
   std::string name;          // the folder's name
   std::string id;            // its path in the dataset ("room_0/v003"); set by the dataset
   int64_t index = 0;         // its position in the dataset (the sampler's index); set by the dataset
-  InputExposure exposure;    // input.png's, from view.json
+  view::InputExposure exposure;    // input.png's, from view.json
   torch::Tensor image;       // LDR input (input.png, sRGB-encoded, [0,1])
   torch::Tensor depth, normal, base_color, roughness, metalness;
   torch::Tensor mask;        // 1 where a surface is seen (mask_geometry)
@@ -50,18 +52,16 @@ struct Batch {
   Batch to(const torch::Device& device) const;
 };
 
-// The view folders of a dataset. With root/manifest.json (docs/dataset.md): the manifest's
-// views of `split` (train, val, test; empty = all), in manifest order. Without: every folder
-// (root itself, or up to three levels down) that holds color.exr or input.png, sorted by path.
-std::vector<std::filesystem::path> find_view_folders(const std::filesystem::path& root,
-                                                     const std::string& split = "");
-
-// Radiance (color_lo, probes) as the files hold it, or in input units (x 2^exposure_stops,
-// exposure.h): training asks for input units. `with_probes` false leaves probes.exr unread
-// (probes and probe_mask undefined): the stages that train neither LNet nor the joint model
-// never look at them, and at the paper's sizes they are 96% of a view (201 of 210 MB).
+// One view at `config`'s resolutions, radiance (color_lo, probes) as the files hold it or in
+// input units (x 2^exposure_stops of the record's input exposure): training asks for input
+// units. `with_probes` false leaves probes.exr unread (probes and probe_mask undefined): the
+// stages that train neither LNet nor the joint model never look at them, and at the paper's
+// sizes they are 96% of a view (201 of 210 MB). The folder is record.dir (view/view_record.h).
+ViewTensors load_view(const view::ViewRecord& record, const ModelConfig& config,
+                      view::RadianceUnits radiance = view::RadianceUnits::kAbsolute, bool with_probes = true);
+// The view in `folder` (view::read_view: its view.json when it has one).
 ViewTensors load_view(const std::filesystem::path& folder, const ModelConfig& config,
-                      Radiance radiance = Radiance::kAbsolute, bool with_probes = true);
+                      view::RadianceUnits radiance = view::RadianceUnits::kAbsolute, bool with_probes = true);
 
 // The one batching of views (training, validation, the torch::data loader): each tensor stacked;
 // probes and probe_mask stay undefined unless every view has them. Throws on no views.
@@ -80,9 +80,9 @@ void write_tensor_image(const std::filesystem::path& path, const torch::Tensor& 
 // Resizes [N,C,H,W] by area averaging (down) or bilinear interpolation (up).
 torch::Tensor resize(const torch::Tensor& x, int height, int width);
 
-// Resamples a probe mosaic (probes.exr, [3, Hg*hp, Wg*wp] on a Hg x Wg grid) to probes on an
-// Hr x Wr grid of h x w texels: each probe is area-resized, the grid is sampled at the
-// nearest probe. Returns [Hr, Wr, h, w, 3].
-torch::Tensor resample_probes(const torch::Tensor& mosaic, int grid_h, int grid_w, int Hr, int Wr, int h, int w);
+// Resamples a probe mosaic ([3, H*hp, W*wp] laid out as `layout`, view/probe_layout.h) to
+// probes on an Hr x Wr grid of h x w texels: each probe is area-resized, the grid is sampled
+// at the nearest probe (as view::ProbeMosaic::resampled). Returns [Hr, Wr, h, w, 3].
+torch::Tensor resample_probes(const torch::Tensor& mosaic, const view::ProbeLayout& layout, int Hr, int Wr, int h, int w);
 
 }  // namespace phyir::model

@@ -1,12 +1,7 @@
-// The input's exposure (view.json) and the sRGB curve of config/phyir.ocio in torch.
+// The target units and the sRGB curve of config/phyir.ocio in torch.
 #include "exposure.h"
 
-#include <fstream>
-#include <nlohmann/json.hpp>
-
 #include "phyir/core/error.h"
-
-namespace fs = std::filesystem;
 
 namespace phyir::model {
 
@@ -22,31 +17,11 @@ double linear_slope() { return std::pow((kEncodedBreak + kOffset) / (1.0 + kOffs
 
 }  // namespace
 
-Radiance target_radiance(const ModelConfig& config) {
-  if (config.target_units == "input") return Radiance::kInputUnits;
-  if (config.target_units == "absolute") return Radiance::kAbsolute;
+view::RadianceUnits target_radiance(const ModelConfig& config) {
+  if (config.target_units == "input") return view::RadianceUnits::kInput;
+  if (config.target_units == "absolute") return view::RadianceUnits::kAbsolute;
   fail("target units '{}': input (x 2^exposure_stops of each view, the default) or absolute (the files' radiance)",
        config.target_units);
-}
-
-InputExposure read_input_exposure(const fs::path& view_dir) {
-  InputExposure e;
-  const fs::path path = view_dir / "view.json";
-  if (!fs::is_regular_file(path)) return e;
-  nlohmann::json j;
-  try {
-    std::ifstream in(path);
-    j = nlohmann::json::parse(in);
-  } catch (const std::exception& ex) {
-    fail("{}: not valid JSON ({})", path.string(), ex.what());
-  }
-  if (!j.contains("input") || !j["input"].contains("exposure_stops")) return e;
-  const nlohmann::json& stops = j["input"]["exposure_stops"];
-  if (!stops.is_number()) fail("{}: input.exposure_stops is {}, not a number", path.string(), stops.dump());
-  e.stops = stops.get<double>();
-  e.recorded = true;
-  e.raw_view = j["input"].value("view", std::string("Standard")) == "Raw";
-  return e;
 }
 
 torch::Tensor srgb_decode(const torch::Tensor& encoded) {

@@ -16,6 +16,10 @@
 #include "phyir/core/log.h"
 #include "phyir/dataset/input_image.h"
 #include "phyir/model/training.h"
+#include "phyir/view/input_exposure.h"
+#include "phyir/view/probe_mosaic.h"
+#include "phyir/view/view_files.h"
+#include "phyir/view/view_record.h"
 #include "predict.h"
 
 namespace fs = std::filesystem;
@@ -49,9 +53,9 @@ Panorama read_panorama(const InferOptions& o) {
   } else if (std::isfinite(o.exposure)) {
     p.exposure_stops = o.exposure;
     p.exposure_source = "--exposure";
-  } else if (const InputExposure e = read_input_exposure(in.parent_path()); e.recorded) {
+  } else if (const view::InputExposure e = view::read_view(in.parent_path()).input; e.recorded) {
     p.exposure_stops = e.stops;  // input.png of a dataset view folder
-    p.exposure_source = (in.parent_path() / "view.json").string();
+    p.exposure_source = (in.parent_path() / view::kViewRecordFile).string();
   }
   torch::Tensor x = image_to_tensor(img);
   if (x.size(0) == 1) x = x.expand({3, x.size(1), x.size(2)});
@@ -63,16 +67,16 @@ Panorama read_panorama(const InferOptions& o) {
 
 json radiance_record(const Panorama& p, bool absolute, bool trained_absolute) {
   if (trained_absolute)
-    return {{"unit", "absolute"}, {"exposure_stops", std::isfinite(p.exposure_stops) ? json(p.exposure_stops) : json()},
+    return {{"unit", "absolute"}, {view::kExposureStopsKey, std::isfinite(p.exposure_stops) ? json(p.exposure_stops) : json()},
             {"meaning", "radiance as color.exr and probes.exr hold it: the network's output (trained with "
                         "--target-units absolute)"}};
   if (absolute)
-    return {{"unit", "absolute"}, {"exposure_stops", p.exposure_stops}, {"exposure_source", p.exposure_source},
+    return {{"unit", "absolute"}, {view::kExposureStopsKey, p.exposure_stops}, {"exposure_source", p.exposure_source},
             {"meaning", "radiance as color.exr and probes.exr hold it: the network's output / 2^exposure_stops"}};
   json j = {{"unit", "input"},
             {"meaning", "the input's relative units: radiance x 2^exposure_stops of the input, the scale in which "
                         "the input's linear (sRGB-decoded) values are radiance"}};
-  j["exposure_stops"] = std::isfinite(p.exposure_stops) ? json(p.exposure_stops) : json();
+  j[view::kExposureStopsKey] = std::isfinite(p.exposure_stops) ? json(p.exposure_stops) : json();
   if (std::isfinite(p.exposure_stops)) j["exposure_source"] = p.exposure_source;
   return j;
 }
@@ -100,7 +104,7 @@ void infer(const InferOptions& o) {
   const bool use_gs = meta.at("trained").value("gsnet", false);
   const ModelOutput p = predict(nets, cfg, x, use_gs, true);
   // A model trained on absolute targets (--target-units absolute) predicts absolute radiance.
-  const bool trained_absolute = target_radiance(cfg) == Radiance::kAbsolute;
+  const bool trained_absolute = target_radiance(cfg) == view::RadianceUnits::kAbsolute;
   const bool absolute = trained_absolute || (o.absolute && std::isfinite(pano.exposure_stops));
   if (o.absolute && !absolute)
     spdlog::warn("{}: the input's exposure is unknown (no --exposure, no view.json beside it): probes.exr and "
@@ -114,16 +118,18 @@ void infer(const InferOptions& o) {
   // at the colour's resolution; normals renormalised after the interpolation.
   auto full = [&](const torch::Tensor& m) { return resize(m, Hp, Wp); };
   const torch::Tensor normal_full = normalize_channels(full(p.maps.normal));
-  write_tensor_image(out / "input.png", pano.image[0]);
-  write_tensor_image(out / "depth.exr", full(p.maps.depth)[0], {"Y"});
-  write_tensor_image(out / "normal.exr", normal_full[0], {"X", "Y", "Z"});
-  write_tensor_image(out / "basecolor.exr", full(p.maps.base_color).clamp(0.0, 1.0)[0], {"R", "G", "B"});
-  write_tensor_image(out / "roughness.exr", full(p.maps.roughness).clamp(0.0, 1.0)[0], {"Y"});
-  write_tensor_image(out / "metalness.exr", full(p.maps.metalness).clamp(0.0, 1.0)[0], {"Y"});
-  write_tensor_image(out / "probes.exr", probes_to_mosaic(p.probes * to_output)[0], {"R", "G", "B"});
-  write_tensor_image(out / "probe_mask.exr", torch::ones({1, cfg.render_height, cfg.render_width}, float_options(device)),
-                     {"Y"});
-  write_tensor_image(out / "rerender.exr", (p.rerender * to_output)[0], {"R", "G", "B"});
+  write_tensor_image(out / view::kInputFile, pano.image[0]);
+  write_tensor_image(out / view::kDepthFile, full(p.maps.depth)[0], {"Y"});
+  write_tensor_image(out / view::kNormalFile, normal_full[0], {"X", "Y", "Z"});
+  write_tensor_image(out / view::kBaseColorFile, full(p.maps.base_color).clamp(0.0, 1.0)[0], {"R", "G", "B"});
+  write_tensor_image(out / view::kRoughnessFile, full(p.maps.roughness).clamp(0.0, 1.0)[0], {"Y"});
+  write_tensor_image(out / view::kMetalnessFile, full(p.maps.metalness).clamp(0.0, 1.0)[0], {"Y"});
+  view::ProbeMosaic probes;
+  probes.layout = {cfg.render_height, cfg.render_width, cfg.probe_height, cfg.probe_width};
+  probes.radiance = tensor_to_image(probes_to_mosaic(p.probes * to_output)[0]);
+  probes.mask = phyir::Image(cfg.render_width, cfg.render_height, 1, 1.0f);  // every predicted probe is valid
+  view::write_probe_mosaic(out, probes);
+  write_tensor_image(out / view::kRerenderFile, (p.rerender * to_output)[0], {"R", "G", "B"});
   json info = {{"checkpoint", o.checkpoint}, {"input", o.input}, {"device", device.str()},
                {"config", config_to_json(cfg)},
                {"maps_resolution", {Wp, Hp}}, {"network_input_resolution", {cfg.input_width, cfg.input_height}},

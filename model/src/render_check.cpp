@@ -9,6 +9,8 @@
 #include "phyir/core/image_io.h"
 #include "phyir/core/log.h"
 #include "phyir/model/training.h"
+#include "phyir/view/probe_mosaic.h"
+#include "phyir/view/view_files.h"
 #include "render_layer.h"
 
 namespace fs = std::filesystem;
@@ -20,18 +22,14 @@ namespace {
 
 // The view folder's resolutions: the probe grid (probe_mask.exr) and its texels (probes.exr).
 ModelConfig view_config(const fs::path& dir) {
-  const phyir::Image pmask_img = read_image(dir / "probe_mask.exr");
-  const phyir::Image mosaic_img = read_image(dir / "probes.exr");
-  const int gh = pmask_img.height, gw = pmask_img.width;
-  if (mosaic_img.height % gh || mosaic_img.width % gw)
-    fail("{}: {}x{} is not a grid of {}x{} probes", (dir / "probes.exr").string(), mosaic_img.width,
-         mosaic_img.height, gw, gh);
+  if (!view::has_probes(dir)) fail("{}: no {} (the render-layer check needs the view's probes)", dir.string(), view::kProbesFile);
+  const view::ProbeLayout layout = view::read_probe_mosaic(dir).layout;
   ModelConfig c;
-  c.render_height = gh;
-  c.render_width = gw;
-  c.probe_height = mosaic_img.height / gh;
-  c.probe_width = mosaic_img.width / gw;
-  const phyir::Image color_img = read_image(dir / "color.exr");
+  c.render_height = layout.grid_height;
+  c.render_width = layout.grid_width;
+  c.probe_height = layout.res_height;
+  c.probe_width = layout.res_width;
+  const phyir::Image color_img = read_image(dir / view::kColorFile);
   c.input_height = color_img.height;
   c.input_width = color_img.width;
   return c;

@@ -4,6 +4,7 @@
 #include "batch_share.h"
 #include "losses.h"
 #include "phyir/core/error.h"
+#include "phyir/view/view_files.h"
 
 namespace phyir::model {
 
@@ -26,7 +27,7 @@ void add_gm_losses(StepLoss& L, const LossWeights& w, const GMOutput& p, const B
 
 void add_light_losses(StepLoss& L, const LossWeights& w, const ModelConfig& c, const LightResult& r,
                       const GMOutput& gm, const Batch& b) {
-  if (!b.probes.defined()) fail("stage needs probes: a view folder has no probes.exr");
+  if (!b.probes.defined()) fail("stage needs probes: a view folder has no {}", view::kProbesFile);
   L.add("probe", w.probe, probe_ssim_loss(r.log_probes, torch::log1p(b.probes), b.probe_mask));
   if (w.coherence != 0.0)
     L.add("coherence", w.coherence,

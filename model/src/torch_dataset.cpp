@@ -1,4 +1,4 @@
-// A dataset's views as a torch::data dataset: views listed by find_view_folders, each loaded
+// A dataset's views as a torch::data dataset: views listed by view::find_views, each loaded
 // by load_view when the sampler asks.
 #include "torch_dataset.h"
 
@@ -34,36 +34,33 @@ ModelConfig ExampleSize::model_config() const {
   return c;
 }
 
-ManifestDataset::ManifestDataset(const fs::path& root, std::vector<fs::path> folders, const ModelConfig& config,
-                                 Radiance units)
-    : folders_(std::move(folders)), config_(config), units_(units) {
-  for (const fs::path& f : folders_) ids_.push_back(view_id(root, f));
+ManifestDataset::ManifestDataset(const fs::path& root, std::vector<view::ViewRecord> views, const ModelConfig& config,
+                                 view::RadianceUnits units)
+    : views_(std::move(views)), config_(config), units_(units) {
+  for (const view::ViewRecord& v : views_) ids_.push_back(view_id(root, v.dir));
 }
 
 ManifestDataset::ManifestDataset(const fs::path& root, const std::string& split, ExampleSize size) {
   for (int v : {size.height, size.width, size.probe_grid_height, size.probe_grid_width, size.probe_height,
                 size.probe_width})
     if (v <= 0) fail("dataset {}: every example size must be positive", root.string());
-  // Without a manifest find_view_folders would scan folders: a dataset still being
+  // Without a manifest view::find_views would scan folders: a dataset still being
   // generated has no manifest, and its half-done views must not be trained on.
-  if (!fs::is_regular_file(root / "manifest.json"))
-    fail("{}: no manifest.json (the dataset is not finished: run the same 'phyir dataset generate' command "
-         "again, or 'phyir dataset merge' for shards)",
-         (root / "manifest.json").string());
-  *this = ManifestDataset(root, find_view_folders(root, split), size.model_config(), Radiance::kAbsolute);
+  *this = ManifestDataset(root, view::read_manifest_views(root, split), size.model_config(),
+                          view::RadianceUnits::kAbsolute);
 }
 
 ManifestDataset ManifestDataset::for_training(const fs::path& root, const std::string& split, int max_views,
-                                              const ModelConfig& config, Radiance units, bool with_probes) {
-  std::vector<fs::path> folders = find_view_folders(root, split);
-  if (max_views > 0 && folders.size() > static_cast<size_t>(max_views)) folders.resize(max_views);
-  ManifestDataset d(root, std::move(folders), config, units);
+                                              const ModelConfig& config, view::RadianceUnits units, bool with_probes) {
+  std::vector<view::ViewRecord> views = view::find_views(root, split);
+  if (max_views > 0 && views.size() > static_cast<size_t>(max_views)) views.resize(max_views);
+  ManifestDataset d(root, std::move(views), config, units);
   d.with_probes_ = with_probes;
   return d;
 }
 
 ViewTensors ManifestDataset::get(size_t index) {
-  ViewTensors v = load_view(folders_.at(index), config_, units_, with_probes_);
+  ViewTensors v = load_view(views_.at(index), config_, units_, with_probes_);
   v.id = ids_[index];
   v.index = static_cast<int64_t>(index);
   if (census_) v.census = census_->enrol();

@@ -48,30 +48,30 @@ class ManifestDataset : public torch::data::datasets::Dataset<ManifestDataset, V
   // naming the file when there is no manifest or the split has no views.
   ManifestDataset(const std::filesystem::path& root, const std::string& split, ExampleSize size = {});
 
-  // What `phyir train` reads: the views of `split` (find_view_folders, data.h: a manifest's
-  // split, or without one every view folder below root), the first `max_views` (0: all), at
+  // What `phyir train` reads: the views of `split` (view::find_views: a manifest's split, or
+  // without one every view folder below root), the first `max_views` (0: all), at
   // `config`'s resolutions, radiance in `units`; probes.exr read only `with_probes`.
   static ManifestDataset for_training(const std::filesystem::path& root, const std::string& split, int max_views,
-                                      const ModelConfig& config, Radiance units, bool with_probes = true);
+                                      const ModelConfig& config, view::RadianceUnits units, bool with_probes = true);
 
   ViewTensors get(size_t index) override;
-  torch::optional<size_t> size() const override { return folders_.size(); }
+  torch::optional<size_t> size() const override { return views_.size(); }
 
   const std::vector<std::string>& ids() const { return ids_; }
-  const std::filesystem::path& folder(size_t index) const { return folders_.at(index); }
+  const std::filesystem::path& folder(size_t index) const { return views_.at(index).dir; }
   const ModelConfig& config() const { return config_; }
 
   // Counts every view get() decodes from now on (copies of the dataset share the census).
   void count_views(std::shared_ptr<ViewCensus> census) { census_ = std::move(census); }
 
  private:
-  ManifestDataset(const std::filesystem::path& root, std::vector<std::filesystem::path> folders,
-                  const ModelConfig& config, Radiance units);
+  ManifestDataset(const std::filesystem::path& root, std::vector<view::ViewRecord> views, const ModelConfig& config,
+                  view::RadianceUnits units);
 
-  std::vector<std::filesystem::path> folders_;
+  std::vector<view::ViewRecord> views_;
   std::vector<std::string> ids_;
   ModelConfig config_;
-  Radiance units_ = Radiance::kAbsolute;
+  view::RadianceUnits units_ = view::RadianceUnits::kAbsolute;
   bool with_probes_ = true;
   std::shared_ptr<ViewCensus> census_;
 };

@@ -10,6 +10,7 @@
 #include "data_parallel.h"
 #include "device.h"
 #include "phyir/core/error.h"
+#include "phyir/core/setting_error.h"
 #include "phyir/core/log.h"
 
 namespace fs = std::filesystem;
@@ -75,23 +76,23 @@ TrainSummary Trainer::run() {
 // --- Setup ------------------------------------------------------------------------------------
 
 void Trainer::settle_settings() {
-  if (o_.epochs < 1) fail("--epochs {}: must be at least 1", o_.epochs);
-  if (o_.out_dir.empty()) fail("--out: an output folder is required");
+  if (o_.epochs < 1) fail_setting("epochs", "{} must be at least 1", o_.epochs);
+  if (o_.out_dir.empty()) fail_setting("out_dir", "an output folder is required");
   if (o_.augment.exposure_min_stops > o_.augment.exposure_max_stops)
-    fail("--exposure-jitter {},{}: the first bound is above the second", o_.augment.exposure_min_stops,
-         o_.augment.exposure_max_stops);
+    fail_setting("augment.exposure_min_stops", "{},{}: the first bound is above the second",
+                 o_.augment.exposure_min_stops, o_.augment.exposure_max_stops);
   Validator::higher_is_better(o_.validation.best_metric);  // an unknown metric fails now
   device_ = parse_device(o_.device);
   out_ = o_.out_dir;
   fs::create_directories(out_);
   checkpoint_path_ = out_ / "checkpoint.pt";
-  if (o_.resume && !fs::is_regular_file(checkpoint_path_)) fail("--resume: {} not found", checkpoint_path_.string());
+  if (o_.resume && !fs::is_regular_file(checkpoint_path_)) fail_setting("resume", "{} not found", checkpoint_path_.string());
   // A resumed run keeps its learning rate, batch size and weights unless they are given again.
   resumed_ = o_.resume ? load_checkpoint(checkpoint_path_.string(), nullptr, nullptr, false) : json();
   // Before any state is loaded: another stage's optimiser has other parameter groups.
   if (o_.resume && resumed_.value("stage", std::string()) != stage_name_)
-    fail("--resume: {} is a '{}' checkpoint, not '{}' (start the stage with --init {} instead)",
-         checkpoint_path_.string(), resumed_.value("stage", std::string("?")), stage_name_, checkpoint_path_.string());
+    fail_setting("resume", "{} is a '{}' checkpoint, not '{}' (start the stage from it as its init checkpoint instead)",
+                 checkpoint_path_.string(), resumed_.value("stage", std::string("?")), stage_name_);
   lr_ = o_.learning_rate > 0 ? o_.learning_rate
         : o_.resume          ? resumed_.at("learning_rate").get<double>()
                              : defaults_.learning_rate;
@@ -99,20 +100,20 @@ void Trainer::settle_settings() {
   weights_ = o_.custom_weights ? o_.weights : defaults_.weights;
   if (o_.resume && !o_.custom_weights) weights_ = weights_from_json(resumed_.at("weights"));
   if (o_.resume && resumed_.contains("augment") && resumed_["augment"] != augment_to_json(o_.augment))
-    spdlog::warn("--resume: augmentation {} differs from the checkpoint's {}: the run will not equal an "
+    spdlog::warn("resuming: augmentation {} differs from the checkpoint's {}: the run will not equal an "
                  "uninterrupted one", augment_to_json(o_.augment).dump(), resumed_["augment"].dump());
   // The configuration: from the checkpoint being resumed or initialised from, else the options.
   config_ = o_.config;
   if (o_.resume) config_ = config_from_json(resumed_.at("config"));
   else if (!o_.init.empty()) config_ = read_checkpoint_config(o_.init);
-  // The targets' unit may change at --init (GMNet's maps have none, so one GMNet stage can start
+  // The targets' unit may change at an init checkpoint (GMNet's maps have none, so one GMNet stage can start
   // both arms of the exposure study); a resume keeps its run's.
   if (!o_.target_units.empty() && o_.target_units != config_.target_units) {
     if (o_.resume)
-      fail("--resume: --target-units {} differs from the checkpoint's {} (a resumed run keeps its unit)",
-           o_.target_units, config_.target_units);
+      fail_setting("target_units", "{} differs from the resumed checkpoint's {} (a resumed run keeps its unit)",
+                   o_.target_units, config_.target_units);
     if (!o_.init.empty())
-      spdlog::info("--target-units {}: replaces {}'s {}", o_.target_units, o_.init, config_.target_units);
+      spdlog::info("target units {}: replace {}'s {}", o_.target_units, o_.init, config_.target_units);
   }
   if (!o_.target_units.empty()) config_.target_units = o_.target_units;
   check_config(config_);
@@ -125,7 +126,7 @@ void Trainer::join_ranks() {
   group_ = ProcessGroup::join(d);
   rank_ = group_->rank();
   ranks_ = group_->size();
-  // --device cuda without an index: the ranks of a node spread over its GPUs.
+  // A cuda device without an index: the ranks of a node spread over its GPUs.
   if (device_.is_cuda() && !device_.has_index()) {
     device_ = torch::Device(torch::kCUDA, static_cast<c10::DeviceIndex>(rank_ % torch::cuda::device_count()));
     spdlog::info("train {}: rank {} trains on {}", stage_name_, rank_, device_.str());
@@ -141,7 +142,7 @@ void Trainer::build_networks() {
   // Before the optimiser exists, so its state is made (or loaded: load_checkpoint) on the device.
   nets_->to(device_);
   if ((o_.stage == Stage::kLNet || o_.stage == Stage::kGSNet) && !trained_.value("gmnet", false))
-    spdlog::warn("stage {}: GMNet is frozen but untrained (pass --init with a gmnet checkpoint)", stage_name_);
+    spdlog::warn("stage {}: GMNet is frozen but untrained (start it from a gmnet checkpoint)", stage_name_);
   // The stage's networks train; the others are frozen (eval mode, no gradients).
   std::vector<torch::Tensor> params;
   auto collect = [&](torch::nn::Module& m, bool on) {
@@ -171,13 +172,13 @@ void Trainer::build_networks() {
     best_.epoch = best.at("epoch");
     best_.step = best.at("global_step");
   } else if (best.is_object()) {
-    spdlog::warn("--resume: the checkpoint's best is by {}, this run keeps the best by {} from now on",
+    spdlog::warn("resuming: the checkpoint's best is by {}, this run keeps the best by {} from now on",
                  best.at("metric").get<std::string>(), best_.metric);
   }
 }
 
 void Trainer::load_data() {
-  const Radiance units = target_radiance(config_);
+  const view::RadianceUnits units = target_radiance(config_);
   // Only LNet's stages read the probes (the gmnet and gsnet losses never look at them).
   ManifestDataset views =
       ManifestDataset::for_training(o_.data_dir, o_.split, o_.max_views, config_, units, stage_.lnet);
@@ -228,7 +229,7 @@ bool Trainer::run_epoch(int epoch) {
     epoch_steps_ = 0;
   }
   set_modes(true);
-  bool stopped = false;  // --max-steps reached inside the epoch
+  bool stopped = false;  // max_steps reached inside the epoch
   int64_t bi = epoch == start_epoch_ ? start_batch_ : 0;
   // The epoch's order depends only on (seed, epoch), so a resumed run sees the same batches.
   // Each rank reads its slice of every global batch (data_parallel.h); one process reads them all.
@@ -268,7 +269,7 @@ double Trainer::run_step(int epoch, int64_t bi, const Batch& b) {
   // The NaN check of every step: stop before the optimiser spreads it into the weights.
   if (!std::isfinite(loss))
     fail("train {}: the loss is {} at epoch {} step {} (global step {}): {}. Stopped; the last good checkpoint is {} "
-         "(try a lower --lr)",
+         "(try a lower learning rate)",
          stage_name_, loss, epoch + 1, bi + 1, global_step_ + 1, format_parts(L), checkpoint_path_.string());
   opt_->zero_grad();
   L.total.backward();

@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "phyir/core/error.h"
+#include "phyir/core/setting_error.h"
 #include "phyir/core/log.h"
 #include "phyir/core/pcg32.h"
 #include "phyir/eval/evaluate_view.h"
@@ -44,7 +45,7 @@ class GeneratorScope {
 
 // The model's output as the eval library reads a prediction folder, radiance made absolute
 // (a run trained on absolute targets, `units` kAbsolute, predicts it already).
-eval::Prediction to_eval_prediction(const ModelOutput& p, const InputExposure& exposure, Radiance units) {
+eval::Prediction to_eval_prediction(const ModelOutput& p, const view::InputExposure& exposure, view::RadianceUnits units) {
   eval::Prediction e;
   e.depth = tensor_to_image(p.maps.depth[0]);
   e.normal = tensor_to_image(p.maps.normal[0]);
@@ -52,31 +53,29 @@ eval::Prediction to_eval_prediction(const ModelOutput& p, const InputExposure& e
   e.roughness = tensor_to_image(p.maps.roughness[0].clamp(0.0, 1.0));
   e.metalness = tensor_to_image(p.maps.metalness[0].clamp(0.0, 1.0));
   if (!p.probes.defined()) return e;
-  const double to_absolute = units == Radiance::kInputUnits ? 1.0 / exposure.factor() : 1.0;
+  const double to_absolute = units == view::RadianceUnits::kInput ? 1.0 / exposure.factor() : 1.0;
   e.rerender = tensor_to_image(p.rerender[0] * to_absolute);
-  eval::ProbeSet probes;
-  probes.grid_h = static_cast<int>(p.probes.size(1));
-  probes.grid_w = static_cast<int>(p.probes.size(2));
-  probes.h = static_cast<int>(p.probes.size(3));
-  probes.w = static_cast<int>(p.probes.size(4));
-  probes.mosaic = tensor_to_image(probes_to_mosaic(p.probes * to_absolute)[0]);
-  probes.mask = Image(probes.grid_w, probes.grid_h, 1, 1.0f);
+  view::ProbeMosaic probes;
+  probes.layout = {static_cast<int>(p.probes.size(1)), static_cast<int>(p.probes.size(2)),
+                   static_cast<int>(p.probes.size(3)), static_cast<int>(p.probes.size(4))};
+  probes.radiance = tensor_to_image(probes_to_mosaic(p.probes * to_absolute)[0]);
+  probes.mask = Image(probes.layout.grid_width, probes.layout.grid_height, 1, 1.0f);
   e.probes = std::move(probes);
   return e;
 }
 
 // The manifest's views of the split, or none (and why) when there is no such split.
-std::vector<nlohmann::json> split_records(const fs::path& root, const std::string& split, std::string* why) {
+std::vector<view::ViewRecord> split_records(const fs::path& root, const std::string& split, std::string* why) {
   if (split.empty()) {
     *why = "no validation split given";
     return {};
   }
-  if (!fs::is_regular_file(root / "manifest.json")) {
-    *why = (root / "manifest.json").string() + " not found";
+  if (!fs::is_regular_file(root / view::kManifestFile)) {
+    *why = (root / view::kManifestFile).string() + " not found";
     return {};
   }
   try {
-    return eval::split_views(root, split);
+    return view::read_manifest_views(root, split);
   } catch (const Error& e) {
     *why = e.what();
     return {};
@@ -90,16 +89,16 @@ Validator::Validator(const fs::path& root, const ValidationOptions& o, const Mod
     : options_(o), config_(config), device_(device) {
   if (o.every <= 0) return;
   std::string why;
-  std::vector<nlohmann::json> records = split_records(root, o.split, &why);
+  std::vector<view::ViewRecord> records = split_records(root, o.split, &why);
   if (records.empty()) {
     spdlog::info("validation: off ({})", why);
     return;
   }
   if (o.max_views > 0 && records.size() > static_cast<size_t>(o.max_views)) records.resize(o.max_views);
-  for (const nlohmann::json& r : records) {
+  for (const view::ViewRecord& r : records) {
     // The same reader as training's (torch_dataset.h's ManifestDataset::get is load_view).
-    views_.push_back(load_view(root / r.at("dir").get<std::string>(), config, target_radiance(config)));
-    truths_.push_back(std::make_shared<const eval::GroundTruthView>(eval::load_ground_truth(root, r)));
+    views_.push_back(load_view(r, config, target_radiance(config)));
+    truths_.push_back(std::make_shared<const eval::GroundTruthView>(eval::load_ground_truth(r)));
   }
   higher_is_better(o.best_metric);  // an unknown metric fails before the first epoch
 }
@@ -124,7 +123,7 @@ bool Validator::higher_is_better(const std::string& metric) {
   if (std::find(names.begin(), names.end(), metric) == names.end()) {
     std::string known = "val_loss";
     for (const std::string& n : names) known += ", " + n;
-    fail("--best-metric '{}': expected one of {}", metric, known);
+    fail_setting("validation.best_metric", "'{}': expected one of {}", metric, known);
   }
   return eval::higher_is_better(metric);
 }

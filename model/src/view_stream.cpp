@@ -6,6 +6,7 @@
 #include <random>
 
 #include "phyir/core/error.h"
+#include "phyir/core/setting_error.h"
 
 namespace phyir::model {
 
@@ -45,7 +46,7 @@ void EpochSampler::load(torch::serialize::InputArchive&) {
 // --- TrainingBatches ----------------------------------------------------------------------------
 
 TrainingBatches::TrainingBatches(ManifestDataset views, const AugmentOptions& augment, int yaw_divisions,
-                                 uint64_t seed, Radiance units)
+                                 uint64_t seed, view::RadianceUnits units)
     : views_(std::move(views)), augment_(augment), divisions_(yaw_divisions), seed_(seed), units_(units) {}
 
 Batch TrainingBatches::get_batch(BatchRequest request) {
@@ -60,10 +61,10 @@ Batch TrainingBatches::get_batch(BatchRequest request) {
 
 BatchStream::BatchStream(TrainingBatches batches, StreamOptions options)
     : batches_(std::move(batches)), options_(options) {
-  if (options_.workers < 0) fail("--workers {}: must be 0 or more", options_.workers);
+  if (options_.workers < 0) fail_setting("workers", "{} must be 0 or more", options_.workers);
   if (options_.workers > 0 && options_.prefetch < 1)
-    fail("--prefetch {}: at least 1 batch is read ahead when there are workers (--workers {})", options_.prefetch,
-         options_.workers);
+    fail_setting("prefetch", "{} is too few: at least 1 batch is read ahead when there are workers ({} here)", options_.prefetch,
+                 options_.workers);
 }
 
 void BatchStream::run_epoch(int epoch, const std::vector<size_t>& order, int64_t first_batch, int64_t batch,

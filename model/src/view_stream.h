@@ -60,7 +60,7 @@ class EpochSampler : public torch::data::samplers::Sampler<BatchRequest> {
 class TrainingBatches : public torch::data::datasets::BatchDataset<TrainingBatches, Batch, BatchRequest> {
  public:
   TrainingBatches(ManifestDataset views, const AugmentOptions& augment, int yaw_divisions, uint64_t seed,
-                  Radiance units);
+                  view::RadianceUnits units);
   Batch get_batch(BatchRequest request) override;
   torch::optional<size_t> size() const override { return views_.size(); }
   ManifestDataset& views() { return views_; }
@@ -70,7 +70,7 @@ class TrainingBatches : public torch::data::datasets::BatchDataset<TrainingBatch
   AugmentOptions augment_;
   int divisions_;
   uint64_t seed_;
-  Radiance units_;
+  view::RadianceUnits units_;
 };
 
 // Runs the epochs' batches through a consumer, reading ahead with worker threads.

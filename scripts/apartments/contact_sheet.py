@@ -10,12 +10,14 @@ lower middle row, left to right, with color.png's exposure.
 Needs Debian's python3-openimageio and python3-numpy (/usr/bin/python3).
 """
 import argparse
-import json
 import os
 import sys
 
 import numpy as np
 import OpenImageIO as oiio
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from phyir_view import COLOR_PREVIEW_FILE, RENDER_RECORD_FILE, map_file, preview_exposure_stops, read_probes  # noqa: E402
 
 COLUMNS = ("color", "basecolor", "normal", "depth", "roughness", "metalness")
 
@@ -38,8 +40,8 @@ def as_rgb(image):
 
 def tile(folder, column):
     if column == "color":
-        return as_rgb(read(os.path.join(folder, "color.png")))  # OIIO gives 8-bit as [0, 1]
-    image = as_rgb(read(os.path.join(folder, f"{column}.exr")))
+        return as_rgb(read(os.path.join(folder, COLOR_PREVIEW_FILE)))  # OIIO gives 8-bit as [0, 1]
+    image = as_rgb(read(os.path.join(folder, map_file(column))))
     if column == "basecolor":
         return srgb(image)
     if column == "normal":
@@ -51,15 +53,13 @@ def tile(folder, column):
 
 def probe_tile(folder, count, colour_scale):
     """`count` probes of the grid row at 60% of its height, evenly across, in a 2-row mosaic."""
-    probes = read(os.path.join(folder, "probes.exr"))[..., :3]
-    mask = read(os.path.join(folder, "probe_mask.exr"))[..., 0]
-    grid_h, grid_w = mask.shape
-    h, w = probes.shape[0] // grid_h, probes.shape[1] // grid_w
+    probes, mask = read_probes(folder)
+    grid_h, grid_w, h, w = probes.shape[:4]
     i = int(grid_h * 0.6)
     picked = []
     for k in range(count):
         j = int((k + 0.5) * grid_w / count)
-        block = probes[i * h:(i + 1) * h, j * w:(j + 1) * w] if mask[i, j] > 0 else np.zeros((h, w, 3))
+        block = probes[i, j] if mask[i, j, 0] > 0 else np.zeros((h, w, 3))
         picked.append(srgb(block * colour_scale))
     rows = [np.concatenate(picked[r::2], axis=1) for r in range(2)] if count > 1 else picked
     return np.concatenate(rows, axis=0)
@@ -67,11 +67,10 @@ def probe_tile(folder, count, colour_scale):
 
 def colour_scale(folder):
     """color.png's exposure (render.json), as a factor on linear radiance."""
-    path = os.path.join(folder, "render.json")
     try:
-        stops = json.load(open(path))["color_png"]["exposure_stops"]
+        stops = preview_exposure_stops(folder)
     except (OSError, ValueError, KeyError) as error:
-        sys.exit(f"{path}: no color_png.exposure_stops ({error})")
+        sys.exit(f"{os.path.join(folder, RENDER_RECORD_FILE)}: no color_png exposure ({error})")
     return 2.0 ** stops
 
 

@@ -18,7 +18,7 @@
 #include "phyir/core/pcg32.h"
 #include "phyir/eval/pixel_metrics.h"
 #include "phyir/eval/probe_set.h"
-#include "phyir/eval/resample.h"
+#include "phyir/core/image_resample.h"
 #include "phyir/eval/ssim.h"
 
 namespace phyir::eval {
@@ -168,19 +168,19 @@ TEST_F(ReferenceMetrics, AreaResizeAndProbeSsimMatchNumpy) {
   const Image im = random_image(7, 5, 3, 0, 1, 31);
   // Ground-truth probes: a 4x8 grid of 4x8 texels; predicted: a 2x4 grid of 2x4 texels (both
   // coarser), so the comparison picks GT probes by cell centre and area-averages texels.
-  ProbeSet gt, pred;
-  gt.grid_h = 4, gt.grid_w = 8, gt.h = 4, gt.w = 8;
-  gt.mosaic = random_image(64, 16, 3, 0, 3, 32);
+  view::ProbeMosaic gt, pred;
+  gt.layout = {4, 8, 4, 8};
+  gt.radiance = random_image(64, 16, 3, 0, 3, 32);
   gt.mask = random_mask(8, 4, 33);
-  pred.grid_h = 2, pred.grid_w = 4, pred.h = 2, pred.w = 4;
-  pred.mosaic = random_image(16, 4, 3, 0, 3, 34);
+  pred.layout = {2, 4, 2, 4};
+  pred.radiance = random_image(16, 4, 3, 0, 3, 34);
   pred.mask = random_mask(4, 2, 35);
   pred.mask.at(0, 0) = 1.0f;  // at least one probe compared (its GT cell is (1, 1))
   gt.mask.at(1, 1) = 1.0f;
   json cases = json::array();
   cases.push_back({{"name", "down"}, {"metric", "area_resize"}, {"image", to_json(im)}, {"width", 3}, {"height", 2}});
   cases.push_back({{"name", "up"}, {"metric", "area_resize"}, {"image", to_json(im)}, {"width", 10}, {"height", 8}});
-  cases.push_back({{"name", "probes"}, {"metric", "probe_ssim"}, {"pred", to_json(pred.mosaic)}, {"gt", to_json(gt.mosaic)},
+  cases.push_back({{"name", "probes"}, {"metric", "probe_ssim"}, {"pred", to_json(pred.radiance)}, {"gt", to_json(gt.radiance)},
                    {"pred_mask", mask_json(pred.mask)}, {"gt_mask", mask_json(gt.mask)}});
   const json ref = run(cases);
   ASSERT_FALSE(ref.is_null());

@@ -19,7 +19,7 @@
 #include "phyir/core/pcg32.h"
 #include "phyir/eval/depth_protocol.h"
 #include "phyir/eval/evaluate_view.h"
-#include "phyir/eval/resample.h"
+#include "phyir/core/image_resample.h"
 #include "phyir/eval/suite.h"
 #include "phyir/eval/unifuse_depth.h"
 

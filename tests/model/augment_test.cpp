@@ -174,7 +174,7 @@ TEST_F(Augment, ExposureJitterScalesInputAndTargetsTogether) {
   EXPECT_LT(error(e), 2.0 * noise_ + 1e-4);
   EXPECT_TRUE(same(pm::expose_view(view_, 0.0), view_));
   // Absolute targets (--target-units absolute) keep the scene's radiance: only the input moves.
-  const pm::ViewTensors a = pm::expose_view(view_, stops, pm::Radiance::kAbsolute);
+  const pm::ViewTensors a = pm::expose_view(view_, stops, phyir::view::RadianceUnits::kAbsolute);
   EXPECT_TRUE(torch::equal(a.image, e.image));
   EXPECT_TRUE(torch::equal(a.color_lo, view_.color_lo));
   EXPECT_TRUE(torch::equal(a.probes, view_.probes));

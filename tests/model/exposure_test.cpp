@@ -11,6 +11,7 @@
 #include "phyir/core/error.h"
 #include "phyir/core/image_io.h"
 #include "phyir/dataset/input_image.h"
+#include "phyir/view/view_record.h"
 #include "render_layer.h"
 #include "tiny_dataset.h"
 
@@ -43,7 +44,7 @@ pm::ModelConfig native(const fs::path& view) {
   return c;
 }
 
-double stops_of(const fs::path& view) { return pm::read_input_exposure(view).stops; }
+double stops_of(const fs::path& view) { return phyir::view::read_view(view).input.stops; }
 
 }  // namespace
 
@@ -65,22 +66,6 @@ TEST(ModelExposure, SrgbCurveMatchesOpenColorIO) {
   // Round trip.
   const torch::Tensor x = torch::linspace(0.0, 1.0, 1001);
   EXPECT_TRUE(torch::allclose(pm::srgb_decode(pm::srgb_encode(x)), x, 1e-5, 1e-7));
-}
-
-TEST(ModelExposure, ReadsTheExposureFromViewJson) {
-  const fs::path dir = scratch("view_json");
-  EXPECT_FALSE(pm::read_input_exposure(dir).recorded);  // no view.json: 0 stops, not recorded
-  EXPECT_EQ(pm::read_input_exposure(dir).factor(), 1.0);
-  std::ofstream(dir / "view.json") << R"({"id": "a/v0", "input": {"exposure_stops": -1.5, "view": "Standard"}})";
-  const pm::InputExposure e = pm::read_input_exposure(dir);
-  EXPECT_TRUE(e.recorded);
-  EXPECT_EQ(e.stops, -1.5);
-  EXPECT_DOUBLE_EQ(e.factor(), std::exp2(-1.5));
-  EXPECT_FALSE(e.raw_view);
-  std::ofstream(dir / "view.json") << R"({"input": {"exposure_stops": "bright"}})";
-  EXPECT_THROW(pm::read_input_exposure(dir), phyir::Error);
-  std::ofstream(dir / "view.json") << "{not json";
-  EXPECT_THROW(pm::read_input_exposure(dir), phyir::Error);
 }
 
 class ExposureOnDataset : public ::testing::Test {
@@ -110,11 +95,11 @@ TEST_F(ExposureOnDataset, SameViewAtTwoExposuresGivesTheSameTargets) {
   EXPECT_NEAR(exposure.stops, stops_of(view_) - 2.0, 1e-5);
   fs::remove(bright / "input.png");
   phyir::dataset::write_input_image(bright / "input.png", color, exposure, settings);
-  std::ofstream(bright / "view.json") << nlohmann::json({{"input", exposure.to_json(settings)}}).dump();
+  std::ofstream(bright / "view.json") << nlohmann::json({{"input", exposure.to_json()}}).dump();
 
   const pm::ModelConfig c = native(view_);
-  const pm::ViewTensors a = pm::load_view(view_, c, pm::Radiance::kInputUnits);
-  const pm::ViewTensors b = pm::load_view(bright, c, pm::Radiance::kInputUnits);
+  const pm::ViewTensors a = pm::load_view(view_, c, phyir::view::RadianceUnits::kInput);
+  const pm::ViewTensors b = pm::load_view(bright, c, phyir::view::RadianceUnits::kInput);
   EXPECT_LE((a.image - b.image).abs().max().item<float>(), 1.0f / 255 + 1e-6f);  // the same input (8-bit rounding)
   EXPECT_TRUE(torch::allclose(a.color_lo, b.color_lo, 1e-5, 1e-7));
   EXPECT_TRUE(torch::allclose(a.probes, b.probes, 1e-5, 1e-7));
@@ -131,8 +116,8 @@ TEST_F(ExposureOnDataset, TargetUnitsSwitchScalesTheTargetsByTheExposure) {
   ASSERT_GT(std::abs(stops), 0.1) << "a view at 0 stops cannot tell the units apart";
   pm::ModelConfig input = native(view_), absolute = native(view_);
   absolute.target_units = "absolute";
-  ASSERT_EQ(pm::target_radiance(input), pm::Radiance::kInputUnits);
-  ASSERT_EQ(pm::target_radiance(absolute), pm::Radiance::kAbsolute);
+  ASSERT_EQ(pm::target_radiance(input), phyir::view::RadianceUnits::kInput);
+  ASSERT_EQ(pm::target_radiance(absolute), phyir::view::RadianceUnits::kAbsolute);
   const pm::ViewTensors a = pm::load_view(view_, input, pm::target_radiance(input));
   const pm::ViewTensors b = pm::load_view(view_, absolute, pm::target_radiance(absolute));
   const double factor = std::exp2(stops);
@@ -141,7 +126,7 @@ TEST_F(ExposureOnDataset, TargetUnitsSwitchScalesTheTargetsByTheExposure) {
   EXPECT_NEAR((a.probes.sum() / b.probes.sum()).item<double>(), factor, 1e-5 * factor);
   EXPECT_NEAR((a.color_lo.sum() / b.color_lo.sum()).item<double>(), factor, 1e-5 * factor);
   // The absolute targets are the files' values.
-  EXPECT_TRUE(torch::equal(b.probes, pm::load_view(view_, input, pm::Radiance::kAbsolute).probes));
+  EXPECT_TRUE(torch::equal(b.probes, pm::load_view(view_, input, phyir::view::RadianceUnits::kAbsolute).probes));
   // Input, maps and masks do not depend on the unit.
   for (auto m : {&pm::ViewTensors::image, &pm::ViewTensors::depth, &pm::ViewTensors::normal,
                  &pm::ViewTensors::base_color, &pm::ViewTensors::render_mask, &pm::ViewTensors::probe_mask})
@@ -168,7 +153,7 @@ TEST_F(ExposureOnDataset, RenderingLayerReproducesTheLinearInputInInputUnits) {
   const torch::Tensor unclipped =
       (F::max_pool2d(std::get<0>(input.max(1, true)), F::MaxPool2dFuncOptions({input.size(2) / H, input.size(3) / W})) <
        0.99f).to(torch::kFloat);
-  for (const pm::Radiance units : {pm::Radiance::kInputUnits, pm::Radiance::kAbsolute}) {
+  for (const phyir::view::RadianceUnits units : {phyir::view::RadianceUnits::kInput, phyir::view::RadianceUnits::kAbsolute}) {
     const pm::ViewTensors v = pm::load_view(view_, c, units);
     auto lo = [&](const torch::Tensor& x) { return pm::resize(x.unsqueeze(0), H, W); };
     pm::RenderSettings rs;
@@ -185,8 +170,8 @@ TEST_F(ExposureOnDataset, RenderingLayerReproducesTheLinearInputInInputUnits) {
                            (linear.square() * mask).sum().item<double>();
     const double ratio = (image * mask).sum().item<double>() / (linear * mask).sum().item<double>();
     std::printf("[Exposure] %s units: %g pixels, relative MSE %.4f, mean re-render / mean linear input %.4f\n",
-                units == pm::Radiance::kInputUnits ? "input" : "absolute", n, rel_mse, ratio);
-    if (units == pm::Radiance::kInputUnits) {
+                units == phyir::view::RadianceUnits::kInput ? "input" : "absolute", n, rel_mse, ratio);
+    if (units == phyir::view::RadianceUnits::kInput) {
       EXPECT_LT(rel_mse, 0.15);
       EXPECT_NEAR(ratio, 1.0, 0.2);
     } else {

@@ -12,6 +12,7 @@
 #include "phyir/core/image_io.h"
 #include "phyir/dataset/manifest.h"
 #include "phyir/model/training.h"
+#include "phyir/view/view_record.h"
 #include "lr_schedule.h"
 #include "validation.h"
 #include "render_layer.h"
@@ -155,7 +156,7 @@ std::vector<std::string> csv_rows_without_time(const fs::path& path) {
 }  // namespace
 
 TEST(ModelData, LoadsViewFoldersAtNetworkResolution) {
-  const auto folders = pm::find_view_folders(dataset());
+  const auto folders = phyir::view::find_views(dataset());
   ASSERT_EQ(folders.size(), 3u);
   pm::ModelConfig c = options("", pm::Stage::kGMNet).config;
   const pm::ViewTensors v = pm::load_view(folders[0], c);
@@ -353,13 +354,13 @@ TEST(ModelTrainCli, DeviceCpuEqualsTheDefaultAndAnUnavailableDeviceIsNamed) {
     const std::string text((std::istreambuf_iterator<char>(e)), std::istreambuf_iterator<char>());
     EXPECT_NE(text.find(expected), std::string::npos) << command << ":\n" << text;
   };
-  fails_naming(train + (work / "tpu").string() + " --device tpu", "--device 'tpu'");
+  fails_naming(train + (work / "tpu").string() + " --device tpu", "--device: 'tpu'");
   if (torch::cuda::is_available()) return;
-  fails_naming(train + (work / "cuda").string() + " --device cuda", "--device 'cuda': CUDA is not available");
+  fails_naming(train + (work / "cuda").string() + " --device cuda", "--device: 'cuda': CUDA is not available");
   fails_naming(bin.string() + " infer --model " + (work / "cpu" / "checkpoint.pt").string() + " --input " +
-                   (fs::path(pm::find_view_folders(dataset())[0]) / "input.png").string() + " --out " +
+                   (phyir::view::find_views(dataset())[0].dir / "input.png").string() + " --out " +
                    (work / "infer").string() + " --device cuda",
-               "--device 'cuda': CUDA is not available");
+               "--device: 'cuda': CUDA is not available");
   EXPECT_FALSE(fs::exists(work / "cuda" / "checkpoint.pt"));
 }
 
@@ -373,7 +374,7 @@ TEST(ModelTrainCli, InferIsIdenticalWithOneAndTwoThreads) {
   const std::string log = " >> " + (work / "log.txt").string() + " 2>&1";
   ASSERT_EQ(std::system((tiny_gmnet_command(bin) + (work / "run").string() + log).c_str()), 0)
       << work / "log.txt";
-  const std::string input = (fs::path(pm::find_view_folders(dataset())[0]) / "input.png").string();
+  const std::string input = (phyir::view::find_views(dataset())[0].dir / "input.png").string();
   for (int threads : {1, 2})
     ASSERT_EQ(std::system((bin.string() + " --log-level warn infer --model " + (work / "run" / "checkpoint.pt").string() +
                            " --input " + input + " --threads " + std::to_string(threads) + " --out " +
@@ -400,23 +401,6 @@ TEST(ModelTrain, BadOptionsAreReported) {
   EXPECT_EQ(d.learning_rate, 5e-4);
   EXPECT_EQ(d.batch_size, 16);
   EXPECT_EQ(pm::stage_defaults(pm::Stage::kJoint).weights.coherence, 0.1);
-}
-
-TEST(ModelData, ManifestSplitsAndDeepFolders) {
-  // docs/dataset.md: DIR/manifest.json lists views (dir relative to DIR, split); the views
-  // live three levels down (views/<scene>/<vNNN>).
-  const fs::path root = scratch("manifest");
-  write_view(root / "views" / "s" / "v000", 0);
-  write_view(root / "views" / "s" / "v001", 1);
-  EXPECT_EQ(pm::find_view_folders(root).size(), 2u);  // no manifest: found by scanning
-  std::ofstream(root / "manifest.json")
-      << R"({"views": [{"id": "s/v000", "dir": "views/s/v000", "split": "train"},
-                       {"id": "s/v001", "dir": "views/s/v001", "split": "val"}]})";
-  const auto train = pm::find_view_folders(root, "train");
-  ASSERT_EQ(train.size(), 1u);
-  EXPECT_EQ(train[0], root / "views" / "s" / "v000");
-  EXPECT_EQ(pm::find_view_folders(root, "").size(), 2u);
-  EXPECT_THROW(pm::find_view_folders(root, "test"), phyir::Error);
 }
 
 TEST(ModelTrain, ResumeIsExactWithScheduleValidationAndBestCheckpoint) {
@@ -651,7 +635,7 @@ TEST(ModelTrainCli, ManifestDatasetWithAValSplitEndToEnd) {
     std::ifstream f(work / out / "infer.json");
     return nlohmann::json::parse(f)["radiance"];
   };
-  const double stops = pm::read_input_exposure(val_view).stops;
+  const double stops = phyir::view::read_view(val_view).input.stops;
   const nlohmann::json abs = infer(val_view / "input.png", "abs", "");
   EXPECT_EQ(abs["unit"], "absolute");
   EXPECT_NEAR(abs["exposure_stops"].get<double>(), stops, 1e-6);

@@ -58,11 +58,11 @@ class CleanUp : public ::testing::Environment {
 ::testing::Environment* const clean_up = ::testing::AddGlobalTestEnvironment(new CleanUp);
 
 pm::ManifestDataset views() {
-  return pm::ManifestDataset::for_training(dataset(), "", 0, config(), pm::Radiance::kInputUnits);
+  return pm::ManifestDataset::for_training(dataset(), "", 0, config(), phyir::view::RadianceUnits::kInput);
 }
 
 pm::TrainingBatches batches(const pm::ManifestDataset& v, const pm::AugmentOptions& augment = {}) {
-  return pm::TrainingBatches(v, augment, pm::yaw_divisions(config()), kSeed, pm::Radiance::kInputUnits);
+  return pm::TrainingBatches(v, augment, pm::yaw_divisions(config()), kSeed, phyir::view::RadianceUnits::kInput);
 }
 
 // Every batch of `epoch` from `first` on, as the stream hands them over.
@@ -104,7 +104,7 @@ TEST(ModelStream, BatchesEqualTheInMemoryBatchesWhateverTheWorkers) {
       const std::vector<size_t> idx(order.begin() + k * batch,
                                     order.begin() + std::min<size_t>(order.size(), (k + 1) * batch));
       expected.push_back(pm::augmented_batch(all, idx, pm::AugmentOptions{}, pm::yaw_divisions(config()), kSeed,
-                                             epoch, pm::Radiance::kInputUnits));
+                                             epoch, phyir::view::RadianceUnits::kInput));
     }
     for (auto [workers, prefetch] : std::vector<std::pair<int, int>>{{0, 1}, {1, 1}, {2, 2}, {2, 5}}) {
       const std::vector<pm::Batch> got = stream_epoch(workers, prefetch, epoch, 0, batch);
@@ -176,8 +176,8 @@ TEST(ModelStream, StopsEarlyAndRethrowsAWorkersErrorAsThrown) {
   synthetic::write_view(broken / "b", 1);
   fs::remove(broken / "b" / "depth.exr");
   pm::BatchStream bad(pm::TrainingBatches(pm::ManifestDataset::for_training(broken, "", 0, config(),
-                                                                           pm::Radiance::kInputUnits),
-                                          {}, pm::yaw_divisions(config()), kSeed, pm::Radiance::kInputUnits),
+                                                                           phyir::view::RadianceUnits::kInput),
+                                          {}, pm::yaw_divisions(config()), kSeed, phyir::view::RadianceUnits::kInput),
                       {2, 2});
   try {
     bad.run_epoch(0, {0, 1}, 0, 1, [](pm::Batch) { return true; });
@@ -211,7 +211,7 @@ TEST(ModelStream, DISABLED_MeasureReaderMemory) {
   paper.probe_height = 16;
   paper.probe_width = 32;
   pm::ManifestDataset d = pm::ManifestDataset::for_training(data, "", count ? std::atoi(count) : 0, paper,
-                                                            pm::Radiance::kInputUnits);
+                                                            phyir::view::RadianceUnits::kInput);
   auto census = std::make_shared<pm::ViewCensus>();
   d.count_views(census);
   const size_t n = d.size().value();
@@ -229,7 +229,7 @@ TEST(ModelStream, DISABLED_MeasureReaderMemory) {
       view_bytes += static_cast<int64_t>((all[0].*m).nbytes());
     for (const auto& v : all) checksum += v.probes.sum().item<double>();
   } else {
-    pm::BatchStream stream(pm::TrainingBatches(d, {}, pm::yaw_divisions(paper), kSeed, pm::Radiance::kInputUnits),
+    pm::BatchStream stream(pm::TrainingBatches(d, {}, pm::yaw_divisions(paper), kSeed, phyir::view::RadianceUnits::kInput),
                            {2, 2});
     // Each step waits until the read-ahead is full, as a training step slower than reading does.
     int64_t k = 0;

@@ -12,8 +12,12 @@
 #include "phyir/core/image_io.h"
 #include "phyir/core/log.h"
 #include "phyir/core/safe_math.h"
+#include "phyir/core/setting_error.h"
 #include "phyir/render/equirect.h"
 #include "phyir/scenes/gltf_loader.h"
+#include "phyir/view/input_exposure.h"
+#include "phyir/view/probe_mosaic.h"
+#include "phyir/view/view_files.h"
 
 namespace phyir::render {
 
@@ -31,15 +35,16 @@ nlohmann::json vec_json(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 
 void validate(const RenderJob& job) {
   if (job.width <= 0 || job.height <= 0 || job.width > 65536 || job.height > 65536)
-    fail("--width/--height {}x{} must be between 1 and 65536", job.width, job.height);
+    fail_setting("size", "{}x{} must be between 1 and 65536", job.width, job.height);
   if (job.projection == Projection::Equirectangular && job.width != 2 * job.height)
     spdlog::warn("equirectangular image {}x{} is not 2:1; pixels will not be square in angle",
                  job.width, job.height);
-  if (job.settings.spp <= 0) fail("--spp {} must be positive", job.settings.spp);
-  if (job.settings.path.max_bounces < 0) fail("--max-bounces {} must be >= 0", job.settings.path.max_bounces);
-  if (job.threads < 0) fail("--threads {} must be >= 0 (0 = all cores)", job.threads);
-  if (job.camera_position && !is_finite(*job.camera_position)) fail("--camera must be three finite numbers");
-  if (!std::isfinite(job.exposure)) fail("--exposure must be finite");
+  if (job.settings.spp <= 0) fail_setting("spp", "{} must be positive", job.settings.spp);
+  if (job.settings.path.max_bounces < 0) fail_setting("max_bounces", "{} must be >= 0", job.settings.path.max_bounces);
+  if (job.threads < 0) fail_setting("threads", "{} must be >= 0 (0 = all cores)", job.threads);
+  if (job.camera_position && !is_finite(*job.camera_position))
+    fail_setting("camera_position", "must be three finite numbers");
+  if (!std::isfinite(job.exposure)) fail_setting("exposure", "must be finite");
   if (job.probes) job.probe.validate();
 }
 
@@ -57,11 +62,7 @@ RenderReport::Probes render_and_write_probes(const RenderJob& job, const RenderS
                probe_mode_name(settings.mode));
   const ProbeOutput probes = ProbeRenderer(scene, effects, settings).render(camera);
   const auto start = Clock::now();
-  write_image(job.out_dir / "probes.exr", probes.mosaic);
-  write_image(job.out_dir / "probe_position.exr", probes.position, {"X", "Y", "Z"});
-  write_image(job.out_dir / "probe_normal.exr", probes.normal, {"X", "Y", "Z"});
-  write_image(job.out_dir / "probe_mask.exr", probes.mask);
-  report.files = {"probes.exr", "probe_position.exr", "probe_normal.exr", "probe_mask.exr"};
+  report.files = view::write_probe_images(job.out_dir, {probes.mosaic, probes.position, probes.normal, probes.mask});
   report.write_seconds = seconds_since(start);
   report.stats = probes.stats;
   if (probes.stats.counters.nonfinite_samples > 0)
@@ -163,10 +164,10 @@ CameraModel job_camera(const RenderJob& job, const scenes::Scene& scene, std::st
     return camera;
   }
   if (scene.cameras.empty())
-    fail("{}: the scene has no camera node; pass --camera X,Y,Z", scene.source);
+    fail_setting("camera_position", "{}: the scene has no camera node: give a position X,Y,Z", scene.source);
   if (job.camera_index < 0 || size_t(job.camera_index) >= scene.cameras.size())
-    fail("{}: --camera-index {} is out of range (the scene has {} camera(s))", scene.source,
-         job.camera_index, scene.cameras.size());
+    fail_setting("camera_index", "{} is out of range ({} has {} camera(s))", job.camera_index, scene.source,
+                 scene.cameras.size());
   const scenes::Camera& c = scene.cameras[job.camera_index];
   camera.position = c.position;
   camera.forward = c.forward;
@@ -230,11 +231,12 @@ RenderReport run_render_job(const RenderJob& job) {
   }
   start = Clock::now();
   report.exposure = job.auto_exposure ? auto_exposure(out.film.color()) : AutoExposure{job.exposure, 0.0f};
-  write_image(job.out_dir / "color.png", linear_to_display(out.film.color(), report.exposure.stops, job.view));
-  report.files.push_back("color.png");
+  write_image(job.out_dir / view::kColorPreviewFile,
+              linear_to_display(out.film.color(), report.exposure.stops, job.view));
+  report.files.push_back(view::kColorPreviewFile);
   report.timings.write_seconds = color_write_seconds + seconds_since(start);
   report.timings.total_seconds = seconds_since(total_start);
-  write_file_atomic(job.out_dir / "render.json", report.to_json().dump(2) + "\n");
+  write_file_atomic(job.out_dir / view::kRenderRecordFile, report.to_json().dump(2) + "\n");
   if (out.stats.counters.nonfinite_samples > 0)
     spdlog::warn("{} non-finite path samples were caught and zeroed", out.stats.counters.nonfinite_samples);
   spdlog::info("wrote {} files to {} in {:.2f} s ({:.2f} Mrays/s)", report.files.size() + 1, job.out_dir.string(),
@@ -278,7 +280,7 @@ nlohmann::json RenderReport::to_json() const {
                         {"environment_source", environment.source},
                         {"exposure", job.auto_exposure ? nlohmann::json("auto") : nlohmann::json(job.exposure)},
                         {"view", job.view}};
-  report["color_png"] = {{"exposure_stops", exposure.stops}, {"view", job.view}};
+  report["color_png"] = {{view::kExposureStopsKey, exposure.stops}, {"view", job.view}};
   if (job.auto_exposure) report["color_png"]["percentile_value"] = exposure.percentile_value;
   report["effects"] = effects.to_json();
   report["counters"] = stats.to_json();

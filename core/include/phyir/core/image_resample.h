@@ -1,6 +1,6 @@
 #pragma once
-// Resampling between the ground truth's and a prediction's resolutions (docs/eval.md).
-// Maps are compared at the coarser of the two grids: the finer image is area-averaged onto
+// Resampling images between resolutions (evaluation, docs/eval.md; probe mosaics,
+// view/probe_mosaic.h). Evaluated maps are compared at the coarser of the two grids: the finer image is area-averaged onto
 // it (exact box-overlap weights, any ratio), so every compared value covers the same
 // solid-angle patch on both sides. Masks are resampled conservatively: a coarse pixel is
 // valid only when every fine pixel it overlaps is valid (no value averaged across an
@@ -9,7 +9,7 @@
 
 #include "phyir/core/image.h"
 
-namespace phyir::eval {
+namespace phyir {
 
 // Area (box) resampling to width x height; for upsampling it replicates (each output pixel
 // takes the overlap-weighted mean of the few source pixels it covers).
@@ -36,4 +36,4 @@ Image at_size(const Image& image, Size size);
 // in the error when the image has too few.
 Image take_channels(const Image& image, int channels, const std::string& what);
 
-}  // namespace phyir::eval
+}  // namespace phyir

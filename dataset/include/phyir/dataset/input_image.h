@@ -1,7 +1,7 @@
 #pragma once
 // input.png: the LDR panorama the network sees, made from color.exr through OpenColorIO
 // (linear_to_display: exposure, then the sRGB display's view) with an exposure chosen per
-// view and recorded (settings.h, InputSettings).
+// view and recorded (settings.h, InputSettings; the record: view/input_exposure.h).
 #include <cstdint>
 #include <filesystem>
 
@@ -9,17 +9,11 @@
 
 #include "phyir/core/image.h"
 #include "phyir/dataset/settings.h"
+#include "phyir/view/input_exposure.h"
 
 namespace phyir::dataset {
 
-struct InputExposure {
-  float stops = 0.0f;             // what input.png used: base + jitter
-  float base_stops = 0.0f;        // auto exposure, or the fixed value
-  float jitter_stops = 0.0f;      // this view's draw in [-jitter, +jitter]
-  float percentile_value = 0.0f;  // auto: the percentile of color.exr's RGB values
-
-  nlohmann::json to_json(const InputSettings& settings) const;
-};
+using view::InputExposure;
 
 // Auto: base = log2(target / v) with v the `percentile` of all RGB values (sorted, index
 // floor(percentile * n), clamped to n - 1), 0 when v <= 0, clamped to [-32, 32] stops.

@@ -14,17 +14,21 @@
 #include <string>
 #include <vector>
 
+#include "phyir/view/view_files.h"
+#include "phyir/view/view_record.h"
+
 namespace phyir::dataset {
 
-inline constexpr const char* kManifestFile = "manifest.json";
+// The view folder's own files and the manifest's name: the view module's (view/view_files.h).
+using view::kInputFile;
+using view::kManifestFile;
+using view::kRenderRecordFile;
+using view::kTemporaryPrefix;
+using view::kTimingFile;
+using view::kViewRecordFile;
 inline constexpr const char* kSettingsFile = "settings.json";
-inline constexpr const char* kViewRecordFile = "view.json";   // the view's manifest entry
-inline constexpr const char* kTimingFile = "timing.json";     // wall-clock times: not checksummed
-inline constexpr const char* kRenderRecordFile = "render.json";
-inline constexpr const char* kInputFile = "input.png";
 inline constexpr const char* kLockFile = ".lock";
 inline constexpr const char* kViewsFolder = "views";
-inline constexpr const char* kTemporaryPrefix = ".tmp-";
 
 // A glTF file of the scenes folder: `name` is its stem (the folder its views go in), `file`
 // its file name.

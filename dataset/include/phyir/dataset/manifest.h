@@ -23,8 +23,8 @@
 
 namespace phyir::dataset {
 
-inline constexpr const char* kManifestFormat = "phyir-dataset";
-inline constexpr int kManifestVersion = 1;
+using view::kManifestFormat;
+using view::kManifestVersion;
 
 struct Manifest {
   nlohmann::json settings;                 // DatasetSettings::to_json()
@@ -47,11 +47,12 @@ nlohmann::json scene_record(const std::filesystem::path& scenes_dir, const Scene
 // The manifest's text (deterministic layout, see above).
 std::string manifest_text(const Manifest& manifest);
 
-// Parses and checks the structure; `source` names the file in error messages.
+// Parses and checks the structure (every view through view::parse_view_record); `source`
+// names the file in error messages.
 Manifest parse_manifest(const nlohmann::json& json, const std::string& source);
 
-// Reads <dir>/manifest.json. Throws phyir::Error naming the file (and saying the run has
-// not finished when it is missing).
+// Reads <dir>/manifest.json (view::read_manifest_document). Throws phyir::Error naming the
+// file (and saying the run has not finished when it is missing).
 Manifest read_manifest(const std::filesystem::path& dir);
 
 // Writes <dir>/manifest.json atomically.

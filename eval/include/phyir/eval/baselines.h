@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "phyir/eval/radiance_units.h"
+#include "phyir/view/radiance_units.h"
 #include "phyir/eval/views.h"
 
 namespace phyir::eval {
@@ -36,7 +36,7 @@ BaselineStats compute_baseline_stats(const std::filesystem::path& root, const st
 // The constant re-render and probes are the means in `units` (absolute, or each view's input
 // units, then returned in `gt`'s absolute unit for evaluate_view to score in input units).
 Prediction constant_mean_prediction(const BaselineStats& stats, const GroundTruthView& gt,
-                                    RadianceUnits units = RadianceUnits::kAbsolute);
+                                    view::RadianceUnits units = view::RadianceUnits::kAbsolute);
 Prediction input_as_basecolor_prediction(const GroundTruthView& gt);
 
 }  // namespace phyir::eval

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "phyir/eval/depth_protocol.h"
-#include "phyir/eval/radiance_units.h"
+#include "phyir/view/radiance_units.h"
 #include "phyir/eval/relight.h"
 #include "phyir/eval/views.h"
 
@@ -18,7 +18,7 @@ struct EvalSettings {
   int relight_positions = 2;  // probe positions per view (spread over the valid probes)
   RelightSettings sphere;
   DepthProtocol depth_protocol = DepthProtocol::kToolkit;  // the rules of the depth_* metrics
-  RadianceUnits radiance_units = RadianceUnits::kAbsolute;  // the unit of the radiance metrics
+  view::RadianceUnits radiance_units = view::RadianceUnits::kAbsolute;  // the unit of the radiance metrics
 };
 
 using Metrics = std::map<std::string, double>;

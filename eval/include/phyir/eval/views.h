@@ -11,6 +11,8 @@
 
 #include "phyir/core/image.h"
 #include "phyir/eval/probe_set.h"
+#include "phyir/view/view_files.h"
+#include "phyir/view/view_record.h"
 
 namespace phyir::eval {
 
@@ -21,18 +23,20 @@ struct GroundTruthView {
   float exposure_stops = 0.0f;  // input.png's exposure (for tone-mapping previews alike)
   Image color, input, depth, normal, basecolor, roughness, metalness;
   Image valid;         // mask_geometry and not mask_emissive and not mask_transparent
-  std::optional<ProbeSet> probes;
+  std::optional<view::ProbeMosaic> probes;
 };
 
-// Reads the view `record` (a manifest entry) of the dataset at `root`. Missing or malformed
-// files: phyir::Error naming the file.
+// Reads the view of `record` (view/view_record.h). Missing or malformed files: phyir::Error
+// naming the file.
+GroundTruthView load_ground_truth(const view::ViewRecord& record);
+// The same for a manifest entry of the dataset at `root`.
 GroundTruthView load_ground_truth(const std::filesystem::path& root, const nlohmann::json& record);
 
 // A prediction; any map may be absent (baselines predict only some). Predictions read from a
 // folder must have the five maps (load_prediction checks); probes and the re-render are optional.
 struct Prediction {
   std::optional<Image> depth, normal, basecolor, roughness, metalness, rerender;
-  std::optional<ProbeSet> probes;
+  std::optional<view::ProbeMosaic> probes;
   std::vector<std::string> missing;  // optional files that were absent (for the report)
 };
 
@@ -40,7 +44,8 @@ struct Prediction {
 // required, all of one size; rerender.exr, probes.exr + probe_mask.exr optional).
 Prediction load_prediction(const std::filesystem::path& dir);
 
-// The files of a prediction folder, for --help and errors.
-const std::vector<std::string>& required_prediction_files();
+// The maps a prediction folder must hold (view::prediction_map_files), for --help and errors.
+inline const std::vector<std::string>& required_prediction_files() { return view::prediction_map_files(); }
+
 
 }  // namespace phyir::eval
