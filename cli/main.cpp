@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "flag_registry.h"
 #include "phyir/core/error.h"
 #include "phyir/core/log.h"
 #include "torch_handoff.h"
@@ -88,6 +89,10 @@ int main(int argc, char** argv) {
     return app.exit(e, std::cout, std::cerr);
   } catch (const CLI::ParseError& e) {
     return app.exit(e, std::cout, std::cerr);
+  } catch (const phyir::SettingError& e) {
+    // A library names the setting; the user gave a flag (flag_registry.h).
+    std::fprintf(stderr, "phyir: error: %s\n", phyir::cli::setting_error_message(app, e).c_str());
+    return 1;
   } catch (const phyir::Error& e) {
     std::fprintf(stderr, "phyir: error: %s\n", e.what());
     return 1;
