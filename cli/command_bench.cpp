@@ -10,7 +10,9 @@
 #include <sstream>
 
 #include "bench_suite_runner.h"
+#include "camera_flags.h"
 #include "commands.h"
+#include "sampling_flags.h"
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
 #include "phyir/core/machine.h"
@@ -26,6 +28,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
+render::RenderSettings colour_only() {
+  render::RenderSettings s;
+  s.aovs = false;
+  return s;
+}
+
 struct BenchFlags {
   std::string scene;
   std::string suite;                 // suite.json: measure on every scene of it instead
@@ -35,10 +43,9 @@ struct BenchFlags {
   int height = 128;
   int threads = 0;
   int reference_spp = 4096;
-  int max_bounces = 8;
+  render::RenderSettings settings = colour_only();  // seed and bounces from the flags
   std::vector<int> spp_list = {1, 2, 4, 8, 16, 32, 64, 128, 256};
   int repeats = 3;
-  uint64_t seed = 0;
 };
 
 struct Loaded {
@@ -59,31 +66,22 @@ std::unique_ptr<Loaded> load(const BenchFlags& f) {
   return l;
 }
 
-render::RenderSettings settings_of(const BenchFlags& f) {
-  render::RenderSettings s;
-  s.seed = f.seed;
-  s.path.max_bounces = f.max_bounces;
-  s.aovs = false;
-  return s;
-}
-
 void add_common(CLI::App* cmd, BenchFlags& f) {
   cmd->add_option("scene", f.scene, "glTF scene to measure on (or --suite)")->check(CLI::ExistingFile);
   cmd->add_option("--suite", f.suite, "suite.json of 'phyir bench suite': measure on every scene, into OUT/<name>/")
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", f.out, "folder for CSV, PNG and JSON results")->capture_default_str();
-  cmd->add_option("--width", f.width, "panorama width")->capture_default_str();
-  cmd->add_option("--height", f.height, "panorama height")->capture_default_str();
-  cmd->add_option("--threads", f.threads, "worker threads (0 = all cores)")->capture_default_str();
-  cmd->add_option("--max-bounces", f.max_bounces, "path length")->capture_default_str();
-  cmd->add_option("--seed", f.seed, "random seed")->capture_default_str();
+  add_image_size_flags(cmd, f.width, f.height);
+  add_threads_flag(cmd, f.threads);
+  add_max_bounces_flag(cmd, f.settings.path.max_bounces);
+  add_seed_flag(cmd, f.settings.seed);
 }
 
 void run_convergence(const BenchFlags& f) {
   auto l = load(f);
   fs::create_directories(f.out);
   const fs::path reference_path = fs::path(f.out) / "reference.exr";
-  render::RenderSettings s = settings_of(f);
+  render::RenderSettings s = f.settings;
   Image reference;
   if (fs::exists(reference_path)) {
     reference = read_image(reference_path);
@@ -92,10 +90,10 @@ void run_convergence(const BenchFlags& f) {
   if (reference.width != f.width || reference.height != f.height) {
     spdlog::info("rendering the converged reference at {} spp", f.reference_spp);
     s.spp = f.reference_spp;
-    s.seed = f.seed + 1000;
+    s.seed = f.settings.seed + 1000;
     reference = render::render_view(*l->render_scene, l->camera, s).film.color();
     write_image(reference_path, reference);
-    s.seed = f.seed;
+    s.seed = f.settings.seed;
   }
   const auto points = render::convergence_study(*l->render_scene, l->camera, s, f.spp_list, reference);
   std::ostringstream csv;
@@ -121,7 +119,7 @@ void run_convergence(const BenchFlags& f) {
 
 void run_effects(const BenchFlags& f) {
   auto l = load(f);
-  render::RenderSettings s = settings_of(f);
+  render::RenderSettings s = f.settings;
   s.spp = 16;
   const auto r = render::compare_effect_kernels(*l->render_scene, l->camera, s, f.repeats);
   nlohmann::json j = {{"scene", f.scene},
@@ -139,7 +137,7 @@ void run_effects(const BenchFlags& f) {
 
 void run_throughput(const BenchFlags& f) {
   auto l = load(f);
-  render::RenderSettings s = settings_of(f);
+  render::RenderSettings s = f.settings;
   s.spp = 16;
   const auto r = render::measure_throughput(*l->render_scene, l->camera, s);
   nlohmann::json j = {{"scene", f.scene},

@@ -11,7 +11,10 @@
 #include <sstream>
 #include <thread>
 
+#include <fmt/format.h>
+
 #include "commands.h"
+#include "flag_registry.h"
 #include "torch_handoff.h"
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/log.h"
@@ -20,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "phyir/model/benchmark.h"
+#include "phyir/model/training.h"
 #endif
 
 namespace phyir::cli {
@@ -131,12 +135,22 @@ void add_bench_model_command(CLI::App& bench) {
       "model", "time and peak memory of GMNet, GSNet, LNet, the rendering layer and full inference "
                "(forward, forward+backward) at the default and the paper's resolution");
   cmd->add_option("--out", f->out, "folder for model_bench.csv, .md and .json")->capture_default_str();
-  cmd->add_option("--threads", f->options.threads, "torch threads")->capture_default_str();
-  cmd->add_option("--repeats", f->options.repeats, "timed runs after the warm-up (best is kept)")->capture_default_str();
-  cmd->add_option("--settings", f->options.settings, "default (input 128x256, rendering 32x64, 8x16 probes, 64/32 "
-                  "samples) and/or paper (256x512, 128x256, 16x32, 512/256)")->delimiter(',')->capture_default_str();
-  cmd->add_option("--lnet-heads", f->options.lnet_heads, "LNet output heads to measure: paper and/or light")
-      ->delimiter(',')->capture_default_str();
+  const model::ModelConfig c;  // the default setting's sizes
+  sets(cmd, "threads", cmd->add_option("--threads", f->options.threads, "torch threads"))->capture_default_str();
+  sets(cmd, "repeats", cmd->add_option("--repeats", f->options.repeats, "timed runs after the warm-up (best is kept)"))
+      ->capture_default_str();
+  sets(cmd, "settings",
+       cmd->add_option("--settings", f->options.settings,
+                       fmt::format("default (input {}x{}, rendering {}x{}, {}x{} probes, {}/{} samples) and/or paper "
+                                   "(256x512, 128x256, 16x32, 512/256)",
+                                   c.input_height, c.input_width, c.render_height, c.render_width, c.probe_height,
+                                   c.probe_width, c.diffuse_samples, c.specular_samples)))
+      ->delimiter(',')
+      ->capture_default_str();
+  sets(cmd, "lnet_heads",
+       cmd->add_option("--lnet-heads", f->options.lnet_heads, "LNet output heads to measure: paper and/or light"))
+      ->delimiter(',')
+      ->capture_default_str();
   cmd->add_flag("!--no-backward", f->options.backward, "forward only");
   cmd->add_option("--seed", f->options.seed, "random seed of the weights and inputs")->capture_default_str();
   cmd->callback([f] { run(*f); });

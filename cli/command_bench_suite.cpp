@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "flag_registry.h"
 #include "phyir/core/log.h"
 #include "phyir/scenes/asset_library.h"
 #include "phyir/scenes/bench_suite.h"
@@ -27,7 +28,8 @@ void add_bench_suite_command(CLI::App& bench) {
       "suite", "write the benchmark suite (mini, hard, three furnished apartment rooms by day and night, Blender's lit "
                "room) and its suite.json, for --suite");
   cmd->add_option("--out", f->out, "folder for the scenes and suite.json")->capture_default_str();
-  cmd->add_option("--assets", f->assets, "furniture library (.sh3f files) for the apartments")->capture_default_str();
+  sets(cmd, "asset_dir", cmd->add_option("--assets", f->assets, "furniture library (.sh3f files) for the apartments"))
+      ->capture_default_str();
   cmd->add_option("--blender-room", f->blender_room, "folder of the Blender-exported lit_room.gltf")->capture_default_str();
   cmd->callback([f] {
     const auto suite = scenes::write_bench_suite(f->out, {f->assets, f->blender_room});

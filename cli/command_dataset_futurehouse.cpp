@@ -1,7 +1,6 @@
 // phyir dataset import-futurehouse / export-futurehouse (docs/futurehouse.md).
 #include <cstdio>
 #include <memory>
-#include <optional>
 
 #include "commands.h"
 #include "exposure_flag.h"
@@ -20,7 +19,7 @@ constexpr double kFacingWarning = 0.9;
 void add_import(CLI::App* dataset) {
   struct Flags {
     dataset::FutureHouseImportOptions o;
-    std::string probes = "auto", probe_res, exposure = "auto";
+    std::string probes = "auto", probe_res;
     bool quiet = false;
   };
   auto f = std::make_shared<Flags>();
@@ -45,8 +44,8 @@ void add_import(CLI::App* dataset) {
                   "texels of one probe, HxW (default: SRC/phyir/export.json's, else the loader's 16x32)");
   cmd->add_option("--normal-axes", f->o.normal_axes,
                   "our x,y,z as FutureHouse's signed axes (default x,y,z; see docs/futurehouse.md)");
-  cmd->add_option("--exposure", f->exposure, "input.png exposure: auto (as generate) or fixed stops")
-      ->capture_default_str();
+  add_exposure_flag(cmd, f->o.input.auto_exposure, f->o.input.exposure_stops, "input.png", "input.exposure_stops")
+      ->group("Options");
   cmd->add_option("--seed", f->o.seed, "seed of the view seeds (exposure jitter)")->capture_default_str();
   cmd->add_option("--threads", f->o.threads, "worker threads (0 = all cores)")->capture_default_str();
   cmd->add_flag("--quiet", f->quiet, "no progress line");
@@ -57,10 +56,6 @@ void add_import(CLI::App* dataset) {
                                      : dataset::ImportProbes::kAuto;
     if (!f->probe_res.empty() && std::sscanf(f->probe_res.c_str(), "%dx%d", &o.probe_height, &o.probe_width) != 2)
       fail("--probe-resolution '{}': give HxW, e.g. 16x32", f->probe_res);
-    if (const std::optional<float> stops = parse_exposure_flag(f->exposure)) {
-      o.input.auto_exposure = false;
-      o.input.exposure_stops = *stops;
-    }
     o.progress = !f->quiet;
     const dataset::FutureHouseImportSummary s = dataset::import_futurehouse(o);
     for (const std::string& why : s.left_out) std::printf("left out: %s\n", why.c_str());

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "flag_registry.h"
 #include "torch_handoff.h"
 #include "phyir/core/error.h"
 
@@ -26,7 +27,8 @@ void add_infer_command(CLI::App& app) {
   cmd->add_option("--out", o->out_dir, "output folder")->required();
   cmd->add_option("--threads", o->threads, "torch threads (0: every core; the outputs are the same for any count)")
       ->capture_default_str();
-  cmd->add_option("--device", o->device, "cpu, cuda or cuda:N (CUDA needs a CUDA LibTorch: docs/model.md \"Build\")")
+  sets(cmd, "device",
+       cmd->add_option("--device", o->device, "cpu, cuda or cuda:N (CUDA needs a CUDA LibTorch: docs/model.md \"Build\")"))
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed of the rendering layer's samples")->capture_default_str();
   cmd->add_option("--exposure", o->exposure,

@@ -7,6 +7,7 @@
 #include "torch_handoff.h"
 
 #ifdef PHYIR_HAVE_MODEL
+#include "flag_registry.h"
 #include "local_ranks.h"
 #include "phyir/core/error.h"
 #include "phyir/model/training.h"
@@ -37,6 +38,11 @@ void add_train_command(CLI::App& app) {
                    "exist yet) or tcp:HOST:PORT (rank 0 serves it on HOST)");
   dist->add_option("--dist-timeout", d.timeout_seconds, "seconds a rank waits for the others (rank 0's validation "
                    "included) before it fails")->check(CLI::PositiveNumber)->capture_default_str();
+  for (const auto& [setting, flag] : {std::pair<const char*, const char*>{"distributed.world_size", "--world-size"},
+                                      {"distributed.rank", "--rank"},
+                                      {"distributed.rendezvous", "--rendezvous"},
+                                      {"distributed.timeout_seconds", "--dist-timeout"}})
+    sets(cmd, setting, flag);
   add_train_slurm_command(*cmd);
   cmd->callback([f, nproc, cmd] {
     if (cmd->got_subcommand("slurm")) return;

@@ -3,9 +3,86 @@
 
 #ifdef PHYIR_HAVE_MODEL
 
+#include <fmt/format.h>
+
+#include "flag_registry.h"
 #include "phyir/core/error.h"
 
 namespace phyir::cli {
+
+namespace {
+
+// One value of appendix B.1 for each stage, "gmnet / lnet / joint / gsnet".
+template <class Value>
+std::string by_stage(Value value) {
+  std::string text;
+  for (model::Stage stage : {model::Stage::kGMNet, model::Stage::kLNet, model::Stage::kJoint, model::Stage::kGSNet})
+    text += fmt::format("{}{}", text.empty() ? "" : " / ", value(model::stage_defaults(stage)));
+  return text;
+}
+
+// The loss weights, augmentation, validation and learning-rate schedule, each an option group.
+void add_train_group_flags(CLI::App* cmd, TrainFlags& f) {
+  model::TrainOptions& o = f.options;
+  auto* wopt = cmd->add_option_group("loss weights", "override every weight of the stage (defaults: B.1)");
+  wopt->add_option("--w-basecolor", f.weights.base_color, "beta_B");
+  wopt->add_option("--w-roughness", f.weights.roughness, "beta_R");
+  wopt->add_option("--w-metalness", f.weights.metalness, "beta_M");
+  wopt->add_option("--w-depth", f.weights.depth, "beta_D");
+  wopt->add_option("--w-normal", f.weights.normal, "beta_N");
+  wopt->add_option("--w-gradient", f.weights.gradient, "beta_gradient");
+  wopt->add_option("--w-probe", f.weights.probe, "beta_L");
+  wopt->add_option("--w-coherence", f.weights.coherence, "beta_SC");
+  wopt->add_option("--w-render", f.weights.render, "beta_render");
+  auto* aug = cmd->add_option_group("augmentation", "training only, drawn per (seed, epoch, view); docs/model.md");
+  aug->add_flag("!--no-augment", o.augment.enabled, "no yaw rotation, mirroring or exposure jitter");
+  aug->add_flag("!--no-rotate", o.augment.rotate, "no yaw rotation");
+  aug->add_flag("!--no-mirror", o.augment.mirror, "no horizontal mirroring");
+  const model::AugmentOptions augment;
+  aug->add_option("--exposure-jitter", f.jitter,
+                  fmt::format("LO,HI: exposure jitter U[LO, HI) stops on input and targets (default {},{}; 0,0 = none)",
+                              augment.exposure_min_stops, augment.exposure_max_stops))
+      ->delimiter(',')
+      ->expected(2);
+  auto* val = cmd->add_option_group("validation", "every N epochs on the dataset's validation split");
+  val->add_option("--val-split", o.validation.split, "split to validate on (\"\" = none)")->capture_default_str();
+  val->add_option("--val-every", o.validation.every, "epochs between validation passes (0 = none)")->capture_default_str();
+  val->add_option("--val-views", o.validation.max_views, "validate on the first N views of the split (0 = all)")
+      ->capture_default_str();
+  val->add_option("--best-metric", o.validation.best_metric,
+                  "keep best.pt by val_loss or a phyir eval metric (normal_deg, basecolor_mse, depth_abs_rel, "
+                  "probe_ssim, rerender_mse, ...)")->capture_default_str();
+  auto* sched = cmd->add_option_group("learning-rate schedule", "the rate of every step from the base rate (--lr)");
+  sched->add_option("--lr-schedule", o.schedule.kind, "constant (the paper's), step or cosine (default constant; "
+                    "a resumed run keeps its checkpoint's)");
+  sched->add_option("--lr-step-epochs", o.schedule.step_epochs, "step: multiply by --lr-gamma every N epochs "
+                    "(default a third of --epochs)");
+  sched->add_option("--lr-gamma", o.schedule.gamma, "step: the factor")->capture_default_str();
+  sched->add_option("--lr-min-fraction", o.schedule.min_fraction, "cosine: the last step's rate / the base rate")
+      ->capture_default_str();
+}
+
+// The names the model gives the settings it checks (TrainOptions, phyir/model/training.h).
+void record_train_settings(CLI::App* cmd) {
+  const std::pair<const char*, const char*> settings[] = {
+      {"data_dir", "--data"},          {"out_dir", "--out"},
+      {"stage", "--stage"},            {"split", "--split"},
+      {"init", "--init"},              {"resume", "--resume"},
+      {"epochs", "--epochs"},          {"learning_rate", "--lr"},
+      {"batch_size", "--batch"},       {"seed", "--seed"},
+      {"threads", "--threads"},        {"workers", "--workers"},
+      {"prefetch", "--prefetch"},      {"device", "--device"},
+      {"max_steps", "--max-steps"},    {"checkpoint_every", "--checkpoint-every"},
+      {"max_views", "--max-views"},    {"encoder_weights", "--encoder-weights"},
+      {"target_units", "--target-units"}, {"augment.exposure_min_stops", "--exposure-jitter"},
+      {"validation.split", "--val-split"}, {"validation.every", "--val-every"},
+      {"validation.max_views", "--val-views"}, {"validation.best_metric", "--best-metric"},
+      {"schedule.kind", "--lr-schedule"}, {"schedule.step_epochs", "--lr-step-epochs"},
+      {"schedule.gamma", "--lr-gamma"}, {"schedule.min_fraction", "--lr-min-fraction"}};
+  for (const auto& [setting, flag] : settings) sets(cmd, setting, flag);
+}
+
+}  // namespace
 
 void add_train_flags(CLI::App* cmd, TrainFlags& f) {
   f.cmd = cmd;
@@ -20,9 +97,15 @@ void add_train_flags(CLI::App* cmd, TrainFlags& f) {
       ->capture_default_str();
   cmd->add_option("--init", o.init, "checkpoint of the previous stage to start from");
   cmd->add_flag("--resume", o.resume, "continue --out/checkpoint.pt exactly where it stopped");
-  cmd->add_option("--epochs", o.epochs, "epochs to reach (paper: 120 / 90 / 10 / 80)")->capture_default_str();
-  cmd->add_option("--lr", o.learning_rate, "Adam learning rate (default: 1e-4 / 1e-4 / 1e-5 / 5e-4 by stage)");
-  cmd->add_option("--batch", o.batch_size, "batch size (default: 8 / 4 / 4 / 16 by stage)");
+  cmd->add_option("--epochs", o.epochs,
+                  "epochs to reach (paper: " + by_stage([](const model::StageDefaults& d) { return d.paper_epochs; }) + ")")
+      ->capture_default_str();
+  cmd->add_option("--lr", o.learning_rate,
+                  "Adam learning rate (default: " +
+                      by_stage([](const model::StageDefaults& d) { return d.learning_rate; }) + " by stage)");
+  cmd->add_option("--batch", o.batch_size,
+                  "batch size (default: " + by_stage([](const model::StageDefaults& d) { return d.batch_size; }) +
+                      " by stage)");
   cmd->add_option("--seed", o.seed, "random seed (initialisation, shuffling, Monte-Carlo samples)")->capture_default_str();
   cmd->add_option("--threads", o.threads, "torch threads (1 = bit-reproducible runs)")->capture_default_str();
   cmd->add_option("--workers", o.workers,
@@ -53,39 +136,9 @@ void add_train_flags(CLI::App* cmd, TrainFlags& f) {
                   "study switch: LNet's probe and re-render targets in input units (x 2^exposure_stops, the "
                   "default) or absolute (as before the exposure fix); overrides --init's")
       ->check(CLI::IsMember({"input", "absolute"}));
-  auto* wopt = cmd->add_option_group("loss weights", "override every weight of the stage (defaults: B.1)");
-  wopt->add_option("--w-basecolor", f.weights.base_color, "beta_B");
-  wopt->add_option("--w-roughness", f.weights.roughness, "beta_R");
-  wopt->add_option("--w-metalness", f.weights.metalness, "beta_M");
-  wopt->add_option("--w-depth", f.weights.depth, "beta_D");
-  wopt->add_option("--w-normal", f.weights.normal, "beta_N");
-  wopt->add_option("--w-gradient", f.weights.gradient, "beta_gradient");
-  wopt->add_option("--w-probe", f.weights.probe, "beta_L");
-  wopt->add_option("--w-coherence", f.weights.coherence, "beta_SC");
-  wopt->add_option("--w-render", f.weights.render, "beta_render");
-    auto* aug = cmd->add_option_group("augmentation", "training only, drawn per (seed, epoch, view); docs/model.md");
-  aug->add_flag("!--no-augment", o.augment.enabled, "no yaw rotation, mirroring or exposure jitter");
-  aug->add_flag("!--no-rotate", o.augment.rotate, "no yaw rotation");
-  aug->add_flag("!--no-mirror", o.augment.mirror, "no horizontal mirroring");
-  aug->add_option("--exposure-jitter", f.jitter, "LO,HI: exposure jitter U[LO, HI) stops on input and targets "
-                  "(default -1,0.5; 0,0 = none)")->delimiter(',')->expected(2);
-  auto* val = cmd->add_option_group("validation", "every N epochs on the dataset's validation split");
-  val->add_option("--val-split", o.validation.split, "split to validate on (\"\" = none)")->capture_default_str();
-  val->add_option("--val-every", o.validation.every, "epochs between validation passes (0 = none)")->capture_default_str();
-  val->add_option("--val-views", o.validation.max_views, "validate on the first N views of the split (0 = all)")
-      ->capture_default_str();
-  val->add_option("--best-metric", o.validation.best_metric,
-                  "keep best.pt by val_loss or a phyir eval metric (normal_deg, basecolor_mse, depth_abs_rel, "
-                  "probe_ssim, rerender_mse, ...)")->capture_default_str();
-  auto* sched = cmd->add_option_group("learning-rate schedule", "the rate of every step from the base rate (--lr)");
-  sched->add_option("--lr-schedule", o.schedule.kind, "constant (the paper's), step or cosine (default constant; "
-                    "a resumed run keeps its checkpoint's)");
-  sched->add_option("--lr-step-epochs", o.schedule.step_epochs, "step: multiply by --lr-gamma every N epochs "
-                    "(default a third of --epochs)");
-  sched->add_option("--lr-gamma", o.schedule.gamma, "step: the factor")->capture_default_str();
-  sched->add_option("--lr-min-fraction", o.schedule.min_fraction, "cosine: the last step's rate / the base rate")
-      ->capture_default_str();
+  add_train_group_flags(cmd, f);
   cmd->add_flag("--quiet", f.quiet, "no per-step progress lines");
+  record_train_settings(cmd);
 }
 
 void TrainFlags::finish() {

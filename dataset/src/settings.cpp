@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "phyir/core/colour.h"
-#include "phyir/core/error.h"
+#include "phyir/core/setting_error.h"
 #include "phyir/dataset/checksum.h"
 
 namespace phyir::dataset {
@@ -18,31 +18,37 @@ nlohmann::json ViewpointRules::to_json() const {
 
 void DatasetSettings::validate() const {
   if (width <= 0 || height <= 0 || width > 65536 || height > 65536)
-    fail("--width/--height {}x{} must be between 1 and 65536", width, height);
-  if (width != 2 * height) fail("--width {} must be twice --height {}: views are 360x180 degree panoramas", width, height);
-  if (spp <= 0) fail("--spp {} must be positive", spp);
-  if (max_bounces < 0) fail("--max-bounces {} must be >= 0", max_bounces);
+    fail_setting("size", "{}x{} must be between 1 and 65536", width, height);
+  if (width != 2 * height)
+    fail_setting("size", "{}x{}: the width must be twice the height: views are 360x180 degree panoramas", width,
+                 height);
+  if (spp <= 0) fail_setting("spp", "{} must be positive", spp);
+  if (max_bounces < 0) fail_setting("max_bounces", "{} must be >= 0", max_bounces);
   if (probes) probe.validate();
-  if (!std::isfinite(preview_exposure)) fail("--preview-exposure must be finite");
-  if (!std::isfinite(input.exposure_stops)) fail("--exposure must be 'auto' or a finite number of stops");
+  if (!std::isfinite(preview_exposure)) fail_setting("preview_exposure", "must be finite");
+  if (!std::isfinite(input.exposure_stops))
+    fail_setting("input.exposure_stops", "must be 'auto' or a finite number of stops");
   if (!(input.percentile > 0.0 && input.percentile <= 1.0))
-    fail("--exposure-percentile {} must be in (0, 1]", input.percentile);
-  if (!(input.target > 0.0) || !std::isfinite(input.target)) fail("--exposure-target {} must be positive", input.target);
+    fail_setting("input.percentile", "{} must be in (0, 1]", input.percentile);
+  if (!(input.target > 0.0) || !std::isfinite(input.target))
+    fail_setting("input.target", "{} must be positive", input.target);
   if (!(input.jitter_stops >= 0.0f) || !std::isfinite(input.jitter_stops))
-    fail("--exposure-jitter {} must be a finite number of stops >= 0", input.jitter_stops);
-  if (input.view != "Standard" && input.view != "Raw") fail("--view '{}' must be Standard or Raw", input.view);
+    fail_setting("input.jitter_stops", "{} must be a finite number of stops >= 0", input.jitter_stops);
+  if (input.view != "Standard" && input.view != "Raw")
+    fail_setting("input.view", "'{}' must be Standard or Raw", input.view);
   const ViewpointRules& v = viewpoints;
   if (!(v.min_height >= 0.0f && v.max_height >= v.min_height))
-    fail("viewpoint heights {}-{} m must satisfy 0 <= min <= max", v.min_height, v.max_height);
-  if (!(v.clearance >= 0.0f)) fail("--clearance {} must be >= 0 metres", v.clearance);
-  if (v.clearance_rays < 6) fail("--clearance-rays {} must be at least 6", v.clearance_rays);
-  if (!(v.min_spacing >= 0.0f)) fail("--min-spacing {} must be >= 0 metres", v.min_spacing);
-  if (v.attempts < 1) fail("viewpoint attempts {} must be at least 1", v.attempts);
-  if (views_per_scene < 1 || views_per_scene > 9999) fail("--views-per-scene {} must be between 1 and 9999", views_per_scene);
-  if (seed > (uint64_t(1) << 53)) fail("--seed {} must be at most 2^53 (it is stored in JSON)", seed);
+    fail_setting("viewpoints.min_height", "heights {}-{} m must satisfy 0 <= min <= max", v.min_height, v.max_height);
+  if (!(v.clearance >= 0.0f)) fail_setting("viewpoints.clearance", "{} must be >= 0 metres", v.clearance);
+  if (v.clearance_rays < 6) fail_setting("viewpoints.clearance_rays", "{} must be at least 6", v.clearance_rays);
+  if (!(v.min_spacing >= 0.0f)) fail_setting("viewpoints.min_spacing", "{} must be >= 0 metres", v.min_spacing);
+  if (v.attempts < 1) fail_setting("viewpoints.attempts", "{} must be at least 1", v.attempts);
+  if (views_per_scene < 1 || views_per_scene > 9999)
+    fail_setting("views_per_scene", "{} must be between 1 and 9999", views_per_scene);
+  if (seed > (uint64_t(1) << 53)) fail_setting("seed", "{} must be at most 2^53 (it is stored in JSON)", seed);
   const double sum = split.train + split.val + split.test;
   if (split.train < 0 || split.val < 0 || split.test < 0 || std::abs(sum - 1.0) > 1e-6)
-    fail("--split {},{},{} must be three fractions >= 0 that sum to 1", split.train, split.val, split.test);
+    fail_setting("split", "{},{},{} must be three fractions >= 0 that sum to 1", split.train, split.val, split.test);
 }
 
 nlohmann::json DatasetSettings::to_json() const {
@@ -121,7 +127,7 @@ DatasetSettings preset_settings(const std::string& name) {
     layout = {128, 256, 16, 32};
     s.probe.spp = 8;
   } else {
-    fail("--preset '{}' is unknown; use tiny, cpu or paper", name);
+    fail_setting("preset", "'{}' is unknown; use tiny, cpu or paper", name);
   }
   return s;
 }

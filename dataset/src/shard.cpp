@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "phyir/core/error.h"
+#include "phyir/core/setting_error.h"
 
 namespace phyir::dataset {
 
@@ -10,7 +10,7 @@ Shard parse_shard(const std::string& text) {
   int index = -1, count = -1, consumed = 0;
   if (std::sscanf(text.c_str(), "%d/%d%n", &index, &count, &consumed) != 2 || consumed != int(text.size()) ||
       count < 1 || index < 0 || index >= count)
-    fail("--shard '{}' must be i/N with 0 <= i < N (e.g. 0/4)", text);
+    fail_setting("shard", "'{}' must be i/N with 0 <= i < N (e.g. 0/4)", text);
   return {index, count};
 }
 

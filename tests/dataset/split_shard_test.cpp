@@ -83,7 +83,7 @@ TEST(Shard, ParsesIOverN) {
       parse_shard(bad);
       ADD_FAILURE() << "accepted '" << bad << "'";
     } catch (const Error& e) {
-      EXPECT_THAT(e.what(), ::testing::HasSubstr("--shard"));
+      EXPECT_THAT(e.what(), ::testing::HasSubstr("shard: '"));
     }
   }
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "phyir/core/error.h"
+#include "phyir/core/setting_error.h"
 #include "phyir/core/safe_math.h"
 #include "phyir/render/equirect.h"
 #include "phyir/render/probe_grid.h"
@@ -32,8 +33,8 @@ TEST(ProbeLayout, ParsesSizesAndRejectsBadOnes) {
   try {
     layout.validate();
     FAIL() << "a 16x0 probe was accepted";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("--probe-res"), std::string::npos) << e.what();
+  } catch (const SettingError& e) {
+    EXPECT_EQ(e.setting(), "probe.res") << e.what();
   }
 }
 

@@ -1,37 +1,43 @@
 #include "phyir/render/probe_settings.h"
 
-#include "phyir/core/error.h"
+#include "phyir/core/setting_error.h"
 
 namespace phyir::render {
 
 ProbeMode parse_probe_mode(const std::string& name) {
   if (name == "path") return ProbeMode::kPath;
   if (name == "cache") return ProbeMode::kCache;
-  fail("--probe-mode '{}' is not one of: cache (the default, shared irradiance cache), path (unbiased reference)", name);
+  fail_setting("probe.mode", "'{}' is not one of: cache (the default, shared irradiance cache), path (unbiased reference)",
+               name);
 }
 
 std::string probe_mode_name(ProbeMode mode) { return mode == ProbeMode::kPath ? "path" : "cache"; }
 
 void ProbeSettings::validate() const {
   layout.validate();
-  if (spp <= 0 || spp > 1 << 20) fail("--probe-spp {} must be between 1 and 2^20", spp);
+  if (spp <= 0 || spp > 1 << 20) fail_setting("probe.spp", "{} must be between 1 and 2^20", spp);
   // Below 0.1 mm the origin is within a few float ulps (and ray offsets) of room-scale
   // geometry; above 1 m it is no longer "at" the surface.
-  if (!(offset >= 1e-4f && offset <= 1.0f)) fail("--probe-offset {} must be between 1e-4 and 1 metre", offset);
-  if (!(cache.cell_size >= 1e-3f && cache.cell_size <= 10.0f)) fail("--probe-cache-cell {} must be between 1e-3 and 10 metres", cache.cell_size);
-  if (cache.samples_per_cell <= 0 || cache.samples_per_cell > 1 << 20) fail("--probe-cache-spp {} must be between 1 and 2^20", cache.samples_per_cell);
+  if (!(offset >= 1e-4f && offset <= 1.0f)) fail_setting("probe.offset", "{} must be between 1e-4 and 1 metre", offset);
+  if (!(cache.cell_size >= 1e-3f && cache.cell_size <= 10.0f))
+    fail_setting("probe.cache.cell_size", "{} must be between 1e-3 and 10 metres", cache.cell_size);
+  if (cache.samples_per_cell <= 0 || cache.samples_per_cell > 1 << 20)
+    fail_setting("probe.cache.samples_per_cell", "{} must be between 1 and 2^20", cache.samples_per_cell);
   if (!(cache.direct_distance_cells >= 0.0f && cache.direct_distance_cells <= 1e6f))
-    fail("--probe-cache-direct-cells {} must be between 0 (never) and 1e6 cells", cache.direct_distance_cells);
-  if (hard_spp_factor < 1 || hard_spp_factor > 1024) fail("hard-texel spp factor {} must be between 1 and 1024", hard_spp_factor);
+    fail_setting("probe.cache.direct_distance_cells", "{} must be between 0 (never) and 1e6 cells",
+                 cache.direct_distance_cells);
+  if (hard_spp_factor < 1 || hard_spp_factor > 1024)
+    fail_setting("probe.hard_spp_factor", "{} must be between 1 and 1024", hard_spp_factor);
   if (!(spread_threshold > 0.0f && spread_threshold <= 1e6f))
-    fail("--probe-spread-threshold {} must be above 0 (and at most 1e6, i.e. never)", spread_threshold);
+    fail_setting("probe.spread_threshold", "{} must be above 0 (and at most 1e6, i.e. never)", spread_threshold);
   // A 9x9 window is already ~20 cm across at the paper's grid: beyond it parallax rejects most texels.
-  if (sharing.radius < 0 || sharing.radius > 4) fail("--probe-share-radius {} must be between 0 (off) and 4", sharing.radius);
+  if (sharing.radius < 0 || sharing.radius > 4)
+    fail_setting("probe.sharing.radius", "{} must be between 0 (off) and 4", sharing.radius);
   if (!(sharing.parallax_texels > 0.0f && sharing.parallax_texels <= 100.0f))
-    fail("--probe-share-parallax {} must be above 0 and at most 100 texels", sharing.parallax_texels);
+    fail_setting("probe.sharing.parallax_texels", "{} must be above 0 and at most 100 texels", sharing.parallax_texels);
   // A million photons from each light: far more than any texel's share needs.
   if (photons_per_light < 0 || photons_per_light > 1 << 20)
-    fail("--probe-photons {} must be between 0 (none) and 2^20", photons_per_light);
+    fail_setting("probe.photons_per_light", "{} must be between 0 (none) and 2^20", photons_per_light);
 }
 
 nlohmann::json ProbeSettings::to_json() const {

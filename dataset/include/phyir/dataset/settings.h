@@ -1,7 +1,7 @@
 #pragma once
 // Everything that decides a dataset's bytes, as one value: render settings, probes, the
 // network input's exposure, viewpoint rules, views per scene, split fractions and the seed.
-// Presets (tiny, cpu, paper) are named bundles of these; flags override single fields.
+// Presets (tiny, cpu, paper) are named bundles of these; a command may then set single fields.
 // The JSON form (to_json) is what settings.json and manifest.json record, and what a
 // re-run and `dataset merge` compare: two runs with equal JSON write equal files.
 // Thread counts and paths are not settings: they never change a byte.
@@ -52,7 +52,7 @@ struct SplitFractions {
 };
 
 struct DatasetSettings {
-  std::string preset = "cpu";  // the bundle this started from (flags may have changed fields)
+  std::string preset = "cpu";  // the bundle this started from (single fields may differ)
   int width = 512;             // equirectangular panorama, width = 2 height
   int height = 256;
   int spp = 64;
@@ -66,14 +66,15 @@ struct DatasetSettings {
   uint64_t seed = 1;
   SplitFractions split;
 
-  // Throws phyir::Error naming the flag and the value.
+  // Throws phyir::SettingError naming the setting ("size", "spp", "probe.grid", "input.target",
+  // "viewpoints.clearance", ...) and the value.
   void validate() const;
   nlohmann::json to_json() const;
 };
 
 // tiny (tests: 64x32, 4 spp, 8x16 probes of 4x8 texels), cpu (the default: 512x256,
 // 64 spp, 64x128 probes of 8x16), paper (the paper's 256x512 panorama with a 128x256 grid of
-// 16x32 probes). Throws phyir::Error listing the names for an unknown one.
+// 16x32 probes). Throws phyir::SettingError ("preset") listing the names for an unknown one.
 DatasetSettings preset_settings(const std::string& name);
 const std::vector<std::string>& preset_names();
 

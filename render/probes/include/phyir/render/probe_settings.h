@@ -43,7 +43,7 @@ struct ProbeSharing {
 
 enum class ProbeMode { kPath, kCache };
 
-ProbeMode parse_probe_mode(const std::string& name);  // "path" | "cache"
+ProbeMode parse_probe_mode(const std::string& name);  // "path" | "cache"; else SettingError "probe.mode"
 std::string probe_mode_name(ProbeMode mode);
 
 struct ProbeSettings {
@@ -71,7 +71,9 @@ struct ProbeSettings {
   bool punctual_lights = true;
   bool progress = true;
 
-  void validate() const;  // throws phyir::Error naming the flag
+  // Throws phyir::SettingError naming the setting ("probe.spp", "probe.cache.cell_size", ...)
+  // and the value.
+  void validate() const;
   nlohmann::json to_json() const;
 };
 
