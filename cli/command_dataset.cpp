@@ -11,6 +11,7 @@
 #include "dataset_flags.h"
 #include "flag_registry.h"
 #include "sampling_flags.h"
+#include "slurm_script.h"
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
 #include "phyir/core/log.h"
@@ -18,7 +19,6 @@
 #include "phyir/dataset/generate.h"
 #include "phyir/dataset/layout.h"
 #include "phyir/dataset/merge.h"
-#include "phyir/dataset/slurm.h"
 #include "phyir/dataset/verify.h"
 
 namespace phyir::cli {
@@ -39,7 +39,7 @@ struct GenerateFlags {
 struct SlurmFlags {
   DatasetSettingsFlags settings;
   std::string scenes, out, phyir;
-  dataset::SlurmOptions options;
+  DatasetSlurmJob job;
   bool submit = false;
 };
 
@@ -119,43 +119,51 @@ void add_merge(CLI::App* dataset) {
   });
 }
 
+void add_slurm_resource_flags(CLI::App* cmd, SlurmFlags& f) {
+  DatasetSlurmJob& job = f.job;
+  SbatchResources& r = job.resources;
+  sets(cmd, "shards", cmd->add_option("--shards", job.plan.shards, "array tasks (shards)"))->required();
+  cmd->add_option("--cpus-per-task", r.cpus_per_task, "CPUs per task (its generate --threads)")->capture_default_str();
+  cmd->add_option("--time", r.time, "time limit per task (sbatch --time), e.g. 12:00:00");
+  cmd->add_option("--merge-time", job.merge_time, "time limit of the merge + verify job");
+  cmd->add_option("--partition", r.partition, "sbatch --partition");
+  cmd->add_option("--account", r.account, "sbatch --account");
+  cmd->add_option("--mem", r.mem, "memory per task (sbatch --mem), e.g. 8G");
+  cmd->add_option("--job-name", r.job_name, "job name")->capture_default_str();
+  cmd->add_option("--sbatch", r.extra, "extra sbatch option for every job, e.g. --sbatch=--qos=low (repeatable)");
+  cmd->add_option("--phyir", f.phyir, "phyir binary the jobs run (default: this one)");
+  cmd->add_flag("--submit", f.submit, "submit the jobs now (runs OUT/slurm/submit.sh)");
+}
+
 void add_slurm(CLI::App* dataset) {
   auto f = std::make_shared<SlurmFlags>();
-  dataset::SlurmOptions& o = f->options;
+  f->job.resources.job_name = "phyir-dataset";
   auto* cmd = dataset->add_subcommand(
       "slurm", "Write (and with --submit, submit) a Slurm job array for 'dataset generate': one task per shard, "
                "requeued on failure, then a merge + verify job that waits for all of them");
-  cmd->add_option("--scenes", f->scenes, "folder of .gltf/.glb scenes, as for generate")->required()->check(CLI::ExistingDirectory);
+  sets(cmd, "scenes_dir", cmd->add_option("--scenes", f->scenes, "folder of .gltf/.glb scenes, as for generate"))
+      ->required()
+      ->check(CLI::ExistingDirectory);
   cmd->add_option("--out", f->out, "dataset folder; shards go to OUT/shards, scripts and logs to OUT/slurm")->required();
   add_dataset_settings_flags(cmd, f->settings);
-  cmd->add_option("--shards", o.shards, "array tasks (shards)")->required();
-  cmd->add_option("--cpus-per-task", o.cpus_per_task, "CPUs per task (its generate --threads)")->capture_default_str();
-  cmd->add_option("--time", o.time, "time limit per task (sbatch --time), e.g. 12:00:00");
-  cmd->add_option("--merge-time", o.merge_time, "time limit of the merge + verify job");
-  cmd->add_option("--partition", o.partition, "sbatch --partition");
-  cmd->add_option("--account", o.account, "sbatch --account");
-  cmd->add_option("--mem", o.mem, "memory per task (sbatch --mem), e.g. 8G");
-  cmd->add_option("--job-name", o.job_name, "job name")->capture_default_str();
-  cmd->add_option("--sbatch", o.sbatch_options, "extra sbatch option for every job, e.g. --sbatch=--qos=low (repeatable)");
-  cmd->add_option("--phyir", f->phyir, "phyir binary the jobs run (default: this one)");
-  cmd->add_flag("--submit", f->submit, "submit the jobs now (runs OUT/slurm/submit.sh)");
+  add_slurm_resource_flags(cmd, *f);
   cmd->callback([f] {
-    dataset::SlurmOptions& o = f->options;
+    DatasetSlurmJob& job = f->job;
     f->settings.resolve();  // bad settings fail here, not in the cluster
     dataset::list_scenes(f->scenes);
-    o.phyir = f->phyir.empty() ? this_executable() : fs::absolute(f->phyir);
-    o.workdir = fs::current_path();
-    o.scenes_dir = f->scenes;
-    o.out_dir = f->out;
-    o.generate_args = f->settings.replay();
-    const dataset::SlurmScripts s = dataset::write_slurm_scripts(o);
-    std::printf("wrote %s (array of %d shard task(s)), %s and %s\n", s.generate.c_str(), o.shards, s.merge.c_str(),
-                s.submit.c_str());
+    job.phyir = f->phyir.empty() ? this_executable() : fs::absolute(f->phyir);
+    job.workdir = fs::current_path();
+    job.scenes_dir = f->scenes;
+    job.plan.out_dir = f->out;
+    job.generate_args = f->settings.replay();
+    const DatasetSlurmScripts s = write_dataset_slurm_scripts(job);
+    std::printf("wrote %s (array of %d shard task(s)), %s and %s\n", s.generate.c_str(), job.plan.shards,
+                s.merge.c_str(), s.submit.c_str());
     if (!f->submit) {
       std::printf("submit with: bash %s\n", s.submit.c_str());
       return;
     }
-    std::printf("%s", dataset::submit_slurm_scripts(s).c_str());
+    std::printf("%s", submit_dataset_slurm_scripts(s).c_str());
   });
 }
 

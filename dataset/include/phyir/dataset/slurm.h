@@ -1,56 +1,23 @@
 #pragma once
-// `phyir dataset slurm`: the dataset as a Slurm job array (docs/dataset.md, "On a cluster").
-// Writes three scripts into OUT/slurm/:
-//   generate.sbatch  one array task per shard: `phyir dataset generate ... --shard $i/N`
-//                    into OUT/shards/shard-<i>-of-<N>, --requeue (a task killed by a node
-//                    failure or preemption restarts and resumes: completed views are kept),
-//                    one log per task in OUT/slurm/logs (appended across requeues);
-//   merge.sbatch     `phyir dataset merge OUT <every shard>` then `phyir dataset verify OUT`;
-//   submit.sh        sbatch --parsable generate.sbatch, then merge.sbatch with
-//                    --dependency=afterok:<array job> (it runs once every task succeeded) and
-//                    --kill-on-invalid-dep=yes (it is cancelled if one fails for good).
-// Jobs run in the folder the command was run in (--chdir), so relative paths mean the same.
+// A dataset rendered as shards on a cluster (docs/dataset.md, "On a cluster"): shard i of N
+// (shard.h) renders into OUT/shards/shard-<i>-of-<N>, and `dataset merge` joins the N folders
+// into OUT. The Slurm job array that runs them is written by the command line (the scripts
+// hold `phyir` command lines: cli/slurm_script.h).
 #include <filesystem>
 #include <string>
-#include <vector>
 
 namespace phyir::dataset {
 
-struct SlurmOptions {
-  std::filesystem::path phyir;       // the binary the jobs run (absolute)
-  std::filesystem::path workdir;     // the jobs' working folder (absolute)
-  std::filesystem::path scenes_dir;  // as given
-  std::filesystem::path out_dir;     // as given
-  std::vector<std::string> generate_args;  // the settings flags of `generate`, repeated verbatim
+struct ShardPlan {
+  std::filesystem::path out_dir;  // the merged dataset
   int shards = 1;
-  int cpus_per_task = 4;             // also the generate --threads of each task
-  std::string time;                  // --time of each task ("" = the partition's default)
-  std::string merge_time;            // --time of the merge job
-  std::string partition;
-  std::string account;
-  std::string mem;                   // --mem of each task, e.g. 8G
-  std::string job_name = "phyir-dataset";
-  std::vector<std::string> sbatch_options;  // extra #SBATCH lines ("--qos=low", ...)
+
+  // Throws phyir::SettingError "shards" unless there is at least one.
+  void validate() const;
+  std::filesystem::path root() const;  // OUT/shards
+  // "shard-<index>-of-<N>"; `index` may be a shell variable ("${shard}").
+  std::string folder_name(const std::string& index) const;
+  std::filesystem::path folder(int index) const;  // OUT/shards/shard-<i>-of-<N>
 };
-
-struct SlurmScripts {
-  std::filesystem::path folder, generate, merge, submit, logs;
-};
-
-// OUT/shards/shard-<i>-of-<N>
-std::filesystem::path shard_folder(const std::filesystem::path& out_dir, int index, int count);
-
-// Writes the three scripts (atomically, executable). Throws phyir::Error on bad options.
-SlurmScripts write_slurm_scripts(const SlurmOptions& options);
-
-// Runs submit.sh; returns its output (the job ids). Throws phyir::Error when sbatch fails.
-std::string submit_slurm_scripts(const SlurmScripts& scripts);
-
-// Runs a submission command (`bash submit.sh`, `sbatch ...`) through the shell and returns its
-// output, stderr included. Throws phyir::Error naming `what` and the output when it fails.
-std::string run_submission(const std::string& command, const std::string& what);
-
-// 'text' quoted for bash (single quotes, embedded ones escaped).
-std::string shell_quote(const std::string& text);
 
 }  // namespace phyir::dataset
