@@ -164,10 +164,10 @@ Summary Summary::of(std::vector<double> values) {
   return s;
 }
 
-DatasetStats compute_dataset_stats(const fs::path& dir, const StatsOptions& o) {
-  const Manifest manifest = read_manifest(dir);
-  DatasetStats st;
-  st.dir = dir;
+namespace {
+
+// The header: resolution, probes, scenes and views per split.
+void read_settings(const Manifest& manifest, DatasetStats& st) {
   const json& settings = manifest.settings;
   st.preset = settings.value("preset", "");
   st.width = int(number(settings, {"render", "width"}));
@@ -183,6 +183,11 @@ DatasetStats compute_dataset_stats(const fs::path& dir, const StatsOptions& o) {
   for (const json& scene : manifest.scenes) ++st.scenes_per_split[scene.value("split", "?")];
   st.scenes = manifest.scenes.size();
   st.views = manifest.views.size();
+}
+
+// Exposure and rays from the view records; wall-clock figures from each view's timing.json
+// (they live outside the manifest: they differ between runs).
+void read_view_records(const fs::path& dir, const Manifest& manifest, DatasetStats& st) {
   std::vector<double> exposure, rays, probe_rays;
   std::vector<double> view_seconds, color_seconds, probe_seconds, threads;
   for (const json& v : manifest.views) {
@@ -192,7 +197,6 @@ DatasetStats compute_dataset_stats(const fs::path& dir, const StatsOptions& o) {
     exposure.push_back(input.recorded ? input.stops : NAN);
     rays.push_back(number(v, {"render", "counters", "rays_traced"}));
     probe_rays.push_back(number(v, {"render", "probes", "rays"}));
-    // Wall-clock figures live outside the manifest (they differ between runs).
     const fs::path timing_path = dir / v.value("dir", "") / kTimingFile;
     std::error_code ec;
     if (!fs::is_regular_file(timing_path, ec)) continue;
@@ -213,8 +217,43 @@ DatasetStats compute_dataset_stats(const fs::path& dir, const StatsOptions& o) {
   st.color_seconds = Summary::of(color_seconds);
   st.probe_seconds = Summary::of(probe_seconds);
   st.threads = Summary::of(threads);
+}
 
-  // Pixels.
+void add(Accumulator& total, const Accumulator& a) {
+  MaterialCounts& m = total.material;
+  m.pixels += a.material.pixels;
+  m.no_geometry += a.material.no_geometry;
+  m.emissive += a.material.emissive;
+  m.transparent += a.material.transparent;
+  m.mirror += a.material.mirror;
+  m.glossy += a.material.glossy;
+  m.diffuse += a.material.diffuse;
+  m.metal += a.material.metal;
+  for (int b = 0; b < kBins; ++b) total.histogram[size_t(b)] += a.histogram[size_t(b)];
+  total.input_pixels += a.input_pixels;
+  total.input_clipped += a.input_clipped;
+  total.luminance_max = std::max(total.luminance_max, a.luminance_max);
+}
+
+// Percentile p: the first bin where the cumulative count reaches p of the pixels.
+void luminance_percentiles(const Accumulator& total, DatasetStats& st) {
+  for (const auto& [name, p] : std::vector<std::pair<std::string, double>>{
+           {"p1", 0.01}, {"p5", 0.05}, {"p50", 0.5}, {"p95", 0.95}, {"p99", 0.99}}) {
+    if (total.material.pixels == 0) break;
+    const double want = p * double(total.material.pixels);
+    uint64_t cumulative = 0;
+    for (int b = 0; b < kBins; ++b) {
+      cumulative += total.histogram[size_t(b)];
+      if (double(cumulative) >= want) {
+        st.luminance_percentiles[name] = b == kBins - 1 ? st.luminance_max : bin_centre(b);
+        break;
+      }
+    }
+  }
+}
+
+// The pixels of a sample of views: material mix, luminance, clipping.
+void measure_pixels(const fs::path& dir, const Manifest& manifest, const StatsOptions& o, DatasetStats& st) {
   const std::vector<size_t> sample = sample_indices(manifest.views.size(), o.max_views);
   const int n_threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(n_threads));
@@ -229,21 +268,7 @@ DatasetStats compute_dataset_stats(const fs::path& dir, const StatsOptions& o) {
     });
   }
   Accumulator total;
-  partial.combine_each([&](const Accumulator& a) {
-    MaterialCounts& m = total.material;
-    m.pixels += a.material.pixels;
-    m.no_geometry += a.material.no_geometry;
-    m.emissive += a.material.emissive;
-    m.transparent += a.material.transparent;
-    m.mirror += a.material.mirror;
-    m.glossy += a.material.glossy;
-    m.diffuse += a.material.diffuse;
-    m.metal += a.material.metal;
-    for (int b = 0; b < kBins; ++b) total.histogram[size_t(b)] += a.histogram[size_t(b)];
-    total.input_pixels += a.input_pixels;
-    total.input_clipped += a.input_clipped;
-    total.luminance_max = std::max(total.luminance_max, a.luminance_max);
-  });
+  partial.combine_each([&](const Accumulator& a) { add(total, a); });
   st.views_measured = sample.size();
   st.material = total.material;
   double sum = 0;
@@ -251,20 +276,18 @@ DatasetStats compute_dataset_stats(const fs::path& dir, const StatsOptions& o) {
   st.luminance_mean = total.material.pixels ? sum / double(total.material.pixels) : 0.0;
   st.luminance_max = total.luminance_max;
   st.input_clipped = total.input_pixels ? double(total.input_clipped) / double(total.input_pixels) : 0.0;
-  // Percentile p: the first bin where the cumulative count reaches p of the pixels.
-  for (const auto& [name, p] : std::vector<std::pair<std::string, double>>{
-           {"p1", 0.01}, {"p5", 0.05}, {"p50", 0.5}, {"p95", 0.95}, {"p99", 0.99}}) {
-    if (total.material.pixels == 0) break;
-    const double want = p * double(total.material.pixels);
-    uint64_t cumulative = 0;
-    for (int b = 0; b < kBins; ++b) {
-      cumulative += total.histogram[size_t(b)];
-      if (double(cumulative) >= want) {
-        st.luminance_percentiles[name] = b == kBins - 1 ? st.luminance_max : bin_centre(b);
-        break;
-      }
-    }
-  }
+  luminance_percentiles(total, st);
+}
+
+}  // namespace
+
+DatasetStats compute_dataset_stats(const fs::path& dir, const StatsOptions& o) {
+  const Manifest manifest = read_manifest(dir);
+  DatasetStats st;
+  st.dir = dir;
+  read_settings(manifest, st);
+  read_view_records(dir, manifest, st);
+  measure_pixels(dir, manifest, o, st);
   return st;
 }
 
