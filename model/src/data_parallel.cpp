@@ -6,6 +6,7 @@
 
 #include "checkpoint.h"
 #include "phyir/core/error.h"
+#include "phyir/core/setting_error.h"
 #include "process_group.h"
 
 namespace phyir::model {
@@ -16,7 +17,8 @@ RankSlice rank_slice(int64_t views, int rank, int ranks) {
 }
 
 int64_t global_batches(int64_t views, int64_t batch, int ranks) {
-  if (batch < ranks) fail("--batch {}: smaller than the {} ranks (each rank needs a view of every batch)", batch, ranks);
+  if (batch < ranks)
+    fail_setting("batch_size", "{} is smaller than the {} ranks (each rank needs a view of every batch)", batch, ranks);
   const int64_t full = views / batch, rest = views % batch;
   return full + (rest >= ranks ? 1 : 0);
 }

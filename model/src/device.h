@@ -1,5 +1,5 @@
 #pragma once
-// The device a run computes on (`--device`, docs/model.md "Build"): parsed once, checked
+// The device a run computes on (the "device" setting, docs/model.md "Build"): parsed once, checked
 // against what this LibTorch was built with, and the tensor options every tensor a run makes
 // from nothing is created with. Data is decoded into host memory and each batch moved once
 // (Batch::to); the networks and the optimiser's state live on the device. Private header.
@@ -9,8 +9,8 @@
 
 namespace phyir::model {
 
-// `value` in torch::Device's syntax restricted to cpu, cuda, cuda:N. Throws phyir::Error naming
-// --device and the value when it does not parse, names another kind of device, or names one
+// `value` in torch::Device's syntax restricted to cpu, cuda, cuda:N. Throws phyir::SettingError
+// ("device") naming the value when it does not parse, names another kind of device, or names one
 // this LibTorch cannot use (CUDA on a CPU-only build such as Debian's, an index past the
 // GPUs present).
 torch::Device parse_device(const std::string& value);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "phyir/core/error.h"
+#include "phyir/core/setting_error.h"
 
 namespace phyir::model {
 
@@ -38,12 +39,13 @@ LrSchedule make_schedule(const LrScheduleOptions& o, const nlohmann::json& saved
   }
   s.kind = o.kind.empty() ? "constant" : o.kind;
   if (s.kind != "constant" && s.kind != "step" && s.kind != "cosine")
-    fail("--lr-schedule '{}': expected constant, step or cosine", s.kind);
+    fail_setting("schedule.kind", "'{}': expected constant, step or cosine", s.kind);
   s.step_epochs = o.step_epochs > 0 ? o.step_epochs : std::max(1, static_cast<int>(std::lround(epochs / 3.0)));
   s.gamma = o.gamma;
   s.min_fraction = o.min_fraction;
-  if (!(s.gamma > 0.0 && s.gamma <= 1.0)) fail("--lr-gamma {}: must be in (0, 1]", s.gamma);
-  if (!(s.min_fraction >= 0.0 && s.min_fraction <= 1.0)) fail("--lr-min-fraction {}: must be in [0, 1]", s.min_fraction);
+  if (!(s.gamma > 0.0 && s.gamma <= 1.0)) fail_setting("schedule.gamma", "{} must be in (0, 1]", s.gamma);
+  if (!(s.min_fraction >= 0.0 && s.min_fraction <= 1.0))
+    fail_setting("schedule.min_fraction", "{} must be in [0, 1]", s.min_fraction);
   return s;
 }
 

@@ -11,7 +11,7 @@ namespace phyir::model {
 
 struct LrSchedule {
   std::string kind = "constant";  // constant | step | cosine
-  double base = 1e-4;             // the stage's rate (B.1) or --lr
+  double base = 1e-4;             // the stage's rate (B.1) or the run's learning_rate
   int step_epochs = 1;            // step: the rate is multiplied by gamma every step_epochs epochs
   double gamma = 0.1;
   double min_fraction = 0.01;     // cosine: base x min_fraction at the last step

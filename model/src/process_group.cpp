@@ -11,6 +11,7 @@
 #include <filesystem>
 
 #include "phyir/core/error.h"
+#include "phyir/core/setting_error.h"
 #include "phyir/core/log.h"
 
 namespace phyir::model {
@@ -31,7 +32,7 @@ TcpAddress parse_tcp(const std::string& rendezvous) {
   const std::string rest = rendezvous.substr(4);
   const size_t colon = rest.rfind(':');
   if (colon == std::string::npos || colon == 0 || colon + 1 == rest.size())
-    fail("--rendezvous '{}': expected tcp:HOST:PORT", rendezvous);
+    fail_setting("distributed.rendezvous", "'{}': expected tcp:HOST:PORT", rendezvous);
   int port = 0;
   try {
     size_t used = 0;
@@ -40,7 +41,7 @@ TcpAddress parse_tcp(const std::string& rendezvous) {
   } catch (const std::exception&) {
     port = 0;
   }
-  if (port < 1 || port > 65535) fail("--rendezvous '{}': the port must be 1-65535", rendezvous);
+  if (port < 1 || port > 65535) fail_setting("distributed.rendezvous", "'{}': the port must be 1-65535", rendezvous);
   return {rest.substr(0, colon), static_cast<uint16_t>(port)};
 }
 
@@ -48,9 +49,9 @@ c10::intrusive_ptr<c10d::Store> make_store(const DistributedOptions& o) {
   const std::chrono::milliseconds timeout(int64_t{1000} * o.timeout_seconds);
   if (o.rendezvous.rfind("file:", 0) == 0) {
     const std::string path = o.rendezvous.substr(5);
-    if (path.empty()) fail("--rendezvous '{}': expected file:PATH", o.rendezvous);
+    if (path.empty()) fail_setting("distributed.rendezvous", "'{}': expected file:PATH", o.rendezvous);
     if (!std::filesystem::is_directory(std::filesystem::absolute(path).parent_path()))
-      fail("--rendezvous '{}': the folder of {} does not exist", o.rendezvous, path);
+      fail_setting("distributed.rendezvous", "'{}': the folder of {} does not exist", o.rendezvous, path);
     auto store = c10::make_intrusive<c10d::FileStore>(path, o.world_size);
     store->setTimeout(timeout);
     return store;
@@ -65,7 +66,7 @@ c10::intrusive_ptr<c10d::Store> make_store(const DistributedOptions& o) {
     t.timeout = timeout;
     return c10::make_intrusive<c10d::TCPStore>(a.host, t);
   }
-  fail("--rendezvous '{}': expected file:PATH or tcp:HOST:PORT", o.rendezvous);
+  fail_setting("distributed.rendezvous", "'{}': expected file:PATH or tcp:HOST:PORT", o.rendezvous);
 }
 
 // This host's Gloo device: the address the host name resolves to, else the loopback device
@@ -82,9 +83,10 @@ std::shared_ptr<::gloo::transport::Device> make_device() {
 }  // namespace
 
 std::unique_ptr<ProcessGroup> ProcessGroup::join(const DistributedOptions& o) {
-  if (o.world_size < 1) fail("--world-size {}: must be at least 1", o.world_size);
-  if (o.rank < 0 || o.rank >= o.world_size) fail("--rank {}: must be in 0..{}", o.rank, o.world_size - 1);
-  if (o.timeout_seconds < 1) fail("--dist-timeout {}: must be at least 1 second", o.timeout_seconds);
+  if (o.world_size < 1) fail_setting("distributed.world_size", "{} must be at least 1", o.world_size);
+  if (o.rank < 0 || o.rank >= o.world_size) fail_setting("distributed.rank", "{} must be in 0..{}", o.rank, o.world_size - 1);
+  if (o.timeout_seconds < 1)
+    fail_setting("distributed.timeout_seconds", "{} must be at least 1 second", o.timeout_seconds);
   auto gloo = std::make_unique<Gloo>();
   try {
     gloo->store = make_store(o);
@@ -112,7 +114,7 @@ void ProcessGroup::run(const char* operation, const char* what, const std::funct
     collective();
   } catch (const std::exception& e) {
     // Gloo says "Connection reset by peer" when a rank died, "Timed out" when one hangs.
-    fail("rank {} of {}: {} of {} failed: {} (another rank died or did not arrive within --dist-timeout {} s; "
+    fail("rank {} of {}: {} of {} failed: {} (another rank died or did not arrive within the {} s timeout; "
          "see its log)",
          rank_, size_, operation, what, e.what(), timeout_seconds_);
   }

@@ -70,7 +70,7 @@ struct RenderOutput {
 // Random numbers: one seed drawn from torch's default generator (seed it for determinism),
 // then pixel p's own stream (render_kernel.h), so the thread count does not change the result.
 // On the CPU it runs the fused kernel (render_kernel.cpp): memory O(pixels) in forward and
-// backward. On another device (--device cuda) render_layer_reference's estimator on the same
+// backward. On another device (a cuda device) render_layer_reference's estimator on the same
 // uniforms (the kernel is CPU code).
 RenderOutput render_layer(const torch::Tensor& normal, const torch::Tensor& base_color,
                           const torch::Tensor& roughness, const torch::Tensor& metalness,

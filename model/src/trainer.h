@@ -46,7 +46,7 @@ class Trainer {
   void join_ranks();          // data-parallel: the process group (no-op for one process)
   void build_networks();      // networks, which of them train, optimiser, resumed state
   void load_data();           // training views, validator, schedule, logs
-  bool run_epoch(int epoch);  // false when --max-steps stopped the run inside it
+  bool run_epoch(int epoch);  // false when max_steps stopped the run inside it
   double run_step(int epoch, int64_t batch_index, const Batch& batch);
   void log_step(int epoch, int64_t batch_index, double loss, const StepLoss& parts, double lr, double step_seconds);
   void validate(int epoch_done);

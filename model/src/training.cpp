@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "phyir/core/error.h"
+#include "phyir/core/setting_error.h"
 #include "phyir/core/log.h"
 #include "host_memory.h"
 #include "trainer.h"
@@ -20,7 +21,7 @@ Stage parse_stage(const std::string& name) {
   if (name == "lnet") return Stage::kLNet;
   if (name == "joint") return Stage::kJoint;
   if (name == "gsnet") return Stage::kGSNet;
-  fail("--stage '{}': expected gmnet, lnet, joint or gsnet", name);
+  fail_setting("stage", "'{}': expected gmnet, lnet, joint or gsnet", name);
 }
 
 std::string stage_name(Stage s) {

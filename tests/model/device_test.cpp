@@ -1,5 +1,5 @@
-// --device (model/src/device.h): cpu parses to the CPU, anything else is refused naming the flag
-// and the value; CUDA on a LibTorch without it (Debian's) is refused with the fix; the options
+// The device setting (model/src/device.h): cpu parses to the CPU, anything else is refused
+// naming the setting and the value; CUDA on a LibTorch without it (Debian's) is refused with the fix; the options
 // helper makes float32 tensors on the device; a batch moved to the CPU is the batch itself.
 #include "data.h"
 #include "device.h"
@@ -25,13 +25,13 @@ TEST(ModelDevice, CpuParsesAndOtherDevicesAreNamedInTheError) {
   EXPECT_EQ(pm::parse_device("cpu:0"), torch::Device(torch::kCPU));
   for (const std::string bad : {"gpu", "", "cuda:x", "mps", "cpu:1"}) {
     const std::string message = error_of(bad);
-    EXPECT_NE(message.find("--device '" + bad + "'"), std::string::npos) << bad << ": " << message;
+    EXPECT_NE(message.find("device: '" + bad + "'"), std::string::npos) << bad << ": " << message;
   }
   if (torch::cuda::is_available()) GTEST_SKIP() << "this LibTorch has CUDA: the unavailable-device error is not reachable";
   for (const std::string cuda : {"cuda", "cuda:0", "cuda:1"}) {
     const std::string message = error_of(cuda);
-    EXPECT_NE(message.find("--device '" + cuda + "': CUDA is not available"), std::string::npos) << message;
-    EXPECT_NE(message.find("--device cpu"), std::string::npos) << message;
+    EXPECT_NE(message.find("device: '" + cuda + "': CUDA is not available"), std::string::npos) << message;
+    EXPECT_NE(message.find("use the cpu device"), std::string::npos) << message;
   }
 }
 

@@ -12,7 +12,7 @@ namespace phyir::model {
 
 // The four stages of the paper's appendix B.1.
 enum class Stage { kGMNet, kLNet, kJoint, kGSNet };
-Stage parse_stage(const std::string& name);  // gmnet | lnet | joint | gsnet; throws phyir::Error
+Stage parse_stage(const std::string& name);  // gmnet | lnet | joint | gsnet; else SettingError "stage"
 std::string stage_name(Stage stage);
 
 // Resolutions and sample counts. Paper: input 256x512, rendering 128x256, probes 16x32,
@@ -70,7 +70,7 @@ struct ValidationOptions {
 struct LrScheduleOptions {
   std::string kind;          // constant (the paper's), step or cosine; empty: constant, or
                              // the checkpoint's when resuming
-  int step_epochs = 0;       // step: multiply by gamma every N epochs (0: a third of --epochs)
+  int step_epochs = 0;       // step: multiply by gamma every N epochs (0: a third of the epochs)
   double gamma = 0.1;        // step
   double min_fraction = 0.01;  // cosine: the last step's rate over the base rate
 };
@@ -78,8 +78,9 @@ struct LrScheduleOptions {
 // Data-parallel training (docs/model.md "Training on several processes"): this process is rank
 // `rank` of `world_size`, and the ranks meet at `rendezvous`: file:PATH (a file on a file
 // system every rank sees; it must not exist before the run) or tcp:HOST:PORT (a store that
-// rank 0 serves on HOST). `phyir train --nproc N` and `phyir train slurm`'s script fill these in.
-// --batch stays the global batch: N ranks at batch B train as one process at batch B.
+// rank 0 serves on HOST). `phyir train`'s local processes and `phyir train slurm`'s script fill
+// these in. The batch size stays the global batch: N ranks at batch B train as one process at
+// batch B.
 struct DistributedOptions {
   int rank = 0;
   int world_size = 1;          // 1: one process, no group
@@ -112,7 +113,7 @@ struct TrainOptions {
   int64_t max_steps = 0;       // stop after this many optimiser steps in total (0: run all epochs)
   int64_t checkpoint_every = 0;  // also checkpoint every N steps (0: at the end of each epoch only)
   int max_views = 0;           // use only the first N views (0: all)
-  std::string target_units;    // input | absolute: overrides the --init checkpoint's (a study switch,
+  std::string target_units;    // input | absolute: overrides the `init` checkpoint's (a study switch,
                                // docs/model.md "Exposure and units"); empty: the checkpoint's, else input
   bool progress = true;        // one line per step with live loss values
   std::string plot_script;     // scripts/plot_training.py; empty: no loss-curve PNG
@@ -170,7 +171,7 @@ struct InferOptions {
 void infer(const InferOptions& options);
 
 // The rendering layer on ground truth: a view folder's own maps and probes (probes.exr,
-// probe_mask.exr from `phyir render --probes`) re-rendered and compared with its color.exr,
+// probe_mask.exr from `phyir render` with probes) re-rendered and compared with its color.exr,
 // at the probe grid's resolution (maps area-resized to it) over the pixels that see an opaque,
 // non-emissive surface with a valid probe.
 struct RenderCheckOptions {
