@@ -141,7 +141,7 @@ std::vector<Viewpoint> plan_viewpoints(const scenes::Scene& scene, const std::st
     }
     if (!found)
       fail("{}: found only {} of {} viewpoints ({} from the scene, the rest in free space with {:.2f} m clearance at "
-           "{:.1f}-{:.1f} m height, {} attempts); lower --views-per-scene or --clearance",
+           "{:.1f}-{:.1f} m height, {} attempts); lower the views per scene or the clearance",
            scene_name, views.size(), count, scene.cameras.size() + scene.candidate_viewpoints.size(), rules.clearance,
            rules.min_height, rules.max_height, rules.attempts);
   }

@@ -122,7 +122,7 @@ int Distribution1D::sample(float u, float* pmf, float* remapped) const {
   // First bin whose upper cdf edge exceeds u; zero-weight bins can never be chosen.
   int index = static_cast<int>(upper_edge(u) - cdf_.data()) - 1;
   index = std::clamp(index, 0, size() - 1);
-  while (index > 0 && weights_[index] == 0.0f) --index;  // guards u == 1 - epsilon rounding
+  while (index > 0 && weights_[index] == 0.0f) index -= 1;  // guards u == 1 - epsilon rounding
   if (pmf) *pmf = weights_[index] / total_;
   if (remapped) {
     const float width = cdf_[index + 1] - cdf_[index];

@@ -1,5 +1,5 @@
 #pragma once
-// Logging for the whole toolkit: spdlog on stderr, one level set by `phyir --log-level`.
+// Logging for the whole toolkit: spdlog on stderr, one level per process (`phyir`'s log level).
 #include <spdlog/spdlog.h>
 
 #include <string>

@@ -79,7 +79,7 @@ struct DatasetStats {
 // cannot be read.
 DatasetStats compute_dataset_stats(const std::filesystem::path& dir, const StatsOptions& options = {});
 
-// The summary as lines of text, and as JSON (for --json).
+// The summary as lines of text, and as JSON (`phyir dataset stats` writes it on request).
 std::string format_stats(const DatasetStats& stats);
 nlohmann::json stats_to_json(const DatasetStats& stats);
 

@@ -67,7 +67,7 @@ struct FutureHouseExportSummary {
 FutureHouseExportSummary export_futurehouse(const FutureHouseExportOptions& options);
 
 // When the normals of a view face the camera (n . d < 0 for the pixel's direction d), the
-// fraction of surface pixels that do: low values mean --normal-axes is wrong. `normal` is
+// fraction of surface pixels that do: low values mean the normal axes given are wrong. `normal` is
 // W x H x 3 in our axes, `geometry` W x H x 1.
 struct FacingCount {
   uint64_t facing = 0, surface = 0;

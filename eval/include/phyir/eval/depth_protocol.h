@@ -1,9 +1,9 @@
 #pragma once
-// Which rules score depth (`phyir eval --depth-protocol`, docs/eval.md "Depth protocols"):
+// Which rules score depth (`phyir eval`'s depth protocol, docs/eval.md "Depth protocols"):
 //   toolkit         the default: the toolkit's masks and resolution rule, RMSE log in ln
 //   unifuse         UniFuse's evaluate.py exactly (unifuse_depth.h): its mask, clamps, log10
 //                   RMSE log, the ground truth resized onto the prediction as its loader does
-//   unifuse-median  the same with UniFuse's --median_align
+//   unifuse-median  the same with UniFuse's median alignment (its median_align option)
 // Every protocol averages per view over views, which is UniFuse's averaging: its evaluate.py
 // feeds its Evaluator one image at a time (a "batch" of one view).
 #include <string>
