@@ -4,6 +4,7 @@
 
 #include "commands.h"
 #include "exposure_flag.h"
+#include "flag_registry.h"
 #include "phyir/core/error.h"
 #include "phyir/core/log.h"
 #include "phyir/dataset/futurehouse.h"
@@ -31,10 +32,11 @@ void add_import(CLI::App* dataset) {
       ->required()
       ->check(CLI::ExistingDirectory);
   cmd->add_option("--out", f->o.out, "new dataset folder (must not exist)")->required();
-  cmd->add_option("--split", f->o.split_file, "split file (default: SRC/split.json)");
-  cmd->add_option("--views-per-scene", f->o.views_per_scene,
-                  "views taken from each plan (the first ones); 0 = the smallest count of any plan, plans with "
-                  "fewer are left out")
+  sets(cmd, "split_file", cmd->add_option("--split", f->o.split_file, "split file (default: SRC/split.json)"));
+  sets(cmd, "views_per_scene",
+       cmd->add_option("--views-per-scene", f->o.views_per_scene,
+                       "views taken from each plan (the first ones); 0 = the smallest count of any plan, plans with "
+                       "fewer are left out"))
       ->capture_default_str();
   cmd->add_option("--probes", f->probes,
                   "auto: probes when every view has a light file; none; only: just the views with a light file")
@@ -42,8 +44,9 @@ void add_import(CLI::App* dataset) {
       ->capture_default_str();
   cmd->add_option("--probe-resolution", f->probe_res,
                   "texels of one probe, HxW (default: SRC/phyir/export.json's, else the loader's 16x32)");
-  cmd->add_option("--normal-axes", f->o.normal_axes,
-                  "our x,y,z as FutureHouse's signed axes (default x,y,z; see docs/futurehouse.md)");
+  sets(cmd, "normal_axes",
+       cmd->add_option("--normal-axes", f->o.normal_axes,
+                       "our x,y,z as FutureHouse's signed axes (default x,y,z; see docs/futurehouse.md)"));
   add_exposure_flag(cmd, f->o.input.auto_exposure, f->o.input.exposure_stops, "input.png", "input.exposure_stops")
       ->group("Options");
   cmd->add_option("--seed", f->o.seed, "seed of the view seeds (exposure jitter)")->capture_default_str();
@@ -87,7 +90,8 @@ void add_export(CLI::App* dataset) {
                   "accepts); none")
       ->check(CLI::IsMember({"all", "first", "none"}))
       ->capture_default_str();
-  cmd->add_option("--normal-axes", f->o.normal_axes, "FutureHouse's axes of our x,y,z (as for import)")
+  sets(cmd, "normal_axes",
+       cmd->add_option("--normal-axes", f->o.normal_axes, "FutureHouse's axes of our x,y,z (as for import)"))
       ->capture_default_str();
   cmd->add_option("--threads", f->o.threads, "worker threads (0 = all cores)")->capture_default_str();
   cmd->add_flag("--quiet", f->quiet, "no progress line");
