@@ -16,6 +16,7 @@
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/equirect.h"
 #include "phyir/core/error.h"
+#include "phyir/core/setting_error.h"
 #include "phyir/core/image_io.h"
 #include "phyir/core/log.h"
 #include "phyir/core/progress.h"
@@ -69,7 +70,7 @@ struct ImportContext {
 std::map<std::string, std::string> read_split(const fs::path& file) {
   std::error_code ec;
   if (!fs::is_regular_file(file, ec))
-    fail("{}: no split file (FutureHouse's split.json; give another with --split)", file.string());
+    fail_setting("split_file", "{}: no split file (FutureHouse's split.json; give another)", file.string());
   const json j = json::parse(read_file(file), nullptr, false);
   if (j.is_discarded() || !j.is_object()) fail("{}: not a JSON object", file.string());
   std::map<std::string, std::string> split_of;
@@ -127,7 +128,7 @@ std::vector<ImportView> choose_views(const std::vector<SourcePlan>& plans, Impor
     for (int i = 0; i < p.views; ++i)
       if (probes != ImportProbes::kOnly || p.light[size_t(i)]) c.push_back(i);
     if (c.empty()) {
-      left_out.push_back(p.name + ": no view has a light file (--probes only)");
+      left_out.push_back(p.name + ": no view has a light file (probes: only)");
       candidates.erase(p.name);
     } else if (wanted_k <= 0) {
       k = k <= 0 ? int(c.size()) : std::min(k, int(c.size()));
@@ -139,12 +140,12 @@ std::vector<ImportView> choose_views(const std::vector<SourcePlan>& plans, Impor
     if (!candidates.count(p.name)) continue;
     const std::vector<int>& c = candidates[p.name];
     if (int(c.size()) < k) {
-      left_out.push_back(fmt::format("{}: {} view(s), fewer than --views-per-scene {}", p.name, c.size(), k));
+      left_out.push_back(fmt::format("{}: {} view(s), fewer than the {} views per scene asked for", p.name, c.size(), k));
       continue;
     }
     for (int j = 0; j < k; ++j) views.push_back({p.name, p.split, c[size_t(j)], j, p.light[size_t(c[size_t(j)])]});
   }
-  if (views.empty()) fail("no plan of split.json has {} view(s) to import (--views-per-scene)", k);
+  if (views.empty()) fail_setting("views_per_scene", "no plan of split.json has {} view(s) to import", k);
   *k_out = k;
   return views;
 }
@@ -333,7 +334,7 @@ void choose_probes(const FutureHouseImportOptions& o, const json& record, const 
   for (const ImportView& v : views) with_light += v.light ? 1 : 0;
   ctx.probes = o.probes != ImportProbes::kNone && with_light == views.size();
   if (o.probes == ImportProbes::kAuto && with_light > 0 && !ctx.probes)
-    spdlog::warn("import-futurehouse: {} of {} views have a light file; importing without probes (--probes only "
+    spdlog::warn("import-futurehouse: {} of {} views have a light file; importing without probes (probes: only "
              "imports just the views with one)",
              with_light, views.size());
   ctx.probe_height = fh::kProbeHeight;
@@ -351,7 +352,7 @@ void choose_grid(ImportContext& ctx, const ImportView& first) {
   const fs::path light = fh::light_path(ctx.src, first.plan, first.source_index);
   const Image mosaic = read_image(light);
   if (mosaic.height % ctx.probe_height != 0 || mosaic.width % ctx.probe_width != 0)
-    fail("{}: {}x{} is not a mosaic of {}x{} probes (--probe-resolution)", light.string(), mosaic.width,
+    fail("{}: {}x{} is not a mosaic of {}x{} probes (the probe resolution)", light.string(), mosaic.width,
          mosaic.height, ctx.probe_width, ctx.probe_height);
   ctx.grid_height = mosaic.height / ctx.probe_height;
   ctx.grid_width = mosaic.width / ctx.probe_width;

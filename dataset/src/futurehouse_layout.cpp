@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "phyir/core/error.h"
+#include "phyir/core/setting_error.h"
 
 namespace phyir::dataset::futurehouse {
 
@@ -49,7 +50,7 @@ NormalAxes NormalAxes::parse(const std::string& text) {
     if (c == ',') items.emplace_back();
     else items.back() += c;
   }
-  if (items.size() != 3) fail("--normal-axes '{}': three comma-separated axes, e.g. x,y,z", text);
+  if (items.size() != 3) fail_setting("normal_axes", "'{}': three comma-separated axes, e.g. x,y,z", text);
   NormalAxes axes;
   std::array<bool, 3> used = {false, false, false};
   for (size_t i = 0; i < 3; ++i) {
@@ -59,7 +60,7 @@ NormalAxes NormalAxes::parse(const std::string& text) {
       item.erase(0, 1);
     }
     if (item.size() != 1 || item[0] < 'x' || item[0] > 'z' || used[size_t(item[0] - 'x')])
-      fail("--normal-axes '{}': give each of x, y, z once, with an optional sign (e.g. x,y,z or -z,y,x)", text);
+      fail_setting("normal_axes", "'{}': give each of x, y, z once, with an optional sign (e.g. x,y,z or -z,y,x)", text);
     axes.source[i] = item[0] - 'x';
     used[size_t(item[0] - 'x')] = true;
   }

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "phyir/core/error.h"
+#include "phyir/core/setting_error.h"
 #include "phyir/core/log.h"
 #include "phyir/dataset/checksum.h"
 
@@ -21,7 +22,7 @@ namespace fs = std::filesystem;
 
 std::vector<SceneFile> list_scenes(const fs::path& dir) {
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) fail("--scenes {}: not a folder", dir.string());
+  if (!fs::is_directory(dir, ec)) fail_setting("scenes_dir", "{}: not a folder", dir.string());
   std::vector<SceneFile> scenes;
   std::map<std::string, std::string> by_stem;
   for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
@@ -31,11 +32,11 @@ std::vector<SceneFile> list_scenes(const fs::path& dir) {
     if (!entry.is_regular_file()) continue;
     const std::string stem = entry.path().stem().string();
     if (auto it = by_stem.find(stem); it != by_stem.end())
-      fail("--scenes {}: '{}' and '{}' would share the views folder '{}'; rename one", dir.string(), it->second, file, stem);
+      fail_setting("scenes_dir", "{}: '{}' and '{}' would share the views folder '{}'; rename one", dir.string(), it->second, file, stem);
     by_stem[stem] = file;
     scenes.push_back({stem, file});
   }
-  if (scenes.empty()) fail("--scenes {}: no .gltf or .glb files", dir.string());
+  if (scenes.empty()) fail_setting("scenes_dir", "{}: no .gltf or .glb files", dir.string());
   std::sort(scenes.begin(), scenes.end(), [](const SceneFile& a, const SceneFile& b) { return a.name < b.name; });
   return scenes;
 }

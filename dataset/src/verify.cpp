@@ -238,7 +238,7 @@ VerifyReport verify_dataset(const fs::path& dir, int threads) {
 }
 
 size_t remove_damaged_views(const fs::path& dir, const VerifyReport& report) {
-  const FolderLock lock(dir, "verify --remove-damaged");
+  const FolderLock lock(dir, "verify (removing damaged views)");
   std::error_code ec;
   fs::remove(dir / kManifestFile, ec);  // the dataset is incomplete from here on
   size_t removed = 0;

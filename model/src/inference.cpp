@@ -45,14 +45,14 @@ Panorama read_panorama(const InferOptions& o) {
   phyir::Image img = read_image(in);
   if (ext == ".exr" || ext == ".hdr") {
     // HDR: exposed as the dataset exposes its views (auto: the 95th percentile to 0.9),
-    // unless --exposure says otherwise, then the sRGB display's Standard view.
+    // unless the options give an exposure, then the sRGB display's Standard view.
     p.exposure_stops = std::isfinite(o.exposure) ? o.exposure
                                                  : dataset::choose_input_exposure(img, dataset::InputSettings{}, 0).stops;
-    p.exposure_source = std::isfinite(o.exposure) ? "--exposure" : "auto (95th percentile to 0.9, as phyir dataset)";
+    p.exposure_source = std::isfinite(o.exposure) ? "given" : "auto (95th percentile to 0.9, as phyir dataset)";
     img = linear_to_display(img, static_cast<float>(p.exposure_stops), "Standard");
   } else if (std::isfinite(o.exposure)) {
     p.exposure_stops = o.exposure;
-    p.exposure_source = "--exposure";
+    p.exposure_source = "given";
   } else if (const view::InputExposure e = view::read_view(in.parent_path()).input; e.recorded) {
     p.exposure_stops = e.stops;  // input.png of a dataset view folder
     p.exposure_source = (in.parent_path() / view::kViewRecordFile).string();
@@ -69,7 +69,7 @@ json radiance_record(const Panorama& p, bool absolute, bool trained_absolute) {
   if (trained_absolute)
     return {{"unit", "absolute"}, {view::kExposureStopsKey, std::isfinite(p.exposure_stops) ? json(p.exposure_stops) : json()},
             {"meaning", "radiance as color.exr and probes.exr hold it: the network's output (trained with "
-                        "--target-units absolute)"}};
+                        "absolute target units)"}};
   if (absolute)
     return {{"unit", "absolute"}, {view::kExposureStopsKey, p.exposure_stops}, {"exposure_source", p.exposure_source},
             {"meaning", "radiance as color.exr and probes.exr hold it: the network's output / 2^exposure_stops"}};
@@ -103,11 +103,11 @@ void infer(const InferOptions& o) {
   const torch::Tensor x = resize(pano.image.to(device), cfg.input_height, cfg.input_width).clamp(0.0, 1.0);
   const bool use_gs = meta.at("trained").value("gsnet", false);
   const ModelOutput p = predict(nets, cfg, x, use_gs, true);
-  // A model trained on absolute targets (--target-units absolute) predicts absolute radiance.
+  // A model trained on absolute targets (target units "absolute") predicts absolute radiance.
   const bool trained_absolute = target_radiance(cfg) == view::RadianceUnits::kAbsolute;
   const bool absolute = trained_absolute || (o.absolute && std::isfinite(pano.exposure_stops));
   if (o.absolute && !absolute)
-    spdlog::warn("{}: the input's exposure is unknown (no --exposure, no view.json beside it): probes.exr and "
+    spdlog::warn("{}: the input's exposure is unknown (none given, no view.json beside it): probes.exr and "
                  "rerender.exr are in the input's relative units",
                  o.input);
   const double to_output = absolute && !trained_absolute ? std::exp2(-pano.exposure_stops) : 1.0;

@@ -1,4 +1,4 @@
-// The rendering layer on a view folder's own ground truth (phyir infer --check-render-layer).
+// The rendering layer on a view folder's own ground truth (`phyir infer`'s render-layer check).
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>

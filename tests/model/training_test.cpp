@@ -650,5 +650,5 @@ TEST(ModelTrainCli, ManifestDatasetWithAValSplitEndToEnd) {
   EXPECT_EQ(infer(work / "bare" / "pano.png", "bare_out", "")["unit"], "input");
   const nlohmann::json given = infer(work / "bare" / "pano.png", "given_out", " --exposure 1.5");
   EXPECT_EQ(given["unit"], "absolute");
-  EXPECT_EQ(given["exposure_source"], "--exposure");
+  EXPECT_EQ(given["exposure_source"], "given");
 }

@@ -101,7 +101,7 @@ TEST(RenderJobEnvironment, TheFlagOverridesTheScenesEnvironment) {
   grey.environment_path = dir / "grey.exr";
   run_render_job(grey);
   EXPECT_EQ(read_file(dir / "overridden" / "color.exr"), read_file(dir / "grey" / "color.exr"));
-  EXPECT_EQ(settings(dir / "overridden")["environment_source"], "--environment");
+  EXPECT_EQ(settings(dir / "overridden")["environment_source"], "file");
   EXPECT_EQ(settings(dir / "overridden")["environment"], (dir / "grey.exr").string());
 }
 

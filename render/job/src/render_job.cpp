@@ -92,11 +92,11 @@ nlohmann::json probes_json(const RenderReport::Probes& probes) {
   return block;
 }
 
-// --environment when given, else the scene's declared environment, else none.
+// The job's environment file when given, else the scene's declared environment, else none.
 RenderReport::Environment choose_environment(const RenderJob& job, const scenes::Scene& scene) {
   RenderReport::Environment chosen;
   if (!job.environment_path.empty()) {
-    chosen = {"--environment", job.environment_path.string(), job.environment_scale};
+    chosen = {"file", job.environment_path.string(), job.environment_scale};
   } else if (scene.environment) {
     chosen = {"scene", scene.environment->path.string(), scene.environment->scale * job.environment_scale};
   }
@@ -155,7 +155,7 @@ CameraModel job_camera(const RenderJob& job, const scenes::Scene& scene, std::st
   camera.height = job.height;
   if (job.camera_position) {
     camera.position = *job.camera_position;
-    if (description) *description = "--camera";
+    if (description) *description = "position";
     if (job.projection == Projection::Perspective && !scene.cameras.empty()) {
       camera.forward = scene.cameras[0].forward;
       camera.up = scene.cameras[0].up;

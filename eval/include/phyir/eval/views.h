@@ -44,7 +44,7 @@ struct Prediction {
 // required, all of one size; rerender.exr, probes.exr + probe_mask.exr optional).
 Prediction load_prediction(const std::filesystem::path& dir);
 
-// The maps a prediction folder must hold (view::prediction_map_files), for --help and errors.
+// The maps a prediction folder must hold (view::prediction_map_files), for help texts and errors.
 inline const std::vector<std::string>& required_prediction_files() { return view::prediction_map_files(); }
 
 

@@ -29,7 +29,7 @@ struct RenderJob {
   int camera_index = 0;
   RenderSettings settings;
   int threads = 0;                           // 0 = all cores
-  // An HDR equirect environment (--environment). Empty: the scene's own, declared in its
+  // An HDR equirect environment file. Empty: the scene's own, declared in its
   // extras.phyir.environment, if any (docs/gltf-support.md#environment). The scale multiplies
   // whichever is used (the scene's times its own scale).
   std::filesystem::path environment_path;
@@ -70,14 +70,14 @@ struct RenderReport {
 
   // The environment the view was lit by.
   struct Environment {
-    std::string source = "none";  // "--environment", "scene" (its extras.phyir.environment) or "none"
+    std::string source = "none";  // "file" (the job's environment_path), "scene" (its extras.phyir.environment) or "none"
     std::string path;             // the file read; empty for none
     float scale = 1.0f;           // as applied
   };
 
   SceneSummary scene;
   Environment environment;
-  std::string camera_source;  // "--camera" or the scene camera's index and name
+  std::string camera_source;  // "position" (the job's camera_position) or the scene camera's index and name
   CameraModel camera;
   RenderJob job;              // the settings it ran with
   int threads = 0;            // as used (0 in the job: all cores)
