@@ -39,8 +39,8 @@ void run_model(const EvalFlags& f) {
   for (size_t k = 0; k < n; ++k) {
     model::InferOptions io;
     io.checkpoint = f.model;
-    io.input = (std::filesystem::path(f.gt) / views[k].at("dir").get<std::string>() / "input.png").string();
-    io.out_dir = (std::filesystem::path(f.out) / "pred" / views[k].at("id").get<std::string>()).string();
+    io.input = (views[k].dir / view::kInputFile).string();
+    io.out_dir = (std::filesystem::path(f.out) / "pred" / views[k].id).string();
     io.threads = f.model_threads;
     io.seed = f.model_seed;
     model::infer(io);

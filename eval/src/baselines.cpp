@@ -9,7 +9,7 @@
 
 namespace phyir::eval {
 
-BaselineStats compute_baseline_stats(const std::filesystem::path& root, const std::vector<nlohmann::json>& records,
+BaselineStats compute_baseline_stats(const std::vector<view::ViewRecord>& records,
                                      const std::string& source) {
   BaselineStats s;
   s.source = source;
@@ -17,8 +17,8 @@ BaselineStats compute_baseline_stats(const std::filesystem::path& root, const st
   double input_color[3] = {0, 0, 0};  // the colour sums in each view's input units
   Image probe_sum, input_probe_sum;
   long probes = 0;
-  for (const nlohmann::json& record : records) {
-    const GroundTruthView v = load_ground_truth(root, record);
+  for (const view::ViewRecord& record : records) {
+    const GroundTruthView v = load_ground_truth(record);
     const double to_input = view::radiance_scale(view::RadianceUnits::kInput, v.exposure_stops);
     for (int y = 0; y < v.color.height; ++y)
       for (int x = 0; x < v.color.width; ++x) {

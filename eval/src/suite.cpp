@@ -9,7 +9,6 @@
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
 #include "phyir/core/progress.h"
-#include "phyir/dataset/manifest.h"
 #include "phyir/eval/baselines.h"
 #include "phyir/eval/figure.h"
 #include "phyir/eval/report.h"
@@ -18,19 +17,18 @@ namespace fs = std::filesystem;
 
 namespace phyir::eval {
 
-std::vector<nlohmann::json> split_views(const fs::path& gt_dir, const std::string& split) {
-  const dataset::Manifest manifest = dataset::read_manifest(gt_dir);
-  std::vector<nlohmann::json> out;
+std::vector<view::ViewRecord> split_views(const fs::path& gt_dir, const std::string& split) {
+  const std::vector<view::ViewRecord> all = view::read_manifest_views(gt_dir);
+  std::vector<view::ViewRecord> out;
   std::map<std::string, int> splits;
-  for (const nlohmann::json& v : manifest.views) {
-    const std::string s = v.at("split").get<std::string>();
-    ++splits[s];
-    if (split.empty() || s == split) out.push_back(v);
+  for (const view::ViewRecord& v : all) {
+    ++splits[v.split];
+    if (split.empty() || v.split == split) out.push_back(v);
   }
   if (out.empty()) {
     std::string have;
     for (const auto& [s, n] : splits) have += (have.empty() ? "" : ", ") + s + " (" + std::to_string(n) + ")";
-    fail("{}: no view in split '{}' (the manifest has: {})", (gt_dir / "manifest.json").string(), split,
+    fail("{}: no view in split '{}' (the manifest has: {})", (gt_dir / view::kManifestFile).string(), split,
          have.empty() ? "no views" : have);
   }
   return out;
@@ -88,29 +86,29 @@ nlohmann::json method_json(const MethodResults& r, const std::vector<std::string
 }
 
 // The views evaluated: the split's, the first max_views of them when that is set.
-std::vector<nlohmann::json> views_to_evaluate(const std::vector<nlohmann::json>& records, const EvalOptions& o) {
-  std::vector<nlohmann::json> views = records;
+std::vector<view::ViewRecord> views_to_evaluate(const std::vector<view::ViewRecord>& records, const EvalOptions& o) {
+  std::vector<view::ViewRecord> views = records;
   if (o.max_views > 0 && static_cast<int>(views.size()) > o.max_views) views.resize(size_t(o.max_views));
   return views;
 }
 
 // Every prediction folder and its required files exist: checked before any work, so a wrong
 // prediction folder (pred_dir) fails at once.
-void check_predictions(const EvalOptions& o, const std::vector<nlohmann::json>& views) {
+void check_predictions(const EvalOptions& o, const std::vector<view::ViewRecord>& views) {
   if (!fs::is_directory(o.pred_dir)) fail("{}: prediction folder missing", o.pred_dir.string());
-  for (const nlohmann::json& v : views) {
-    const fs::path d = o.pred_dir / v.at("id").get<std::string>();
+  for (const view::ViewRecord& v : views) {
+    const fs::path d = o.pred_dir / v.id;
     if (!fs::is_directory(d))
       fail("{}: missing prediction for view {} (expected PRED/<view id>/ with depth.exr, normal.exr, basecolor.exr, "
-           "roughness.exr, metalness.exr)", d.string(), v.at("id").get<std::string>());
-    for (const std::string& f : required_prediction_files())
-      if (!fs::is_regular_file(d / f)) fail("{}: missing (prediction of view {})", (d / f).string(), v.at("id").get<std::string>());
+           "roughness.exr, metalness.exr)", d.string(), v.id);
+    for (const std::string& f : view::prediction_map_files())
+      if (!fs::is_regular_file(d / f)) fail("{}: missing (prediction of view {})", (d / f).string(), v.id);
   }
 }
 
 // Baseline reference: the training split, else the evaluated split itself.
-BaselineStats baseline_stats(const EvalOptions& o, const std::vector<nlohmann::json>& records) {
-  std::vector<nlohmann::json> reference;
+BaselineStats baseline_stats(const EvalOptions& o, const std::vector<view::ViewRecord>& records) {
+  std::vector<view::ViewRecord> reference;
   std::string source;
   try {
     reference = split_views(o.gt_dir, "train");
@@ -123,7 +121,7 @@ BaselineStats baseline_stats(const EvalOptions& o, const std::vector<nlohmann::j
     reference.resize(size_t(o.baseline_max_views));
   source += ", " + std::to_string(reference.size()) + " views";
   spdlog::info("eval: constant-mean baseline from {}", source);
-  return compute_baseline_stats(o.gt_dir, reference, source);
+  return compute_baseline_stats(reference, source);
 }
 
 // Writes the view's side-by-side PNG into figure_dir; returns its path relative to the report.
@@ -158,7 +156,7 @@ class ViewEvaluation {
  public:
   ViewEvaluation(const EvalOptions& o, const BaselineStats& stats) : o_(o), stats_(stats) {}
 
-  ViewResults run(const std::vector<nlohmann::json>& views) {
+  ViewResults run(const std::vector<view::ViewRecord>& views) {
     r_.pred = {"prediction", prediction_label(o_), {}};
     Progress progress("eval", views.size(), "views", o_.progress);
     for (size_t k = 0; k < views.size(); ++k) {
@@ -170,8 +168,8 @@ class ViewEvaluation {
   }
 
  private:
-  void evaluate(const nlohmann::json& view, bool figure) {
-    const GroundTruthView gt = load_ground_truth(o_.gt_dir, view);
+  void evaluate(const view::ViewRecord& view, bool figure) {
+    const GroundTruthView gt = load_ground_truth(view);
     const Prediction p = load_prediction(o_.pred_dir / gt.id);
     for (const std::string& f : p.missing) r_.missing[f].push_back(gt.id);
     r_.ids.push_back(gt.id);
@@ -237,8 +235,8 @@ nlohmann::json eval_json(const EvalOptions& o, const ViewResults& e, const Basel
 }  // namespace
 
 nlohmann::json run_eval(const EvalOptions& o) {
-  const std::vector<nlohmann::json> records = split_views(o.gt_dir, o.split);
-  const std::vector<nlohmann::json> views = views_to_evaluate(records, o);
+  const std::vector<view::ViewRecord> records = split_views(o.gt_dir, o.split);
+  const std::vector<view::ViewRecord> views = views_to_evaluate(records, o);
   check_predictions(o, views);
   fs::create_directories(o.out_dir);
   const BaselineStats stats = o.baselines ? baseline_stats(o, records) : BaselineStats{};

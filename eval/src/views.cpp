@@ -66,10 +66,6 @@ GroundTruthView load_ground_truth(const view::ViewRecord& record) {
   return v;
 }
 
-GroundTruthView load_ground_truth(const fs::path& root, const nlohmann::json& record) {
-  return load_ground_truth(view::parse_view_record(record, root, (root / view::kManifestFile).string()));
-}
-
 Prediction load_prediction(const fs::path& dir) {
   using namespace view;
   const std::vector<std::string>& maps = prediction_map_files();

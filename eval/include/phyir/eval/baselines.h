@@ -29,8 +29,8 @@ struct BaselineStats {
   std::optional<Image> input_probe;
 };
 
-// Means over `records` (manifest entries) of the dataset at `root`; `source` describes them.
-BaselineStats compute_baseline_stats(const std::filesystem::path& root, const std::vector<nlohmann::json>& records,
+// Means over the views of `records`; `source` describes them.
+BaselineStats compute_baseline_stats(const std::vector<view::ViewRecord>& records,
                                      const std::string& source);
 
 // The constant re-render and probes are the means in `units` (absolute, or each view's input

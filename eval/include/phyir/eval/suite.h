@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "phyir/eval/evaluate_view.h"
+#include "phyir/view/view_record.h"
 
 namespace phyir::eval {
 
@@ -28,7 +29,7 @@ struct EvalOptions {
 
 // The manifest entries of `split` ("" = all) of the dataset, in manifest order; errors when
 // the dataset has none (naming the splits it has).
-std::vector<nlohmann::json> split_views(const std::filesystem::path& gt_dir, const std::string& split);
+std::vector<view::ViewRecord> split_views(const std::filesystem::path& gt_dir, const std::string& split);
 
 // Runs everything and writes OUT/metrics.json, OUT/report.md and OUT/figures/*.png
 // (atomically; metrics.json and report.md last). Returns metrics.json's content.

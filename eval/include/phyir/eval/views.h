@@ -29,8 +29,6 @@ struct GroundTruthView {
 // Reads the view of `record` (view/view_record.h). Missing or malformed files: phyir::Error
 // naming the file.
 GroundTruthView load_ground_truth(const view::ViewRecord& record);
-// The same for a manifest entry of the dataset at `root`.
-GroundTruthView load_ground_truth(const std::filesystem::path& root, const nlohmann::json& record);
 
 // A prediction; any map may be absent (baselines predict only some). Predictions read from a
 // folder must have the five maps (load_prediction checks); probes and the re-render are optional.
@@ -43,9 +41,6 @@ struct Prediction {
 // Reads PRED/<view id>/ (depth.exr, normal.exr, basecolor.exr, roughness.exr, metalness.exr
 // required, all of one size; rerender.exr, probes.exr + probe_mask.exr optional).
 Prediction load_prediction(const std::filesystem::path& dir);
-
-// The maps a prediction folder must hold (view::prediction_map_files), for help texts and errors.
-inline const std::vector<std::string>& required_prediction_files() { return view::prediction_map_files(); }
 
 
 }  // namespace phyir::eval
