@@ -152,7 +152,7 @@ void measure_resolution(const BenchProbeFlags& f, const render::RenderScene& sce
   render::ProbeStudyOptions options = f.study;
   options.scene = f.scene;
   options.base = f.base;
-  render::parse_size(res, "--res-list", &options.base.layout.res_height, &options.base.layout.res_width);
+  view::parse_size(res, "--res-list", &options.base.layout.res_height, &options.base.layout.res_width);
   render::ProbeStudy study(scene, camera, effects, options);
   const std::string tag = study.tag();
   const std::string canonical = size_text(options.base.layout.res_height, options.base.layout.res_width);

@@ -28,7 +28,7 @@ struct ProbeFlagAdder {
   void size(const std::string& setting, const std::string& flag, int& height, int& width, const std::string& help) const {
     sets(cmd, setting,
          cmd->add_option_function<std::string>(
-             names(flag), [flag, &height, &width](const std::string& text) { render::parse_size(text, flag, &height, &width); },
+             names(flag), [flag, &height, &width](const std::string& text) { view::parse_size(text, flag, &height, &width); },
              help))
         ->default_str(fmt::format("{}x{}", height, width))
         ->group(kGroup);

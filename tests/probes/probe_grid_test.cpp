@@ -19,12 +19,12 @@ namespace {
 
 TEST(ProbeLayout, ParsesSizesAndRejectsBadOnes) {
   int h = 0, w = 0;
-  parse_size("128x256", "--probe-grid", &h, &w);
+  phyir::view::parse_size("128x256", "--probe-grid", &h, &w);
   EXPECT_EQ(h, 128);
   EXPECT_EQ(w, 256);
-  EXPECT_THROW(parse_size("128", "--probe-grid", &h, &w), Error);
-  EXPECT_THROW(parse_size("16x32x2", "--probe-res", &h, &w), Error);
-  EXPECT_THROW(parse_size("axb", "--probe-res", &h, &w), Error);
+  EXPECT_THROW(phyir::view::parse_size("128", "--probe-grid", &h, &w), Error);
+  EXPECT_THROW(phyir::view::parse_size("16x32x2", "--probe-res", &h, &w), Error);
+  EXPECT_THROW(phyir::view::parse_size("axb", "--probe-res", &h, &w), Error);
   ProbeLayout layout;
   EXPECT_NO_THROW(layout.validate());  // the paper's 128x256 grid of 16x32 probes
   EXPECT_EQ(layout.mosaic_height(), 2048);

@@ -17,7 +17,7 @@ void ProbeLayout::validate() const {
   const double texels = double(mosaic_width()) * double(mosaic_height());
   // One RGB float mosaic of this size is 12 bytes per texel; 2^31 texels would be 24 GB.
   if (mosaic_width() > 1 << 20 || mosaic_height() > 1 << 20 || texels > double(1u << 31))
-    fail_setting("probe.grid", "{}x{} with a probe resolution of {}x{} makes a {}x{} mosaic, too large to hold",
+    fail_setting("probe.grid", "{}x{} with probes of {}x{} texels makes a {}x{} mosaic, too large to hold",
                  grid_height, grid_width, res_height, res_width, mosaic_height(), mosaic_width());
 }
 

@@ -3,9 +3,8 @@
 // PhyIR paper, sec. 3.2 and C.1: a 16x32 probe per pixel of a 128x256 grid of a 256x512
 // panorama). docs/probes.md is the user-facing description.
 //
-// Layout. A grid of H x W probes, each an h x w equirectangular image in the toolkit's one
-// mapping (equirect.h), world-aligned like the panorama. The mosaic is (H h) x (W w): probe
-// (i, j) (row i, column j) is the block of rows [i h, (i+1) h) and columns [j w, (j+1) w).
+// Layout: view/probe_layout.h (a grid of H x W probes, each an h x w equirectangular image,
+// probe (i, j) the block of rows [i h, (i+1) h) and columns [j w, (j+1) w) of the mosaic).
 //
 // Placement. Probe (i, j) belongs to the direction through the centre of grid cell (i, j),
 // i.e. the camera's continuous pixel position ((j + 0.5) width / W, (i + 0.5) height / H).
@@ -22,29 +21,12 @@
 #include "phyir/render/camera.h"
 #include "phyir/render/render_scene.h"
 #include "phyir/render/rng.h"
+#include "phyir/view/probe_layout.h"
 
 namespace phyir::render {
 
-struct ProbeLayout {
-  int grid_height = 128;  // H: probes per column of the grid
-  int grid_width = 256;   // W
-  int res_height = 16;    // h: texels per probe, rows
-  int res_width = 32;     // w
-
-  int probe_count() const { return grid_height * grid_width; }
-  int texels_per_probe() const { return res_height * res_width; }
-  int mosaic_width() const { return grid_width * res_width; }
-  int mosaic_height() const { return grid_height * res_height; }
-  // The mosaic pixel (column, row) of texel t (row-major in the probe) of probe p (row-major in the grid).
-  glm::ivec2 mosaic_pixel(int p, int t) const {
-    return {(p % grid_width) * res_width + t % res_width, (p / grid_width) * res_height + t / res_width};
-  }
-  // Throws phyir::Error naming the flag when a size is out of range.
-  void validate() const;
-};
-
-// Parses "HxW" (e.g. "128x256"); `flag` names the option in the error message.
-void parse_size(const std::string& text, const std::string& flag, int* height, int* width);
+// The grid's layout in probes.exr: the view folder's (view/probe_layout.h).
+using ProbeLayout = view::ProbeLayout;
 
 // Why a probe is or is not a valid label. The mask is 1 only for kValid, matching the paper's
 // M_mask ("object regions except light source and transmission object", eq. 7).
