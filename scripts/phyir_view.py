@@ -1,12 +1,13 @@
 """The view folder's on-disk contract in Python (docs/conventions.md, "View folders"): the
-file names, the probe mosaic's layout, the exposure records and the manifest's views. It
-follows the same specification as the toolkit's C++ view module (view/include/phyir/view/),
-so a Python reader never spells a file name or a record key of its own.
+file names, the probe mosaic's layout, the exposure records and the manifest's views. The
+names are read from the toolkit's C++ view module (view/include/phyir/view/), the one
+definition, so a Python reader never spells a file name or a record key of its own.
 
 Needs Debian's python3-openimageio and python3-numpy (they load only in /usr/bin/python3).
 """
 import hashlib
 import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -24,14 +25,29 @@ MAPS = {
     "mask_emissive": 1,     # 1: an emitter is seen
     "mask_transparent": 1,  # 1: a transmissive surface is seen
 }
-PROBES_FILE = "probes.exr"
-PROBE_MASK_FILE = "probe_mask.exr"
-COLOR_PREVIEW_FILE = "color.png"
-INPUT_FILE = "input.png"
-RENDER_RECORD_FILE = "render.json"
-VIEW_RECORD_FILE = "view.json"
-MANIFEST_FILE = "manifest.json"
-EXPOSURE_STOPS_KEY = "exposure_stops"
+
+def _header_constants(*headers):
+    """The string constants (`inline constexpr const char* kName = "value";`) of the view
+    module's C++ headers: the one definition of the contract, read rather than copied."""
+    folder = Path(__file__).resolve().parent.parent / "view" / "include" / "phyir" / "view"
+    constants = {}
+    for header in headers:
+        path = folder / header
+        if not path.is_file():
+            raise ImportError(f"{path}: missing (phyir_view.py reads the file names from the toolkit's sources)")
+        constants.update(re.findall(r'inline constexpr const char\* (k\w+) = "([^"]*)";', path.read_text()))
+    return constants
+
+
+_C = _header_constants("view_files.h", "input_exposure.h", "view_record.h")
+PROBES_FILE = _C["kProbesFile"]
+PROBE_MASK_FILE = _C["kProbeMaskFile"]
+COLOR_PREVIEW_FILE = _C["kColorPreviewFile"]
+INPUT_FILE = _C["kInputFile"]
+RENDER_RECORD_FILE = _C["kRenderRecordFile"]
+VIEW_RECORD_FILE = _C["kViewRecordFile"]
+MANIFEST_FILE = _C["kManifestFile"]
+EXPOSURE_STOPS_KEY = _C["kExposureStopsKey"]
 
 
 def map_file(name):

@@ -8,6 +8,8 @@
 #include "phyir/core/colour.h"
 #include "phyir/core/setting_error.h"
 #include "phyir/dataset/checksum.h"
+#include "phyir/view/input_exposure.h"
+#include "phyir/view/view_files.h"
 
 namespace phyir::dataset {
 
@@ -60,7 +62,7 @@ nlohmann::json DatasetSettings::to_json() const {
     probe_json.erase("seed");
     probe_json.erase("max_bounces");
   }
-  nlohmann::json input_json = {{"file", "input.png"},
+  nlohmann::json input_json = {{"file", view::kInputFile},
                                {"exposure", input.auto_exposure ? "auto" : "fixed"},
                                {"jitter_stops", input.jitter_stops},
                                {"display", "sRGB"},
@@ -70,7 +72,7 @@ nlohmann::json DatasetSettings::to_json() const {
     input_json["percentile"] = input.percentile;
     input_json["target"] = input.target;
   } else {
-    input_json["exposure_stops"] = input.exposure_stops;
+    input_json[view::kExposureStopsKey] = input.exposure_stops;
   }
   return tidy_floats({{"preset", preset},
           {"render", {{"projection", "equirect"},

@@ -2,6 +2,7 @@
 
 #include "phyir/core/error.h"
 #include "phyir/core/image_io.h"
+#include "phyir/view/view_files.h"
 
 namespace phyir::render {
 
@@ -51,8 +52,8 @@ const Image& Film::aov(const std::string& name) const {
 
 std::vector<std::string> Film::write_exr(const std::filesystem::path& dir) const {
   std::vector<std::string> written;
-  write_image(dir / "color.exr", color_);
-  written.push_back("color.exr");
+  write_image(dir / view::kColorFile, color_);
+  written.push_back(view::kColorFile);
   if (!with_aovs_) return written;
   const auto& names = aov_names();
   for (size_t i = 0; i < aovs_.size(); ++i) {

@@ -16,7 +16,10 @@ Stage parse_stage(const std::string& name);  // gmnet | lnet | joint | gsnet; el
 std::string stage_name(Stage stage);
 
 // Resolutions and sample counts. Paper: input 256x512, rendering 128x256, probes 16x32,
-// 512 diffuse / 256 specular samples. Defaults are smaller so CPU training is practical.
+// 512 diffuse / 256 specular samples. Defaults are smaller so CPU training is practical: the
+// labels keep the renderer's (and the paper's) 16x32 probes (view::ProbeLayout), the network
+// predicts 8x16 (LNet's last layer has h*w*3 channels, 4x fewer), and load_view resamples each
+// label onto the network's grid and texels (nearest probe, area-averaged texels).
 struct ModelConfig {
   int input_height = 128, input_width = 256;   // GMNet / GSNet input (multiples of 32)
   int render_height = 32, render_width = 64;   // LNet output grid and rendering layer (multiples of 16)
