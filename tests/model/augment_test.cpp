@@ -1,4 +1,4 @@
-// Augmentation (model/src/augment.h): a rotated or mirrored sample, rendered by the rendering
+// Augmentation (model/src/data/augment.h): a rotated or mirrored sample, rendered by the rendering
 // layer from its own ground-truth maps and probes, gives the rotated or mirrored image (and a
 // transform with one part left out does not); a full turn and a double mirror are the
 // identity; exposure jitter scales input and targets together; draws depend on the seed,

@@ -1,4 +1,4 @@
-// The device setting (model/src/device.h): cpu parses to the CPU, anything else is refused
+// The device setting (model/src/networks/device.h): cpu parses to the CPU, anything else is refused
 // naming the setting and the value; CUDA on a LibTorch without it (Debian's) is refused with the fix; the options
 // helper makes float32 tensors on the device; a batch moved to the CPU is the batch itself.
 #include "data.h"

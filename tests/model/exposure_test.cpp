@@ -1,4 +1,4 @@
-// Exposure-consistent targets (model/src/exposure.h): the sRGB curve equals OpenColorIO's;
+// Exposure-consistent targets (model/src/data/exposure.h): the sRGB curve equals OpenColorIO's;
 // view.json's exposure is read (and its absence handled as documented); a view whose scene is
 // 4x brighter, auto-exposed by the dataset's own code, gives the same input and the same
 // targets in input units; the rendering layer on a dataset view's ground truth reproduces

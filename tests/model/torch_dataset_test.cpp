@@ -1,4 +1,4 @@
-// ManifestDataset (model/src/torch_dataset.h) on a tiny dataset made by the real pipeline
+// ManifestDataset (model/src/data/torch_dataset.h) on a tiny dataset made by the real pipeline
 // (`phyir scenes generate` + `phyir dataset generate --preset tiny`, probes included):
 // shapes, value ranges, every tensor equal to its EXR/PNG file (read here with OIIO and
 // indexed by hand), area averaging at half resolution, splits as in the manifest, and a

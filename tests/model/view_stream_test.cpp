@@ -1,4 +1,4 @@
-// Streaming training data (model/src/view_stream.h): the stream's batches equal the batches of
+// Streaming training data (model/src/data/view_stream.h): the stream's batches equal the batches of
 // the views held in memory (the reader before streaming), whatever the worker count and read-
 // ahead, from any batch of an epoch (resume); the number of decoded views alive never exceeds
 // batch x (prefetch + 1), and reaches it (the workers read ahead); a worker's error arrives as

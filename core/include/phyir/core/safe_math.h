@@ -7,7 +7,7 @@
 // upstream: it passes through (NaN in, NaN out) so that the path tracer's final
 // is-finite check counts it (RenderStats: nonfinite_samples_caught) instead of hiding it.
 //
-// model/src/safe_math.h mirrors the constants and functions for torch tensors; a test
+// model/src/networks/safe_math.h mirrors the constants and functions for torch tensors; a test
 // (tests/model/stability_test.cpp) keeps the two equal.
 #include <glm/glm.hpp>
 

@@ -1,6 +1,6 @@
 #pragma once
 // SSIM (Wang et al. 2004) with a Gaussian window, in plain C++ (no torch), for eq. 7's
-// probe metric. The defaults are the training loss's definition (model/src/losses.cpp):
+// probe metric. The defaults are the training loss's definition (model/src/training/losses.cpp):
 // 5x5 window (radius 2), sigma 1.5, C1 = (0.01)^2, C2 = (0.03)^2 (data range 1), population
 // (co)variances, CirP padding (wrap around the columns: a probe is an equirect image whose
 // left and right edges meet; replicate the rows), SSIM averaged over every texel and channel.

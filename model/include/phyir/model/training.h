@@ -51,7 +51,7 @@ struct StageDefaults {
 };
 StageDefaults stage_defaults(Stage stage);
 
-// Training-time augmentation (model/src/augment.h, docs/model.md "Augmentation"). Each draw
+// Training-time augmentation (model/src/data/augment.h, docs/model.md "Augmentation"). Each draw
 // depends only on (seed, epoch, view), so runs are reproducible and resumable.
 struct AugmentOptions {
   bool enabled = true;     // off: every view as loaded (validation and evaluation never augment)
@@ -61,7 +61,7 @@ struct AugmentOptions {
   double exposure_max_stops = 0.5;   // (equal: no jitter)
 };
 
-// Validation on the dataset's `split` every `every` epochs (model/src/validation.h).
+// Validation on the dataset's `split` every `every` epochs (model/src/training/validation.h).
 struct ValidationOptions {
   std::string split = "val";   // empty, or a dataset without this split: no validation
   int every = 1;               // epochs between passes (0: never)
@@ -69,7 +69,7 @@ struct ValidationOptions {
   std::string best_metric = "val_loss";  // val_loss or a `phyir eval` metric (docs/model.md)
 };
 
-// The learning rate over the run (model/src/lr_schedule.h). The base rate is TrainOptions'.
+// The learning rate over the run (model/src/training/lr_schedule.h). The base rate is TrainOptions'.
 struct LrScheduleOptions {
   std::string kind;          // constant (the paper's), step or cosine; empty: constant, or
                              // the checkpoint's when resuming
