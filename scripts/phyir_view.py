@@ -7,6 +7,7 @@ Needs Debian's python3-openimageio and python3-numpy (they load only in /usr/bin
 """
 import hashlib
 import json
+import os
 import re
 from pathlib import Path
 
@@ -29,12 +30,14 @@ MAPS = {
 def _header_constants(*headers):
     """The string constants (`inline constexpr const char* kName = "value";`) of the view
     module's C++ headers: the one definition of the contract, read rather than copied."""
-    folder = Path(__file__).resolve().parent.parent / "view" / "include" / "phyir" / "view"
+    root = Path(os.environ.get("PHYIR_SOURCE_ROOT", Path(__file__).resolve().parent.parent))
+    folder = root / "view" / "include" / "phyir" / "view"
     constants = {}
     for header in headers:
         path = folder / header
         if not path.is_file():
-            raise ImportError(f"{path}: missing (phyir_view.py reads the file names from the toolkit's sources)")
+            raise ImportError(f"{path}: missing (phyir_view.py reads the file names from the toolkit's sources: "
+                              "keep it in the checkout's scripts/ or set PHYIR_SOURCE_ROOT)")
         constants.update(re.findall(r'inline constexpr const char\* (k\w+) = "([^"]*)";', path.read_text()))
     return constants
 
