@@ -1,5 +1,5 @@
 // Libraries name the setting a bad value belongs to; the CLI prints the flag that set it, in
-// the command that ran (cli/flag_registry.h). Every setting ProbeSettings and DatasetSettings
+// the command that ran (cli/flags/flag_registry.h). Every setting ProbeSettings and DatasetSettings
 // check maps to a flag of the commands that set it, and the dataset's flags override the
 // preset whatever their order.
 #include <gmock/gmock.h>

@@ -1,7 +1,7 @@
 #pragma once
 // A bad value of a named setting. Libraries name the setting as their settings struct does
 // ("spp", "probe.grid_width"), never a command-line flag; the CLI knows which flag set it
-// (cli/flag_registry.h) and prints that instead.
+// (cli/flags/flag_registry.h) and prints that instead.
 #include <string>
 #include <utility>
 

@@ -2,7 +2,7 @@
 // A dataset rendered as shards on a cluster (docs/dataset.md, "On a cluster"): shard i of N
 // (shard.h) renders into OUT/shards/shard-<i>-of-<N>, and `dataset merge` joins the N folders
 // into OUT. The Slurm job array that runs them is written by the command line (the scripts
-// hold `phyir` command lines: cli/slurm_script.h).
+// hold `phyir` command lines: cli/flags/slurm_script.h).
 #include <filesystem>
 #include <string>
 
