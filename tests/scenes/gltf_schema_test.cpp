@@ -1,4 +1,4 @@
-// The glTF schema check (scenes/src/gltf_schema.h; docs/robustness.md, "Schema validation"):
+// The glTF schema check (scenes/src/gltf/schema/gltf_schema.h; docs/robustness.md, "Schema validation"):
 // a valid file with every object type loads; each mutation of it breaking one rule is
 // refused with a message naming the object, the value and the rule; valid corner cases
 // load; and the Khronos validator's verdict on every file is the one recorded (skipped
