@@ -23,6 +23,7 @@ Image ProbeMosaic::probe(int i, int j) const {
 ProbeMosaic ProbeMosaic::scaled(double scale) const {
   ProbeMosaic out = *this;
   for (float& v : out.radiance.pixels) v = float(double(v) * scale);
+  for (float& v : out.standard_error.pixels) v = float(double(v) * std::abs(scale));
   return out;
 }
 
@@ -38,7 +39,11 @@ void put_probe(ProbeMosaic& mosaic, int i, int j, const Image& probe) {
 }  // namespace
 
 ProbeMosaic ProbeMosaic::resampled(const ProbeLayout& target) const {
-  if (target == layout) return *this;
+  if (target == layout) {
+    ProbeMosaic same = *this;
+    same.standard_error = Image();
+    return same;
+  }
   ProbeMosaic out;
   out.layout = target;
   out.radiance = Image(target.mosaic_width(), target.mosaic_height(), 3);
@@ -84,6 +89,13 @@ ProbeMosaic read_probe_mosaic(const fs::path& dir) {
   s.layout = {s.mask.height, s.mask.width, s.radiance.height / s.mask.height, s.radiance.width / s.mask.width};
   for (float v : s.radiance.pixels)
     if (!std::isfinite(v)) fail("{}: holds a non-finite value", mosaic_path.string());
+  const fs::path stderr_path = dir / kProbeStderrFile;
+  if (fs::is_regular_file(stderr_path)) {
+    s.standard_error = take_channels(read_image(stderr_path), 1, stderr_path.string());
+    if (s.standard_error.width != s.radiance.width || s.standard_error.height != s.radiance.height)
+      fail("{}: {}x{} does not match {} ({}x{})", stderr_path.string(), s.standard_error.width,
+           s.standard_error.height, mosaic_path.string(), s.radiance.width, s.radiance.height);
+  }
   return s;
 }
 
@@ -92,7 +104,9 @@ std::vector<std::string> write_probe_images(const fs::path& dir, const ProbeImag
   write_image(dir / kProbePositionFile, images.position, {"X", "Y", "Z"});
   write_image(dir / kProbeNormalFile, images.normal, {"X", "Y", "Z"});
   write_image(dir / kProbeMaskFile, images.mask);
-  return {kProbesFile, kProbePositionFile, kProbeNormalFile, kProbeMaskFile};
+  if (images.standard_error.empty()) return {kProbesFile, kProbePositionFile, kProbeNormalFile, kProbeMaskFile};
+  write_image(dir / kProbeStderrFile, images.standard_error);
+  return {kProbesFile, kProbePositionFile, kProbeNormalFile, kProbeMaskFile, kProbeStderrFile};
 }
 
 void write_probe_mosaic(const fs::path& dir, const ProbeMosaic& probes) {

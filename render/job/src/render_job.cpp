@@ -62,7 +62,8 @@ RenderReport::Probes render_and_write_probes(const RenderJob& job, const RenderS
                probe_mode_name(settings.mode));
   const ProbeOutput probes = ProbeRenderer(scene, effects, settings).render(camera);
   const auto start = Clock::now();
-  report.files = view::write_probe_images(job.out_dir, {probes.mosaic, probes.position, probes.normal, probes.mask});
+  report.files = view::write_probe_images(
+      job.out_dir, {probes.mosaic, probes.position, probes.normal, probes.mask, probes.standard_error});
   report.write_seconds = seconds_since(start);
   report.stats = probes.stats;
   if (probes.stats.counters.nonfinite_samples > 0)
@@ -87,6 +88,8 @@ nlohmann::json probes_json(const RenderReport::Probes& probes) {
                     "(2i..2i+1, 2j..2j+1), for W = width the pixel centre"},
       {"probe_position", "H x W, X,Y,Z: the probe origin = surface point + offset * shading normal (facing the camera), metres; 0 where nothing is seen"},
       {"probe_normal", "H x W, X,Y,Z: the unit shading normal the origin is offset along; 0 where nothing is seen"},
+      {"probe_stderr", "(H h) x (W w), Y: each texel's standard error in luminance as its own samples estimate it "
+                       "(the shared cache's, the exact emission's and the photons' noise are not in it; docs/probes.md)"},
       {"probe_mask", "H x W, Y: 1 for a valid label; 0 where nothing is seen (probe all 0), on emitters and on glass or "
                      "alpha-blended surfaces (probe computed anyway), as the paper's M_mask"}};
   return block;

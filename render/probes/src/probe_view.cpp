@@ -12,6 +12,7 @@
 #include "phyir/core/safe_math.h"
 #include "phyir/render/equirect.h"
 #include "phyir/render/streams.h"
+#include "probe_standard_error.h"
 #include "punctual_deposit.h"
 #include "visible_emission.h"
 
@@ -109,6 +110,7 @@ ProbeView::ProbeView(const RenderScene& scene, const Effects& effects, const Pro
   out_.layout = layout_;
   out_.sites = std::move(sites);
   out_.mosaic = Image(layout_.mosaic_width(), layout_.mosaic_height(), 3);
+  out_.standard_error = Image(layout_.mosaic_width(), layout_.mosaic_height(), 1);
   out_.position = Image(layout_.grid_width, layout_.grid_height, 3);
   out_.normal = Image(layout_.grid_width, layout_.grid_height, 3);
   out_.mask = Image(layout_.grid_width, layout_.grid_height, 1);
@@ -166,6 +168,7 @@ ProbeOutput ProbeView::run() {
   add_after_sharing(&Worker::photon_light);
   if (effects_.punctual_lights && settings_.punctual_lights)
     stats.counters.rays += deposit_punctual_lights(scene_, layout_, out_.sites, todo_, &out_.mosaic);
+  out_.standard_error = pooled_standard_error(out_.standard_error, layout_);
   stats.total_seconds = seconds_since(start);
   return std::move(out_);
 }
@@ -484,6 +487,7 @@ void ProbeView::store_texel(const Texel& x, glm::vec3 value, const glm::vec3& se
   }
   const glm::ivec2 at = layout_.mosaic_pixel(p, x.t);
   for (int ch = 0; ch < 3; ++ch) out_.mosaic.at(at.x, at.y, ch) = value[ch];
+  out_.standard_error.at(at.x, at.y, 0) = std::sqrt(std::max(x.variance, 0.0f));
 }
 
 void ProbeView::gather_photons(TileProbe& probe, Worker* w) {

@@ -23,6 +23,7 @@ inline constexpr const char* kProbesFile = "probes.exr";
 inline constexpr const char* kProbeMaskFile = "probe_mask.exr";
 inline constexpr const char* kProbePositionFile = "probe_position.exr";
 inline constexpr const char* kProbeNormalFile = "probe_normal.exr";
+inline constexpr const char* kProbeStderrFile = "probe_stderr.exr";  // each texel's standard error
 // Display-referred images (8-bit sRGB).
 inline constexpr const char* kColorPreviewFile = "color.png";  // color.exr at render.json's exposure
 inline constexpr const char* kInputFile = "input.png";         // the network's input (input_exposure.h)

@@ -69,6 +69,11 @@ struct ProbeOutput {
   ProbeLayout layout;
   std::vector<ProbeSite> sites;  // row-major, H x W
   Image mosaic;                  // (H h) x (W w) RGB radiance
+  // (H h) x (W w), Y: each texel's standard error in luminance, from its own samples' variance
+  // pooled with its neighbours' (probe_standard_error.h). The noise of the shared cache, of the
+  // light estimated apart and of the photons is not in it (docs/probes.md "Per-texel standard
+  // error" measures how calibrated it is).
+  Image standard_error;
   Image position;                // H x W, X,Y,Z: probe origins (0 where nothing is seen)
   Image normal;                  // H x W, X,Y,Z: the normal each origin is offset along
   Image mask;                    // H x W, Y: 1 for valid probes
