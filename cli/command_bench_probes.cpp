@@ -129,9 +129,10 @@ void add_row(const BenchProbeFlags& f, const render::ProbeStudy& study, const re
   std::replace(name.begin(), name.end(), ':', '-');
   write_image(fs::path(f.out) / ("strip_" + grid + "_" + res + "_" + name + ".exr"), row.strip);
   const double noise = study.reference_noise();
-  spdlog::info("{} {} {:>14}: {:8.2f} s ({:8.2f} s CPU){}, relative RMSE {:.4f} (reference noise {:.4f})", grid, res,
-               text, row.seconds, row.cpu_seconds, row.extrapolated ? " extrapolated" : "", row.error.relative_rmse,
-               noise);
+  spdlog::info("{} {} {:>14}: {:8.2f} s ({:8.2f} s CPU){}, relative RMSE {:.4f} (reference noise {:.4f}); "
+               "standard error: median |e|/sigma {:.2f} x Gaussian, {:.0f}% within 2 sigma",
+               grid, res, text, row.seconds, row.cpu_seconds, row.extrapolated ? " extrapolated" : "",
+               row.error.relative_rmse, noise, row.calibration.median_ratio, 100.0 * row.calibration.within_two_sigma);
   tables.csv << fs::path(f.scene).stem().string() << ',' << grid << ',' << res << ',' << text << ','
              << render::probe_mode_name(t.mode) << ',' << t.spp << ',' << t.cache.samples_per_cell << ','
              << t.cache.cell_size << ',' << study.computed_probes() << ',' << row.seconds << ',' << row.cpu_seconds
@@ -141,6 +142,7 @@ void add_row(const BenchProbeFlags& f, const render::ProbeStudy& study, const re
   tables.summary["rows"].push_back({{"resolution", res}, {"config", text}, {"seconds", row.seconds},
                                     {"cpu_seconds", row.cpu_seconds}, {"extrapolated", row.extrapolated},
                                     {"relative_rmse", row.error.relative_rmse}, {"reference_noise", noise},
+                                    {"calibration", row.calibration.to_json()},
                                     {"stats", row.stats.to_json()}});
   // Keep what was measured so far, in case the run is interrupted.
   write_file_atomic(fs::path(f.out) / "probes.csv", tables.csv.str());

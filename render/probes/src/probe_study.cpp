@@ -1,6 +1,7 @@
 #include "phyir/render/probe_study.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -75,12 +76,26 @@ nlohmann::json ProbeStudy::subset_json() const {
   return probes;
 }
 
+namespace {
+
+// A standard-error mosaic's strip (probe_strip), its value in every channel.
+Image stderr_strip(const Image& standard_error, const ProbeLayout& layout, const std::vector<int>& subset) {
+  Image rgb(standard_error.width, standard_error.height, 3);
+  for (size_t k = 0; k < standard_error.pixels.size(); ++k)
+    for (int ch = 0; ch < 3; ++ch) rgb.pixels[3 * k + size_t(ch)] = standard_error.pixels[k];
+  return probe_strip(rgb, layout, subset);
+}
+
+}  // namespace
+
 void ProbeStudy::make_reference(const fs::path& cache) {
   const ProbeSettings& s = options_.base;
   for (int h = 0; h < 2; ++h) {
     const fs::path path = cache / ("reference_" + tag_ + "_half" + std::to_string(h) + ".exr");
+    const fs::path stderr_path = cache / ("reference_" + tag_ + "_half" + std::to_string(h) + "_stderr.exr");
     if (fs::exists(path)) {
       halves_[h] = read_image(path);
+      if (fs::exists(stderr_path)) half_stderr_[h] = read_image(stderr_path);
       spdlog::info("reusing {}", path.string());
       continue;
     }
@@ -93,7 +108,14 @@ void ProbeStudy::make_reference(const fs::path& cache) {
                  s.layout.res_height, s.layout.res_width, r.spp);
     const ProbeOutput out = ProbeRenderer(scene_, effects_, r).render_at(sites_, subset_);
     halves_[h] = probe_strip(out.mosaic, s.layout, subset_);
+    half_stderr_[h] = stderr_strip(out.standard_error, s.layout, subset_);
     write_image(path, halves_[h]);
+    write_image(stderr_path, half_stderr_[h]);
+  }
+  if (!half_stderr_[0].empty() && !half_stderr_[1].empty()) {
+    reference_stderr_ = half_stderr_[0];
+    for (size_t k = 0; k < reference_stderr_.pixels.size(); ++k)
+      reference_stderr_.pixels[k] = 0.5f * std::hypot(half_stderr_[0].pixels[k], half_stderr_[1].pixels[k]);
   }
   reference_ = halves_[0];
   for (size_t k = 0; k < reference_.pixels.size(); ++k)
@@ -124,6 +146,9 @@ ProbeStudyRow ProbeStudy::measure(const ProbeStudySetting& setting) const {
   row.stats = out.stats;
   row.strip = probe_strip(out.mosaic, t.layout, subset_);
   row.error = image_error(row.strip, reference_);
+  if (!reference_stderr_.empty())
+    row.calibration = probe_calibration(row.strip, stderr_strip(out.standard_error, t.layout, subset_), reference_,
+                                        reference_stderr_);
   return row;
 }
 

@@ -19,6 +19,7 @@
 #include "phyir/core/image.h"
 #include "phyir/core/image_error.h"
 #include "phyir/render/effects.h"
+#include "phyir/render/probe_calibration.h"
 #include "phyir/render/probe_renderer.h"
 
 namespace phyir::render {
@@ -45,6 +46,7 @@ struct ProbeStudyRow {
   double rays = 0.0;         // scaled the same way
   bool extrapolated = false;
   ImageError error;          // against the reference, on the subset
+  ProbeCalibration calibration;  // its standard error against its actual error (probe_calibration.h)
   ProbeStats stats;
   Image strip;               // the subset's probes side by side (probe_strip)
 };
@@ -88,7 +90,9 @@ class ProbeStudy {
   std::vector<int> subset_;
   std::string tag_;
   Image halves_[2];
+  Image half_stderr_[2];     // the halves' standard errors (empty when read from an older cache)
   Image reference_;
+  Image reference_stderr_;   // the reference's: sqrt(s0^2 + s1^2) / 2
   double reference_noise_ = 0.0;
   std::vector<int> classes_;  // texel classes of the subset (classify_texels)
 };
