@@ -76,7 +76,7 @@ class TrainingBatches : public torch::data::datasets::BatchDataset<TrainingBatch
 // Runs the epochs' batches through a consumer, reading ahead with worker threads.
 class BatchStream {
  public:
-  // Throws phyir::Error naming the flag for a negative worker count or a prefetch below 1 with workers.
+  // Throws phyir::SettingError naming the setting for a negative worker count or a prefetch below 1 with workers.
   BatchStream(TrainingBatches batches, StreamOptions options);
 
   // Calls `step` with the batches of `epoch` from `first_batch` on, in order, until it returns

@@ -92,7 +92,7 @@ struct RenderReport {
   nlohmann::json to_json() const;
 };
 
-// Throws phyir::Error for bad input (names the file / flag / value). Writes every file and
+// Throws phyir::Error for bad input (names the file, the setting and the value). Writes every file and
 // render.json (RenderReport::to_json) last.
 RenderReport run_render_job(const RenderJob& job);
 

@@ -82,7 +82,7 @@ struct ProbeOutput {
 
 class ProbeRenderer {
  public:
-  // Throws phyir::Error naming the flag for invalid settings. Keeps a reference to the
+  // Throws phyir::SettingError naming the setting for invalid settings. Keeps a reference to the
   // scene, which must outlive it.
   ProbeRenderer(const RenderScene& scene, const Effects& effects, const ProbeSettings& settings);
 
