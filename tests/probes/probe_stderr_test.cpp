@@ -15,6 +15,7 @@
 #include "phyir/core/safe_math.h"
 #include "phyir/render/probe_renderer.h"
 #include "sanitizer_skip.h"
+#include "single_probe.h"
 #include "test_scenes.h"
 
 namespace phyir::render {
@@ -43,15 +44,8 @@ scenes::Scene bulb_room() {
 std::vector<ProbeSite> sites() {
   std::vector<ProbeSite> out;
   for (const glm::vec3& p : {glm::vec3(-1.0f, 0.3f, 0.5f), glm::vec3(0.2f, 1.2f, -1.0f), glm::vec3(-0.3f, 0.05f, -1.2f),
-                             glm::vec3(1.5f, 2.0f, 1.5f)}) {
-    ProbeSite s;
-    s.surface = p - glm::vec3(0.0f, 0.01f, 0.0f);
-    s.normal = glm::vec3(0.0f, 1.0f, 0.0f);
-    s.origin = p;
-    s.offset = 0.01f;
-    s.status = ProbeStatus::kValid;
-    out.push_back(s);
-  }
+                             glm::vec3(1.5f, 2.0f, 1.5f)})
+    out.push_back(single_site(p).front());
   return out;
 }
 
