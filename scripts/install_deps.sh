@@ -11,7 +11,7 @@ PACKAGES=(
   libtinyobjloader-dev libzip-dev sweethome3d-furniture
   libgtest-dev libgmock-dev libbenchmark-dev libssl-dev
   python3-numpy python3-matplotlib python3-openimageio python3-skimage
-  clang libfuzzer-14-dev
+  clang libfuzzer-14-dev universal-ctags
 )
 # Node.js and npm run the Khronos glTF validator. Machines that already have them from
 # elsewhere (e.g. a newer Node.js) keep theirs: Debian's npm would conflict with it.
