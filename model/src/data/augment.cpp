@@ -51,15 +51,17 @@ torch::Tensor rotate_about_y(const torch::Tensor& n, double turns) {
   return torch::stack({x * c - z * s, y, x * s + z * c}, 0);
 }
 
+// The view's per-pixel maps ([C, H, W]): what a rotation rolls and a mirror flips as images.
+static torch::Tensor ViewTensors::*const kPixelMaps[] = {
+    &ViewTensors::image,     &ViewTensors::depth,         &ViewTensors::normal,           &ViewTensors::base_color,
+    &ViewTensors::roughness, &ViewTensors::metalness,     &ViewTensors::mask,             &ViewTensors::mask_emissive,
+    &ViewTensors::mask_transparent, &ViewTensors::color_lo, &ViewTensors::render_mask, &ViewTensors::probe_mask};
+
 ViewTensors rotate_view(const ViewTensors& v, int steps, int divisions) {
   steps = ((steps % divisions) + divisions) % divisions;
   if (steps == 0) return v;
   ViewTensors r = v;
-  for (torch::Tensor ViewTensors::*m : {&ViewTensors::image, &ViewTensors::depth, &ViewTensors::normal,
-                                        &ViewTensors::base_color, &ViewTensors::roughness, &ViewTensors::metalness,
-                                        &ViewTensors::mask, &ViewTensors::mask_emissive,
-                                        &ViewTensors::mask_transparent, &ViewTensors::color_lo,
-                                        &ViewTensors::render_mask, &ViewTensors::probe_mask})
+  for (torch::Tensor ViewTensors::*const m : kPixelMaps)
     r.*m = roll_columns(v.*m, steps, divisions, -1);
   r.normal = rotate_about_y(r.normal, static_cast<double>(steps) / divisions);
   // Probes [Hr, Wr, h, w, 3]: each moves with its pixel, and its texels (a world-aligned
@@ -70,11 +72,7 @@ ViewTensors rotate_view(const ViewTensors& v, int steps, int divisions) {
 
 ViewTensors mirror_view(const ViewTensors& v) {
   ViewTensors r = v;
-  for (torch::Tensor ViewTensors::*m : {&ViewTensors::image, &ViewTensors::depth, &ViewTensors::normal,
-                                        &ViewTensors::base_color, &ViewTensors::roughness, &ViewTensors::metalness,
-                                        &ViewTensors::mask, &ViewTensors::mask_emissive,
-                                        &ViewTensors::mask_transparent, &ViewTensors::color_lo,
-                                        &ViewTensors::render_mask, &ViewTensors::probe_mask})
+  for (torch::Tensor ViewTensors::*const m : kPixelMaps)
     r.*m = flip_if_defined(v.*m, {-1});
   r.normal = r.normal * torch::tensor({-1.0f, 1.0f, 1.0f}, r.normal.options()).view({3, 1, 1});
   r.probes = flip_if_defined(v.probes, {1, 3});
