@@ -21,15 +21,6 @@ void ProbeLayout::validate() const {
                  grid_height, grid_width, res_height, res_width, mosaic_height(), mosaic_width());
 }
 
-ProbeLayout layout_of_mosaic(int mosaic_width, int mosaic_height, int grid_width, int grid_height,
-                             const std::string& source) {
-  if (grid_height <= 0 || grid_width <= 0 || mosaic_height % grid_height != 0 || mosaic_width % grid_width != 0 ||
-      mosaic_height == 0 || mosaic_width == 0)
-    fail("{}: {}x{} mosaic is not a whole number of probes of a {}x{} grid", source, mosaic_width, mosaic_height,
-         grid_width, grid_height);
-  return {grid_height, grid_width, mosaic_height / grid_height, mosaic_width / grid_width};
-}
-
 void nearest_cell(int i, int j, int ci, int cj, int grid_height, int grid_width, int* oi, int* oj) {
   const double v = (i + 0.5) / ci, u = (j + 0.5) / cj;
   *oi = std::min(grid_height - 1, static_cast<int>(std::floor(v * grid_height)));

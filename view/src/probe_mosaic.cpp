@@ -11,14 +11,16 @@ namespace fs = std::filesystem;
 
 namespace phyir::view {
 
-Image ProbeMosaic::probe(int i, int j) const {
-  const int h = layout.res_height, w = layout.res_width;
-  Image out(w, h, 3);
-  for (int r = 0; r < h; ++r)
-    for (int c = 0; c < w; ++c)
-      for (int k = 0; k < 3; ++k) out.at(c, r, k) = radiance.at(j * w + c, i * h + r, k);
+Image probe_image(const Image& mosaic, const ProbeLayout& layout, int i, int j) {
+  Image out(layout.res_width, layout.res_height, mosaic.channels);
+  for (int r = 0; r < layout.res_height; ++r)
+    for (int c = 0; c < layout.res_width; ++c)
+      for (int ch = 0; ch < mosaic.channels; ++ch)
+        out.at(c, r, ch) = mosaic.at(j * layout.res_width + c, i * layout.res_height + r, ch);
   return out;
 }
+
+Image ProbeMosaic::probe(int i, int j) const { return probe_image(radiance, layout, i, j); }
 
 ProbeMosaic ProbeMosaic::scaled(double scale) const {
   ProbeMosaic out = *this;

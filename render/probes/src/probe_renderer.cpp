@@ -52,15 +52,6 @@ nlohmann::json ProbeStats::cache_json() const {
           {"fallback_lookups", cache_fallbacks}};
 }
 
-Image probe_image(const Image& mosaic, const ProbeLayout& layout, int i, int j) {
-  Image out(layout.res_width, layout.res_height, mosaic.channels);
-  for (int r = 0; r < layout.res_height; ++r)
-    for (int c = 0; c < layout.res_width; ++c)
-      for (int ch = 0; ch < mosaic.channels; ++ch)
-        out.at(c, r, ch) = mosaic.at(j * layout.res_width + c, i * layout.res_height + r, ch);
-  return out;
-}
-
 ProbeRenderer::ProbeRenderer(const RenderScene& scene, const Effects& effects, const ProbeSettings& settings)
     : scene_(scene), effects_(effects), settings_(settings) {
   settings.validate();

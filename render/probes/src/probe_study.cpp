@@ -76,18 +76,6 @@ nlohmann::json ProbeStudy::subset_json() const {
   return probes;
 }
 
-namespace {
-
-// A standard-error mosaic's strip (probe_strip), its value in every channel.
-Image stderr_strip(const Image& standard_error, const ProbeLayout& layout, const std::vector<int>& subset) {
-  Image rgb(standard_error.width, standard_error.height, 3);
-  for (size_t k = 0; k < standard_error.pixels.size(); ++k)
-    for (int ch = 0; ch < 3; ++ch) rgb.pixels[3 * k + size_t(ch)] = standard_error.pixels[k];
-  return probe_strip(rgb, layout, subset);
-}
-
-}  // namespace
-
 void ProbeStudy::make_reference(const fs::path& cache) {
   const ProbeSettings& s = options_.base;
   for (int h = 0; h < 2; ++h) {
@@ -108,7 +96,7 @@ void ProbeStudy::make_reference(const fs::path& cache) {
                  s.layout.res_height, s.layout.res_width, r.spp);
     const ProbeOutput out = ProbeRenderer(scene_, effects_, r).render_at(sites_, subset_);
     halves_[h] = probe_strip(out.mosaic, s.layout, subset_);
-    half_stderr_[h] = stderr_strip(out.standard_error, s.layout, subset_);
+    half_stderr_[h] = probe_strip(out.standard_error, s.layout, subset_);
     write_image(path, halves_[h]);
     write_image(stderr_path, half_stderr_[h]);
   }
@@ -147,7 +135,7 @@ ProbeStudyRow ProbeStudy::measure(const ProbeStudySetting& setting) const {
   row.strip = probe_strip(out.mosaic, t.layout, subset_);
   row.error = image_error(row.strip, reference_);
   if (!reference_stderr_.empty())
-    row.calibration = probe_calibration(row.strip, stderr_strip(out.standard_error, t.layout, subset_), reference_,
+    row.calibration = probe_calibration(row.strip, probe_strip(out.standard_error, t.layout, subset_), reference_,
                                         reference_stderr_);
   return row;
 }

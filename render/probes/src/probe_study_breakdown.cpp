@@ -71,12 +71,12 @@ std::vector<int> classify_texels(const RenderScene& scene, const std::vector<Pro
 }
 
 Image probe_strip(const Image& mosaic, const ProbeLayout& layout, const std::vector<int>& subset) {
-  Image out(layout.res_width * int(subset.size()), layout.res_height, 3);
+  Image out(layout.res_width * int(subset.size()), layout.res_height, mosaic.channels);
   for (size_t k = 0; k < subset.size(); ++k) {
     const Image probe = probe_image(mosaic, layout, subset[k] / layout.grid_width, subset[k] % layout.grid_width);
     for (int r = 0; r < layout.res_height; ++r)
       for (int c = 0; c < layout.res_width; ++c)
-        for (int ch = 0; ch < 3; ++ch) out.at(int(k) * layout.res_width + c, r, ch) = probe.at(c, r, ch);
+        for (int ch = 0; ch < mosaic.channels; ++ch) out.at(int(k) * layout.res_width + c, r, ch) = probe.at(c, r, ch);
   }
   return out;
 }

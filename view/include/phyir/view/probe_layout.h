@@ -36,12 +36,6 @@ struct ProbeLayout {
   void validate() const;
 };
 
-// The layout of a mosaic of `mosaic_width x mosaic_height` texels on a `grid_width x
-// grid_height` grid (probe_mask.exr's size). phyir::Error naming `source` when the mosaic is
-// not a whole number of probes of that grid.
-ProbeLayout layout_of_mosaic(int mosaic_width, int mosaic_height, int grid_width, int grid_height,
-                             const std::string& source);
-
 // The cell of a grid_height x grid_width grid that contains the centre of cell (i, j) of a
 // ci x cj grid: how probes of two grids are matched (a probe is the light at one surface point;
 // averaging neighbours would mix the light of different surfaces across an edge).

@@ -8,6 +8,10 @@
 
 namespace phyir::view {
 
+// Probe (i, j) of a mosaic laid out as `layout`: its res_width x res_height block, every channel
+// of the mosaic (radiance, or a standard error).
+Image probe_image(const Image& mosaic, const ProbeLayout& layout, int i, int j);
+
 struct ProbeMosaic {
   ProbeLayout layout;
   Image radiance;  // mosaic_width x mosaic_height, RGB linear radiance

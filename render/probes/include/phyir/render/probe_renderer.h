@@ -29,6 +29,7 @@
 #include "phyir/render/probe_grid.h"
 #include "phyir/render/probe_settings.h"
 #include "phyir/render/render_scene.h"
+#include "phyir/view/probe_mosaic.h"
 
 namespace phyir::render {
 
@@ -104,7 +105,7 @@ class ProbeRenderer {
 ProbeOutput render_probes(const RenderScene& scene, const CameraModel& camera, const Effects& effects,
                           const ProbeSettings& settings);
 
-// The h x w probe (i, j) cut out of a mosaic.
-Image probe_image(const Image& mosaic, const ProbeLayout& layout, int i, int j);
+// The h x w probe (i, j) cut out of a mosaic: the view module's.
+using view::probe_image;
 
 }  // namespace phyir::render
