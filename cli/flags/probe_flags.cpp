@@ -43,6 +43,9 @@ void add_sampling(const ProbeFlagAdder& add, render::ProbeSettings& probe) {
            "cache (shared irradiance cache) or path (unbiased reference, slow)"))
       ->default_str(render::probe_mode_name(probe.mode))
       ->group(kGroup);
+  add.option("probe.target_error", "--probe-error", probe.target_error,
+             "render again where the noise is until the grid's estimated relative error (from each texel's standard "
+             "error, probe_stderr.exr) is at most this, e.g. 0.05 (0: one pass)");
 }
 
 void add_cache(const ProbeFlagAdder& add, render::ProbeSettings& probe) {

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "probe_error_target.h"
 #include "probe_view.h"
 
 namespace phyir::render {
@@ -34,6 +35,7 @@ nlohmann::json ProbeStats::to_json() const {
            {{"probes", foot_corrections},
             {"common_difference", {foot_common_difference.x, foot_common_difference.y, foot_common_difference.z}}}},
           {"cache", cache_json()},
+          {"error", error.to_json()},
           {"nonfinite_samples_caught", counters.nonfinite_samples}};
 }
 
@@ -50,6 +52,12 @@ nlohmann::json ProbeStats::cache_json() const {
           {"edge_profiles", cache_edge_profiles},
           {"fill_samples", cache_fill_samples},
           {"fallback_lookups", cache_fallbacks}};
+}
+
+nlohmann::json ProbeErrorTarget::to_json() const {
+  nlohmann::json j = {{"estimated_relative", estimated}};
+  if (target > 0.0) j.update({{"target_relative", target}, {"passes", passes}, {"refined_probes", refined_probes}});
+  return j;
 }
 
 ProbeRenderer::ProbeRenderer(const RenderScene& scene, const Effects& effects, const ProbeSettings& settings)
@@ -69,7 +77,13 @@ ProbeOutput ProbeRenderer::render(const CameraModel& camera) const {
 }
 
 ProbeOutput ProbeRenderer::render_at(std::vector<ProbeSite> sites, const std::vector<int>& subset) const {
-  return ProbeView(scene_, effects_, settings_, std::move(sites), subset).run();
+  const std::vector<ProbeSite> pass_sites = settings_.target_error > 0.0f ? sites : std::vector<ProbeSite>();
+  ProbeOutput out = ProbeView(scene_, effects_, settings_, std::move(sites), subset).run();
+  auto render_pass = [&](const ProbeSettings& settings, const std::vector<int>& probes) {
+    return ProbeView(scene_, effects_, settings, pass_sites, probes).run();
+  };
+  refine_to_error(settings_, subset, render_pass, &out);
+  return out;
 }
 
 ProbeOutput render_probes(const RenderScene& scene, const CameraModel& camera, const Effects& effects,

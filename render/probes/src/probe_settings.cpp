@@ -38,6 +38,8 @@ void ProbeSettings::validate() const {
   // A million photons from each light: far more than any texel's share needs.
   if (photons_per_light < 0 || photons_per_light > 1 << 20)
     fail_setting("probe.photons_per_light", "{} must be between 0 (none) and 2^20", photons_per_light);
+  if (!(target_error >= 0.0f && target_error < 10.0f))
+    fail_setting("probe.target_error", "{} must be between 0 (one pass) and 10 (a relative error)", target_error);
 }
 
 nlohmann::json ProbeSettings::to_json() const {
@@ -50,6 +52,7 @@ nlohmann::json ProbeSettings::to_json() const {
                       {"seed", seed},
                       {"max_bounces", path.max_bounces},
                       {"punctual_lights", punctual_lights}};
+  if (target_error > 0.0f) j["target_error"] = target_error;
   if (mode == ProbeMode::kCache) {
     j["cache_cell_m"] = cache.cell_size;
     j["cache_spp"] = cache.samples_per_cell;

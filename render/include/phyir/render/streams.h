@@ -55,6 +55,7 @@ enum class Purpose : uint64_t {
   // Seeds of a view's parts, from the render seed.
   kProbeSeed = 501,
   kCacheSeed = 502,
+  kProbeRefinePass = 503,  // per pass: the seed of a pass towards the error target
 };
 
 // The key of sample `sample` of item `item` (a pixel, a probe texel, a cache cell).

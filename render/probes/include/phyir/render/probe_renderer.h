@@ -33,6 +33,16 @@
 
 namespace phyir::render {
 
+// The grid's estimated error and, with a target (ProbeSettings::target_error), the passes
+// made to reach it (docs/probes.md, "Accuracy as a target").
+struct ProbeErrorTarget {
+  double target = 0.0;     // 0: none
+  double estimated = 0.0;  // sqrt(mean sigma^2) / mean luminance over the valid probes' texels
+  int passes = 1;          // of the probes refined most
+  uint64_t refined_probes = 0;  // probes rendered again, summed over the passes
+  nlohmann::json to_json() const;
+};
+
 struct ProbeStats {
   double place_seconds = 0.0;
   double cache_seconds = 0.0;  // discovery + fill
@@ -56,6 +66,7 @@ struct ProbeStats {
   uint64_t foot_corrections = 0;  // probes whose own-surface texels took the cache's error out (foot_correction.h)
   glm::vec3 foot_common_difference{0.0f};  // the difference common to all probes (the last bounce), W/m^2
   double share_seconds = 0.0;
+  ProbeErrorTarget error;
   uint64_t cache_cells = 0, cache_direct_cells = 0, cache_edge_cells = 0, cache_edge_profiles = 0, cache_fill_samples = 0,
            cache_fallbacks = 0;
   // Adds the counts of `o` (its seconds and cache figures are left out: they are the view's).
@@ -92,7 +103,8 @@ class ProbeRenderer {
 
   // Renders probes at given sites (row-major for settings.layout). With `subset` non-empty
   // only those probe indices are rendered (the others stay 0); their values are the same as
-  // in a full render for kPath (kCache builds its cache from the subset only).
+  // in a full render for kPath (kCache builds its cache from the subset only). With an error
+  // target, the probes are rendered again until it is reached (probe_error_target.h).
   ProbeOutput render_at(std::vector<ProbeSite> sites, const std::vector<int>& subset = {}) const;
 
  private:

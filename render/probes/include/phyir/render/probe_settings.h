@@ -69,6 +69,9 @@ struct ProbeSettings {
   // Punctual lights added, exactly, to the texel each one's direction falls in (docs/probes.md,
   // "What a texel is"). Both modes; off only to measure the estimated part alone.
   bool punctual_lights = true;
+  // Render again where the noise is until the grid's estimated relative error (from each
+  // texel's standard error) is at most this (docs/probes.md, "Accuracy as a target"); 0: one pass.
+  float target_error = 0.0f;
   bool progress = true;
 
   // Throws phyir::SettingError naming the setting ("probe.spp", "probe.cache.cell_size", ...)

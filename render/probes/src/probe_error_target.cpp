@@ -1,0 +1,147 @@
+#include "probe_error_target.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+#include "phyir/core/safe_math.h"
+#include "phyir/render/streams.h"
+
+namespace phyir::render {
+
+namespace {
+
+// The variance and luminance sums of probe p's texels.
+GridError probe_error(const ProbeOutput& out, int p) {
+  GridError e;
+  const int texels = out.layout.texels_per_probe();
+  for (int t = 0; t < texels; ++t) {
+    const glm::ivec2 at = out.layout.mosaic_pixel(p, t);
+    const float sigma = out.standard_error.at(at.x, at.y, 0);
+    e.variance_sum += double(sigma) * sigma;
+    e.luminance_sum += luminance(glm::vec3(out.mosaic.at(at.x, at.y, 0), out.mosaic.at(at.x, at.y, 1),
+                                           out.mosaic.at(at.x, at.y, 2)));
+  }
+  e.texels = uint64_t(texels);
+  return e;
+}
+
+}  // namespace
+
+std::vector<int> first_passes(const ProbeOutput& out, const std::vector<int>& subset) {
+  std::vector<int> passes(size_t(out.layout.probe_count()), 0);
+  auto count = [&](int p) {
+    const ProbeSite& site = out.sites[size_t(p)];
+    if (site.computed() && site.valid()) passes[size_t(p)] = 1;
+  };
+  if (subset.empty())
+    for (int p = 0; p < out.layout.probe_count(); ++p) count(p);
+  for (int p : subset) count(p);
+  return passes;
+}
+
+double GridError::relative() const {
+  if (texels == 0 || !(luminance_sum > 0.0)) return 0.0;
+  return std::sqrt(variance_sum / double(texels)) / (luminance_sum / double(texels));
+}
+
+GridError estimated_grid_error(const ProbeOutput& out, const std::vector<int>& passes) {
+  GridError total;
+  for (int p = 0; p < out.layout.probe_count(); ++p) {
+    if (passes[size_t(p)] == 0) continue;
+    const GridError e = probe_error(out, p);
+    total.variance_sum += e.variance_sum;
+    total.luminance_sum += e.luminance_sum;
+    total.texels += e.texels;
+  }
+  return total;
+}
+
+std::vector<int> probes_to_refine(const ProbeOutput& out, const std::vector<int>& passes, double target) {
+  const GridError total = estimated_grid_error(out, passes);
+  const double mean = total.texels > 0 ? total.luminance_sum / double(total.texels) : 0.0;
+  const double allowed = (target * mean) * (target * mean) * double(total.texels);
+  std::vector<std::pair<double, int>> reductions;  // (V / (n + 1), p)
+  for (int p = 0; p < out.layout.probe_count(); ++p) {
+    if (passes[size_t(p)] == 0 || passes[size_t(p)] >= kMaxErrorPasses) continue;
+    const double variance = probe_error(out, p).variance_sum;
+    if (variance > 0.0) reductions.push_back({variance / double(passes[size_t(p)] + 1), p});
+  }
+  // Largest first; ties by probe index, so the choice never depends on the sort's stability.
+  std::sort(reductions.begin(), reductions.end(),
+            [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
+  std::vector<int> chosen;
+  double projected = total.variance_sum;
+  for (const auto& [reduction, p] : reductions) {
+    if (projected <= allowed) break;
+    chosen.push_back(p);
+    projected -= reduction;
+  }
+  std::sort(chosen.begin(), chosen.end());
+  return chosen;
+}
+
+void merge_pass(const ProbeOutput& pass, const std::vector<int>& refined, std::vector<int>* passes, ProbeOutput* total) {
+  const int texels = total->layout.texels_per_probe();
+  for (int p : refined) {
+    const double n = double((*passes)[size_t(p)]);
+    for (int t = 0; t < texels; ++t) {
+      const glm::ivec2 at = total->layout.mosaic_pixel(p, t);
+      for (int c = 0; c < 3; ++c)
+        total->mosaic.at(at.x, at.y, c) = float((n * total->mosaic.at(at.x, at.y, c) + pass.mosaic.at(at.x, at.y, c)) / (n + 1.0));
+      const double old_sigma = total->standard_error.at(at.x, at.y, 0), new_sigma = pass.standard_error.at(at.x, at.y, 0);
+      total->standard_error.at(at.x, at.y, 0) =
+          float(std::sqrt(n * n * old_sigma * old_sigma + new_sigma * new_sigma) / (n + 1.0));
+    }
+    ++(*passes)[size_t(p)];
+  }
+}
+
+namespace {
+
+// The statistics of `pass` added to `total`'s: its counts, and its seconds (a later pass's
+// time is the view's too).
+void add_pass_stats(const ProbeStats& pass, ProbeStats* total) {
+  const uint64_t probes = total->probes, valid = total->valid, nothing = total->nothing, emitter = total->emitter,
+                 transparent = total->transparent;
+  *total += pass;
+  // A pass counts the grid's probes again: the view's counts are the first pass's.
+  total->probes = probes, total->valid = valid, total->nothing = nothing, total->emitter = emitter,
+  total->transparent = transparent;
+  total->cache_seconds += pass.cache_seconds;
+  total->shade_seconds += pass.shade_seconds;
+  total->share_seconds += pass.share_seconds;
+  total->total_seconds += pass.total_seconds;
+  total->cache_fill_samples += pass.cache_fill_samples;
+}
+
+}  // namespace
+
+void refine_to_error(const ProbeSettings& settings, const std::vector<int>& subset, const ProbePass& render_pass,
+                     ProbeOutput* first) {
+  ProbeOutput& out = *first;
+  std::vector<int> passes = first_passes(out, subset);
+  ProbeErrorTarget& record = out.stats.error;
+  record.target = settings.target_error;
+  for (int k = 1; settings.target_error > 0.0f && k < kMaxErrorPasses; ++k) {
+    const double reached = estimated_grid_error(out, passes).relative();
+    if (reached <= settings.target_error) break;
+    const std::vector<int> refine = probes_to_refine(out, passes, settings.target_error);
+    if (refine.empty()) break;
+    spdlog::info("probes: estimated error {:.4f} above the target {:.4f}: pass {} over {} probes", reached,
+                 settings.target_error, k + 1, refine.size());
+    ProbeSettings again = settings;
+    again.seed = stream_key(settings.seed, Purpose::kProbeRefinePass, uint64_t(k));
+    const ProbeOutput pass = render_pass(again, refine);
+    merge_pass(pass, refine, &passes, &out);
+    add_pass_stats(pass.stats, &out.stats);
+    record.refined_probes += refine.size();
+    record.passes = k + 1;
+  }
+  record.estimated = estimated_grid_error(out, passes).relative();
+}
+
+}  // namespace phyir::render

@@ -1,0 +1,144 @@
+// Rendering probes to an error target (probe_error_target.h, --probe-error): the passes'
+// merge, the choice of probes, and on a lit room that the target is reached, that the error
+// against a converged reference falls with it, and that the output is the same whatever the
+// thread count.
+#include <gtest/gtest.h>
+
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <vector>
+
+#include "phyir/core/image_error.h"
+#include "phyir/core/setting_error.h"
+#include "phyir/render/probe_renderer.h"
+#include "probe_error_target.h"
+#include "sanitizer_skip.h"
+#include "single_probe.h"
+#include "test_scenes.h"
+
+namespace phyir::render {
+namespace {
+
+// A 1 x n grid of 2x4-texel valid probes, every texel of probe p at value[p] with sigma[p].
+ProbeOutput constant_probes(const std::vector<float>& value, const std::vector<float>& sigma) {
+  ProbeOutput out;
+  out.layout = {1, int(value.size()), 2, 4};
+  for (size_t p = 0; p < value.size(); ++p) out.sites.push_back(single_site(glm::vec3(float(p), 1.0f, 0.0f)).front());
+  out.mosaic = Image(out.layout.mosaic_width(), out.layout.mosaic_height(), 3);
+  out.standard_error = Image(out.layout.mosaic_width(), out.layout.mosaic_height(), 1);
+  for (int p = 0; p < int(value.size()); ++p)
+    for (int t = 0; t < out.layout.texels_per_probe(); ++t) {
+      const glm::ivec2 at = out.layout.mosaic_pixel(p, t);
+      for (int c = 0; c < 3; ++c) out.mosaic.at(at.x, at.y, c) = value[size_t(p)];
+      out.standard_error.at(at.x, at.y, 0) = sigma[size_t(p)];
+    }
+  return out;
+}
+
+float texel(const ProbeOutput& out, int p, int c = 0) {
+  const glm::ivec2 at = out.layout.mosaic_pixel(p, 0);
+  return out.mosaic.at(at.x, at.y, c);
+}
+
+float sigma_of(const ProbeOutput& out, int p) {
+  const glm::ivec2 at = out.layout.mosaic_pixel(p, 0);
+  return out.standard_error.at(at.x, at.y, 0);
+}
+
+TEST(ProbeErrorTarget, EstimatedErrorIsRmsSigmaOverMeanLuminance) {
+  const ProbeOutput out = constant_probes({1.0f, 3.0f}, {0.3f, 0.4f});
+  std::vector<int> passes = first_passes(out, {});
+  EXPECT_NEAR(estimated_grid_error(out, passes).relative(), std::sqrt((0.09 + 0.16) / 2.0) / 2.0, 1e-6);
+  // A probe holding no pass (not rendered) is not counted.
+  passes[1] = 0;
+  EXPECT_NEAR(estimated_grid_error(out, passes).relative(), 0.3, 1e-6);
+  EXPECT_EQ(first_passes(out, {1}), (std::vector<int>{0, 1}));
+}
+
+TEST(ProbeErrorTarget, MergeIsTheEqualWeightMeanOfThePasses) {
+  ProbeOutput total = constant_probes({1.0f, 2.0f}, {0.4f, 0.2f});
+  const ProbeOutput pass = constant_probes({4.0f, 100.0f}, {0.2f, 9.0f});
+  std::vector<int> passes{2, 1};
+  merge_pass(pass, {0}, &passes, &total);
+  EXPECT_NEAR(texel(total, 0), (2.0 * 1.0 + 4.0) / 3.0, 1e-6);  // two passes held, one added
+  EXPECT_NEAR(sigma_of(total, 0), std::sqrt(4.0 * 0.16 + 0.04) / 3.0, 1e-6);
+  EXPECT_EQ(texel(total, 1), 2.0f);  // not refined: untouched
+  EXPECT_EQ(passes, (std::vector<int>{3, 1}));
+}
+
+TEST(ProbeErrorTarget, RefinesTheProbesHoldingTheVariance) {
+  const ProbeOutput out = constant_probes({1.0f, 1.0f, 1.0f}, {0.05f, 0.5f, 0.01f});
+  const std::vector<int> passes = first_passes(out, {});
+  // Mean sigma^2 0.0842 -> relative 0.29; refining the noisy probe once takes its variance
+  // to half: relative 0.21.
+  EXPECT_EQ(probes_to_refine(out, passes, 0.22), (std::vector<int>{1}));
+  EXPECT_EQ(probes_to_refine(out, passes, 0.0001), (std::vector<int>{0, 1, 2}));  // out of reach: all
+  EXPECT_TRUE(probes_to_refine(out, passes, 0.5).empty());
+  std::vector<int> full(3, kMaxErrorPasses);
+  EXPECT_TRUE(probes_to_refine(out, full, 0.0001).empty());  // no probe may take another pass
+}
+
+scenes::Scene lit_room() {
+  scenes::Scene scene = test::make_box_room(glm::vec3(-2.0f, 0.0f, -2.0f), glm::vec3(2.0f, 3.0f, 2.0f),
+                                            test::make_material(glm::vec3(0.7f, 0.6f, 0.5f), 0.8f));
+  const int light = test::add_material(scene, test::make_emitter(glm::vec3(6.0f)));
+  test::add_box(scene, glm::vec3(0.6f, 0.0f, -0.4f), glm::vec3(1.2f, 0.8f, 0.4f), 0);
+  test::add_quad(scene, glm::vec3(-0.5f, 2.99f, -0.5f), glm::vec3(1, 0, 0), glm::vec3(0, 0, 1), light, "light");
+  return scene;
+}
+
+std::vector<ProbeSite> row_of_sites() {
+  std::vector<ProbeSite> out;
+  for (int k = 0; k < 4; ++k) out.push_back(single_site(glm::vec3(-1.5f + 0.9f * float(k), 0.3f, 0.5f)).front());
+  return out;
+}
+
+ProbeOutput render_path(const RenderScene& rs, const Effects& effects, int spp, float target) {
+  ProbeSettings s = settings_for(ProbeMode::kPath, spp, 4, 8, 4);
+  s.layout.grid_width = 4;
+  s.target_error = target;
+  return ProbeRenderer(rs, effects, s).render_at(row_of_sites());
+}
+
+TEST(ProbeErrorTarget, ReachesTheTargetAndTheErrorFallsWithIt) {
+  PHYIR_SKIP_UNDER_SANITIZERS("ProbeErrorTarget.SameOutputWhateverTheThreadCount and the merge and choice tests");
+  const scenes::Scene scene = lit_room();
+  const RenderScene rs(scene);
+  const Effects effects = analyse_effects(scene, false);
+  const ProbeOutput reference = render_path(rs, effects, 4096, 0.0f);
+  const ProbeOutput once = render_path(rs, effects, 8, 0.0f);
+  const ProbeOutput targeted = render_path(rs, effects, 8, 0.5f * float(once.stats.error.estimated));
+  EXPECT_GT(targeted.stats.error.passes, 2);
+  EXPECT_LE(targeted.stats.error.estimated, 0.5 * once.stats.error.estimated + 1e-9);
+  const double before = image_error(once.mosaic, reference.mosaic).relative_rmse;
+  const double after = image_error(targeted.mosaic, reference.mosaic).relative_rmse;
+  EXPECT_LT(after, 0.65 * before) << before << " -> " << after;
+}
+
+TEST(ProbeErrorTarget, SameOutputWhateverTheThreadCount) {
+  const scenes::Scene scene = lit_room();
+  const RenderScene rs(scene);
+  const Effects effects = analyse_effects(scene, false);
+  ProbeSettings s = settings_for(ProbeMode::kCache, 2, 4, 8, 4);
+  s.layout.grid_width = 4;
+  s.target_error = 0.02f;
+  ProbeOutput one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = ProbeRenderer(rs, effects, s).render_at(row_of_sites());
+  }
+  two = ProbeRenderer(rs, effects, s).render_at(row_of_sites());
+  EXPECT_GT(one.stats.error.passes, 1);
+  EXPECT_EQ(one.mosaic.pixels, two.mosaic.pixels);
+  EXPECT_EQ(one.standard_error.pixels, two.standard_error.pixels);
+}
+
+TEST(ProbeErrorTarget, RejectsANegativeTarget) {
+  ProbeSettings s;
+  s.target_error = -0.1f;
+  EXPECT_THROW(s.validate(), SettingError);
+}
+
+}  // namespace
+}  // namespace phyir::render
