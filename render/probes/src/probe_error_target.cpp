@@ -128,7 +128,8 @@ void refine_to_error(const ProbeSettings& settings, const std::vector<int>& subs
   record.target = settings.target_error;
   for (int k = 1; settings.target_error > 0.0f && k < kMaxErrorPasses; ++k) {
     const double reached = estimated_grid_error(out, passes).relative();
-    if (reached <= settings.target_error) break;
+    // The target is a float: a float's rounding is not a reason for another pass.
+    if (reached <= double(settings.target_error) * (1.0 + 1e-6)) break;
     const std::vector<int> refine = probes_to_refine(out, passes, settings.target_error);
     if (refine.empty()) break;
     spdlog::info("probes: estimated error {:.4f} above the target {:.4f}: pass {} over {} probes", reached,
