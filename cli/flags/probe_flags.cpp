@@ -46,6 +46,12 @@ void add_sampling(const ProbeFlagAdder& add, render::ProbeSettings& probe) {
   add.option("probe.target_error", "--probe-error", probe.target_error,
              "render again where the noise is until the grid's estimated relative error (from each texel's standard "
              "error, probe_stderr.exr) is at most this, e.g. 0.05 (0: one pass)");
+  sets(add.cmd, "probe.progressive",
+       add.cmd->add_flag_callback(
+           "--no-probe-progressive", [&probe] { probe.progressive = false; },
+           "with --probe-error: every pass with the first's cache cells and sharing bound (by default later passes shrink "
+           "them, so that the passes' mean is consistent)"))
+      ->group(kGroup);
 }
 
 void add_cache(const ProbeFlagAdder& add, render::ProbeSettings& probe) {

@@ -13,6 +13,7 @@
 #include "phyir/core/setting_error.h"
 #include "phyir/render/probe_renderer.h"
 #include "probe_error_target.h"
+#include "probe_pass_schedule.h"
 #include "sanitizer_skip.h"
 #include "single_probe.h"
 #include "test_scenes.h"
@@ -77,6 +78,24 @@ TEST(ProbeErrorTarget, RefinesTheProbesHoldingTheVariance) {
   EXPECT_TRUE(probes_to_refine(out, passes, 0.5).empty());
   std::vector<int> full(3, kMaxErrorPasses);
   EXPECT_TRUE(probes_to_refine(out, full, 0.0001).empty());  // no probe may take another pass
+}
+
+TEST(ProbeErrorTarget, LaterPassesShrinkTheReuseKernels) {
+  ProbeSettings base;
+  EXPECT_EQ(pass_settings(base, 0).seed, base.seed);
+  const ProbeSettings eighth = pass_settings(base, 7);  // (7 + 1)^(-1/3) = 1/2
+  EXPECT_NE(eighth.seed, base.seed);
+  EXPECT_NE(pass_settings(base, 6).seed, eighth.seed);
+  EXPECT_NEAR(eighth.cache.cell_size, 0.5f * base.cache.cell_size, 1e-6f);
+  EXPECT_NEAR(eighth.cache.direct_distance_cells * eighth.cache.cell_size,
+              base.cache.direct_distance_cells * base.cache.cell_size, 1e-5f);  // the same metres
+  EXPECT_NEAR(eighth.sharing.parallax_texels, 0.5f * base.sharing.parallax_texels, 1e-6f);
+  EXPECT_EQ(eighth.spp, base.spp);
+  base.progressive = false;
+  const ProbeSettings fixed = pass_settings(base, 7);
+  EXPECT_EQ(fixed.cache.cell_size, base.cache.cell_size);
+  EXPECT_EQ(fixed.sharing.parallax_texels, base.sharing.parallax_texels);
+  EXPECT_EQ(fixed.seed, eighth.seed);
 }
 
 scenes::Scene lit_room() {

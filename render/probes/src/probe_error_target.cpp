@@ -8,7 +8,7 @@
 #include <numeric>
 
 #include "phyir/core/safe_math.h"
-#include "phyir/render/streams.h"
+#include "probe_pass_schedule.h"
 
 namespace phyir::render {
 
@@ -134,9 +134,7 @@ void refine_to_error(const ProbeSettings& settings, const std::vector<int>& subs
     if (refine.empty()) break;
     spdlog::info("probes: estimated error {:.4f} above the target {:.4f}: pass {} over {} probes", reached,
                  settings.target_error, k + 1, refine.size());
-    ProbeSettings again = settings;
-    again.seed = stream_key(settings.seed, Purpose::kProbeRefinePass, uint64_t(k));
-    const ProbeOutput pass = render_pass(again, refine);
+    const ProbeOutput pass = render_pass(pass_settings(settings, k), refine);
     merge_pass(pass, refine, &passes, &out);
     add_pass_stats(pass.stats, &out.stats);
     record.refined_probes += refine.size();

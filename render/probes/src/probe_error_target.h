@@ -5,16 +5,16 @@
 // The estimate: each texel's standard error sigma (probe_stderr.exr), pooled over the valid
 // probes' texels as a relative RMSE, sqrt(mean sigma^2) / mean luminance. While it is above
 // the target, the probes that hold most of the variance are rendered again as an independent
-// pass (a fresh seed: its own directions and, in cache mode, its own cache), and each texel
+// pass (a fresh seed: its own directions and, in cache mode, its own cache, its reuse kernels
+// shrunk: probe_pass_schedule.h), and each texel
 // becomes the equal-weight mean of its probe's passes, sigma^2 the passes' sum over n^2. Equal
 // weights keep the mean's expectation that of one pass; weights from the estimated sigmas
 // would correlate with the values they weight (a pass that missed a bright path reports a
 // low sigma too) and bias it. Which probes are refined looks at sigma only, never at the
 // values a later pass adds, so it leaves each pass's expectation alone.
 //
-// What the target bounds: the noise the standard error sees. A bias of the estimator (cache
-// mode's interpolation, docs/probes.md "Where the error is") is not in sigma and not
-// reduced by more passes.
+// What the target bounds: the noise the standard error sees. A bias is not in sigma; the
+// passes' schedule shrinks the part of it that comes from cache mode's kernels.
 #include <cstdint>
 #include <functional>
 #include <vector>

@@ -52,7 +52,10 @@ nlohmann::json ProbeSettings::to_json() const {
                       {"seed", seed},
                       {"max_bounces", path.max_bounces},
                       {"punctual_lights", punctual_lights}};
-  if (target_error > 0.0f) j["target_error"] = target_error;
+  if (target_error > 0.0f) {
+    j["target_error"] = target_error;
+    j["progressive"] = progressive;
+  }
   if (mode == ProbeMode::kCache) {
     j["cache_cell_m"] = cache.cell_size;
     j["cache_spp"] = cache.samples_per_cell;

@@ -20,7 +20,8 @@ bool same_but_seed(const ProbeSettings& a, const ProbeSettings& b) {
   return a.mode == b.mode && a.spp == b.spp && a.cache.samples_per_cell == b.cache.samples_per_cell &&
          a.cache.cell_size == b.cache.cell_size && a.cache.direct_distance_cells == b.cache.direct_distance_cells &&
          a.spread_threshold == b.spread_threshold && a.sharing.radius == b.sharing.radius &&
-         a.sharing.parallax_texels == b.sharing.parallax_texels && a.target_error == b.target_error && a.seed != b.seed;
+         a.sharing.parallax_texels == b.sharing.parallax_texels && a.target_error == b.target_error &&
+         a.progressive == b.progressive && a.seed != b.seed;
 }
 
 ProbeStudy::ProbeStudy(const RenderScene& scene, const CameraModel& camera, const Effects& effects,

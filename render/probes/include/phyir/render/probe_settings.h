@@ -72,6 +72,10 @@ struct ProbeSettings {
   // Render again where the noise is until the grid's estimated relative error (from each
   // texel's standard error) is at most this (docs/probes.md, "Accuracy as a target"); 0: one pass.
   float target_error = 0.0f;
+  // Passes after the first shrink cache mode's reuse kernels (cells, sharing's parallax
+  // bound) as (k + 1)^(-1/3), so that their mean is consistent (docs/probes.md, "Accuracy as
+  // a target"); false: every pass as the first, with its own seed.
+  bool progressive = true;
   bool progress = true;
 
   // Throws phyir::SettingError naming the setting ("probe.spp", "probe.cache.cell_size", ...)

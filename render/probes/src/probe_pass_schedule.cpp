@@ -1,0 +1,23 @@
+#include "probe_pass_schedule.h"
+
+#include <cmath>
+
+#include "phyir/render/streams.h"
+
+namespace phyir::render {
+
+float pass_shrink(int k) { return float(std::pow(double(k + 1), -1.0 / 3.0)); }
+
+ProbeSettings pass_settings(const ProbeSettings& base, int k) {
+  if (k == 0) return base;
+  ProbeSettings s = base;
+  s.seed = stream_key(base.seed, Purpose::kProbeRefinePass, uint64_t(k));
+  if (!base.progressive) return s;
+  const float shrink = pass_shrink(k);
+  s.cache.cell_size = base.cache.cell_size * shrink;
+  s.cache.direct_distance_cells = base.cache.direct_distance_cells / shrink;
+  s.sharing.parallax_texels = base.sharing.parallax_texels * shrink;
+  return s;
+}
+
+}  // namespace phyir::render

@@ -1,0 +1,32 @@
+#pragma once
+// The settings of each pass of a view's probes towards an error target (probe_error_target.h;
+// docs/probes.md, "Accuracy as a target"): progressive, so that the mean of the passes is
+// consistent.
+//
+// Cache mode reuses light across space through kernels of fixed width: the radiance cache's
+// cells (interpolation, the 3x3x3 smoothing, the concave edges' layers), the distance beyond
+// which a cell caches direct light, and sharing's parallax bound. Each biases a pass by an
+// amount that shrinks with its kernel, so pass k (k = 0 the first) takes every kernel
+// shrunk by s_k = (k + 1)^(-1/3), as progressive photon mapping shrinks its radius
+// (Hachisuka and Jensen 2009; Knaus and Zwicker 2011, whose alpha = 2/3 on the squared
+// radius is this exponent): a bias of order s_k^2 averages over n passes to order n^(-2/3),
+// which vanishes, while each pass's noise stays about the same (a cell keeps its number of
+// fill estimates), so the mean's noise still falls as n^(-1/2).
+//   - the cache's cell: cell_size x s_k;
+//   - direct light cached from the same distance in metres (direct_distance_cells / s_k): the
+//     interpolation's error at that distance, ~0.75 (cell / distance)^2, then shrinks as s_k^2;
+//   - sharing's parallax bound: parallax_texels x s_k.
+// What has no kernel is not scheduled: the uniform-light lobe where a glossy chain ends in the
+// cache, and the photons (docs/probes.md, "Where the error is").
+#include "phyir/render/probe_settings.h"
+
+namespace phyir::render {
+
+// The shrink factor of pass k: (k + 1)^(-1/3).
+float pass_shrink(int k);
+
+// Pass k's settings: `base` with a seed of its own (k > 0) and, when base.progressive, its
+// kernels shrunk by pass_shrink(k). Pass 0 is `base` itself.
+ProbeSettings pass_settings(const ProbeSettings& base, int k);
+
+}  // namespace phyir::render
