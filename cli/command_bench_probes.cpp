@@ -59,12 +59,28 @@ struct BenchProbeFlags {
 };
 
 constexpr const char* kConfigSyntax =
-    "MODE:SPP[:CACHE_SPP[:CELL_M[:SEED[:DIRECT_CELLS[:SPREAD[:SHARE_RADIUS[:SHARE_PARALLAX]]]]]]]";
+    "MODE:SPP[:CACHE_SPP[:CELL_M[:SEED[:DIRECT_CELLS[:SPREAD[:SHARE_RADIUS[:SHARE_PARALLAX]]]]]]][@ERROR[:fixed]]";
+
+// An entry's "@ERROR[:fixed]": --probe-error ERROR, and with "fixed" --no-probe-progressive.
+void parse_error_target(const std::string& config, const std::string& text, render::ProbeSettings* s) {
+  const size_t colon = text.find(':');
+  const std::string tail = colon == std::string::npos ? "" : text.substr(colon + 1);
+  if (!tail.empty() && tail != "fixed") fail("--configs '{}': '{}' after the error target is not 'fixed'", config, tail);
+  try {
+    s->target_error = std::stof(text.substr(0, colon));
+  } catch (const std::exception&) {
+    fail("--configs '{}': the error target after '@' must be a number", config);
+  }
+  s->progressive = tail.empty();
+}
 
 // One --configs entry over `base`: SEED is added to the base's seed.
-render::ProbeStudySetting parse_config(const std::string& text, const render::ProbeSettings& base) {
-  render::ProbeStudySetting c{text, base};
+render::ProbeStudySetting parse_config(const std::string& entry, const render::ProbeSettings& base) {
+  render::ProbeStudySetting c{entry, base};
   render::ProbeSettings& s = c.settings;
+  const size_t at = entry.find('@');
+  if (at != std::string::npos) parse_error_target(entry, entry.substr(at + 1), &s);
+  const std::string text = entry.substr(0, at);
   std::vector<std::string> parts;
   std::stringstream in(text);
   for (std::string part; std::getline(in, part, ':');) parts.push_back(part);
@@ -221,7 +237,8 @@ void add_study_flags(CLI::App* cmd, BenchProbeFlags& f) {
                   std::string(kConfigSyntax) +
                       " settings to measure (SEED: added to --seed, for repeated runs; DIRECT_CELLS, SPREAD, "
                       "SHARE_RADIUS, SHARE_PARALLAX: as --probe-cache-direct-cells, --probe-spread-threshold, "
-                      "--probe-share-radius, --probe-share-parallax)")
+                      "--probe-share-radius, --probe-share-parallax; @ERROR: as --probe-error, ':fixed' as "
+                      "--no-probe-progressive)")
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--reference-spp", f.study.reference_spp, "spp of the converged path-mode reference")
