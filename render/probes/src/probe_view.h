@@ -1,6 +1,7 @@
 #pragma once
 // One view's probes being rendered: the steps of ProbeRenderer::render_at (docs/probes.md,
-// "The two modes"). Internal to the probe renderer.
+// "The two modes"). Internal to the probe renderer. The view's passes, cache, photons and
+// sharing are in probe_view.cpp, its texels (first_look and after) in probe_view_texels.cpp.
 //
 //   select_probes         which probes are computed; their position, normal and mask images
 //   build_cache           discovery rays from every texel, then the radiance cache's fill

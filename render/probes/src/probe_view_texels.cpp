@@ -1,0 +1,239 @@
+#include "probe_view.h"
+
+#include <cmath>
+#include <limits>
+
+#include "phyir/core/safe_math.h"
+#include "phyir/render/equirect.h"
+#include "phyir/render/streams.h"
+#include "visible_emission.h"
+
+// ProbeView's texels: each texel's first samples, its final value (hard texels supersampled,
+// a light's emission seen directly estimated apart), its estimate from a batch of
+// directions, and where it is stored (docs/probes.md, "The texel estimator" and "Hard
+// texels"). The view's passes, cache, photons and sharing are in probe_view.cpp.
+
+namespace phyir::render {
+
+namespace {
+// Directions per texel for the emission seen in texels a light may cover, in units of spp.
+// Where the lights' exact coverage is known (EmitterCoverage) they are drawn inside the
+// covered parts and ask only whether an occluder hides the light (visible_emission): 4 x 4
+// = 16 at the default spp, 64 x 4 = 256 where a light's outline crosses the texel
+// (EmitterFootprints::kEdge), where an occluder's edge may too (a housing's rim in front of
+// a panel). Measured on the bench (docs/probes.md): 2 and 32 x spp raise the error by 3%;
+// 16 and 256 x spp over the whole texel change nothing. Otherwise (textured lights, an
+// environment) they are spread over the texel, one ray each: 16 and 256 x spp.
+// A hard texel whose hard samples spread over more than kDeepSpreadRatio x (their mean + the
+// floor) holds a part far brighter than the rest that only some of them found (a lamp's halo
+// on the ceiling, the sun in a polished surface): it is estimated once more from
+// kDeepSppFactor x hard_spp fresh samples. Measured on the suite, 32x64 grid (docs/probes.md): the night
+// apartment's error 0.55 -> 0.41-0.50 for 20% more CPU, the hard room's 7.5% -> 6.8%, the
+// others within their seed-to-seed noise for 1-11% more CPU.
+constexpr int kDeepSppFactor = 4;
+constexpr float kDeepSpreadRatio = 4.0f;
+
+constexpr int kLightPartSppFactor = 4;
+constexpr int kLightPartEdgeSppFactor = 64;
+constexpr int kEmissionSppFactor = 16;
+constexpr int kEmissionEdgeSppFactor = 256;
+
+// A texel's variance (what sharing tests its neighbours' values against) comes from its
+// strata's differences where its samples make at least this many pairs of cells (the hard
+// batches, spp x hard_spp_factor and more), else from their spread: at the window's edge
+// seen from a sofa the spread counted the sill-to-sky step that stratification resolves,
+// and let neighbours whose sill sits a fifth of a texel away average in.
+constexpr int kMinStrataPairs = 8;
+
+}  // namespace
+
+// A texel's first samples, then its final value: hard texels (the first samples met glass,
+// a glossy surface or a light whose emission is not estimated apart; or they spread over
+// more than spread_threshold x (their mean + a floor); or the texel's first value steps by
+// as much from a neighbour's: an edge, a highlight, a shadow boundary or a sun patch runs
+// through it) are estimated again from hard_spp_factor x spp fresh samples. The neighbours'
+// test finds the texels whose few first samples all fell on one side of an edge: a sun
+// patch's rim seen from a ceiling probe, a lamp shade lit from inside seen from the floor.
+// No decision looks at the samples it selects, so none biases the value.
+void ProbeView::first_look(TileProbe& probe, int t, int pass, Worker* w) {
+  const int row = t / layout_.res_width, col = t % layout_.res_width;
+  TexelState& s = probe.texels[size_t(t)];
+  s = TexelState{Texel{&probe, t, row, col, ProbeTexel(row, col, layout_.res_height, layout_.res_width),
+                       pass == 0 && correct_foot_ ? &probe.measured : nullptr, std::numeric_limits<float>::infinity()}};
+  s.looked = true;
+  if (probe.lit[size_t(t)] != 0) {
+    s.part = Part::kRest;
+    if (look_at_light(s, w)) return;  // a light's outline: supersampled from the start
+  }
+  s.first = estimate(s.x, 0, settings_.spp, s.part, &s.hard, &s.spread, w);
+  s.x.samples = settings_.spp;
+}
+
+void ProbeView::finish_texel(TileProbe& probe, int t, Worker* w) {
+  TexelState& s = probe.texels[size_t(t)];
+  glm::vec3 value = s.done ? s.first : settle(probe, t, w);
+  Texel& x = s.x;
+  if (s.part == Part::kRest) {  // the texel's whole light: its rest and its emission
+    x.cos_all += s.exact_cos;
+    x.cos_emitted = s.exact_cos;
+  }
+  if (x.measure)
+    x.measure->add_texel(x.cos_all, x.cos_emitted, equirect_texel_solid_angle(x.row, layout_.res_width, layout_.res_height));
+  store_texel(x, value, s.exact, w);
+}
+
+glm::vec3 ProbeView::settle(TileProbe& probe, int t, Worker* w) {
+  TexelState& s = probe.texels[size_t(t)];
+  const int spp = settings_.spp;
+  // The spread is judged against the texel's whole value: light it has exactly (the
+  // emission seen directly, estimated apart) makes the same spread matter less.
+  const float limit = settings_.spread_threshold * (luminance(s.first) + luminance(s.exact) + dark_floor_);
+  const float step = s.part == Part::kAll ? neighbour_step(probe, t) : 0.0f;
+  const bool hard = s.hard || (spp > 1 && s.spread > limit) || step > limit;
+  if (!hard || !adaptive_) return s.first;
+  ++w->stats.supersampled_texels;
+  return hard_estimate(s, w);
+}
+
+glm::vec3 ProbeView::hard_estimate(TexelState& s, Worker* w) {
+  const int spp = settings_.spp, hard_spp = spp * settings_.hard_spp_factor;
+  bool unused = false;
+  s.x.samples = hard_spp;
+  float hard_spread = 0.0f;
+  const glm::vec3 value = estimate(s.x, spp, hard_spp, s.part, &unused, &hard_spread, w);
+  if (!(hard_spread > kDeepSpreadRatio * (luminance(value) + luminance(s.exact) + dark_floor_)))
+    return value;
+  // A rare bright part (a sun patch's rim, a lamp's halo on the ceiling) that few of the
+  // hard samples found: its share of the texel is still a guess. Fresh samples again, more,
+  // numbered after every other batch of the texel (its light's emission included).
+  ++w->stats.deep_texels;
+  s.x.samples = hard_spp * kDeepSppFactor;
+  return estimate(s.x, spp * (1 + settings_.hard_spp_factor + kEmissionEdgeSppFactor), s.x.samples, s.part, &unused,
+                  nullptr, w);
+}
+
+float ProbeView::neighbour_step(const TileProbe& probe, int t) const {
+  // The 8 neighbours in the probe's image (columns wrap round), those of the same pass whose
+  // first value is plain (no light estimated apart).
+  const int row = t / layout_.res_width, col = t % layout_.res_width;
+  const float own = luminance(probe.texels[size_t(t)].first);
+  float step = 0.0f;
+  for (int dr = -1; dr <= 1; ++dr) {
+    const int r = row + dr;
+    if (r < 0 || r >= layout_.res_height) continue;
+    for (int dc = -1; dc <= 1; ++dc) {
+      const int c = (col + dc + layout_.res_width) % layout_.res_width;
+      const TexelState& n = probe.texels[size_t(r * layout_.res_width + c)];
+      if (!n.looked || n.part != Part::kAll || (dr == 0 && dc == 0)) continue;
+      step = std::max(step, std::abs(luminance(n.first) - own));
+    }
+  }
+  return step;
+}
+
+// A texel a light may cover (EmitterFootprints): the emission seen first is estimated apart
+// (partial coverage of a light is the largest error otherwise), the rest from its own
+// samples. Where a light's outline crosses the texel the rest straddles it (the light's
+// reflection on one side, what lies beyond on the other) and is supersampled from the
+// start (returns true); elsewhere the light covers the texel wholly or not at all, and the
+// rest is hard only by its own first samples, as in any texel.
+bool ProbeView::look_at_light(TexelState& s, Worker* w) {
+  const int spp = settings_.spp, hard_spp = spp * settings_.hard_spp_factor;
+  Texel& x = s.x;
+  TileProbe& probe = *x.probe;
+  const bool edge = probe.lit[size_t(x.t)] == EmitterFootprints::kEdge;
+  const uint64_t rays_before = w->stats.counters.rays;
+  if (probe.analytic) {
+    probe.lights.texel_pieces(x.row, x.col, layout_.res_height, layout_.res_width, &w->pieces);
+    Rng rng = item_stream(probe_seed_, texel_id(probe.p, x.t), Purpose::kProbeLightPart);
+    s.exact = visible_emission(probe.lights, w->pieces, scene_.accelerator(), out_.sites[size_t(probe.p)].origin,
+                               spp * (edge ? kLightPartEdgeSppFactor : kLightPartSppFactor), rng, probe.measured,
+                               &s.exact_cos, &w->strata, &w->stats.counters.rays);
+  } else {
+    bool unused = false;
+    s.exact = estimate(x, spp + hard_spp, spp * (edge ? kEmissionEdgeSppFactor : kEmissionSppFactor), Part::kEmission,
+                       &unused, nullptr, w);
+    s.exact_cos = x.cos_emitted;
+  }
+  w->stats.emission_rays += w->stats.counters.rays - rays_before;
+  w->stats.light_edge_texels += edge;
+  ++w->stats.light_texels;
+  if (!edge) return false;
+  s.first = hard_estimate(s, w);
+  s.done = true;
+  ++w->stats.supersampled_texels;
+  return true;
+}
+
+// `spread` (if given) receives the range of the samples' luminances; x.cos_all and
+// x.cos_emitted the sample means of the radiance and its emitted part times the cosine to
+// the probe's normal when the texel is measured (FootIrradiance), else 0.
+glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* saw_hard, float* spread, Worker* w) {
+  TileProbe& probe = *x.probe;
+  const uint64_t id = texel_id(probe.p, x.t);
+  Rng permutation = item_stream(probe_seed_, id, Purpose::kProbeStrata, uint64_t(first));
+  // The interleaving key is the same for every probe (texel and batch only).
+  probe.interleave.key = item_stream_key(probe_seed_, uint64_t(x.t), Purpose::kProbeInterleave, uint64_t(first));
+  stratified_square(count, permutation, &w->strata, probe.interleave);
+  const glm::vec3 origin = out_.sites[size_t(probe.p)].origin;
+  const float solid_angle = equirect_texel_solid_angle(x.row, layout_.res_width, layout_.res_height);
+  glm::dvec3 sum(0.0), sum_cos(0.0), sum_emitted_cos(0.0);
+  double sum_y = 0.0, sum_y2 = 0.0;
+  w->luminances.clear();
+  float lo = std::numeric_limits<float>::infinity(), hi = 0.0f;
+  for (int s = 0; s < count; ++s) {
+    const uint64_t key = sample_key(probe_seed_, id, uint64_t(first + s));
+    const Ray ray{origin, x.cone.direction(w->strata[size_t(s)])};
+    glm::vec3 emitted;
+    glm::vec3 L = estimator_->sample(ray, key, part, probe.foot, solid_angle, saw_hard, &x.distance, &emitted,
+                                     &w->stats.counters);
+    if (!is_finite(L) || !is_finite(emitted)) {
+      ++w->stats.counters.nonfinite_samples;
+      L = emitted = glm::vec3(0.0f);
+    }
+    sum += glm::dvec3(L);
+    if (x.measure) {
+      const double cosine = x.measure->cosine(ray.direction);
+      sum_cos += glm::dvec3(L) * cosine;
+      sum_emitted_cos += glm::dvec3(emitted) * cosine;
+    }
+    const float y = luminance(L);
+    sum_y += y, sum_y2 += double(y) * y;
+    w->luminances.push_back(y);
+    lo = std::min(lo, y);
+    hi = std::max(hi, y);
+  }
+  x.variance = float(stratified_mean_variance(w->strata, w->luminances, kMinStrataPairs));
+  if (!(x.variance >= 0.0f))
+    x.variance = count > 1 ? float(std::max(sum_y2 - sum_y * sum_y / count, 0.0) / (double(count) * (count - 1))) : 0.0f;
+  if (spread) *spread = count > 0 ? hi - lo : 0.0f;
+  x.cos_all = glm::vec3(sum_cos / double(count));
+  x.cos_emitted = glm::vec3(sum_emitted_cos / double(count));
+  return glm::vec3(sum / double(count));
+}
+
+void ProbeView::store_texel(const Texel& x, glm::vec3 value, const glm::vec3& seen_emission, Worker* w) {
+  // The specular control variate's corrections can be negative on their own; a texel whose
+  // mean still is (dark, grazing, few directions) is clamped to 0, and counted.
+  if (glm::min(value.x, glm::min(value.y, value.z)) < 0.0f) {
+    value = glm::max(value, glm::vec3(0.0f));
+    ++w->stats.negative_texels;
+  }
+  const int p = x.probe->p;
+  const uint64_t id = texel_id(p, x.t);
+  if (share_) {
+    records_.distance[size_t(id)] = x.distance;
+    records_.samples[size_t(id)] = float(x.samples);
+    records_.variance[size_t(id)] = x.variance;
+    // Emission seen directly is not shared: a light's edge moves across a texel with the
+    // slightest parallax, and its own directions already resolve it.
+    if (x.probe->lit[size_t(x.t)]) w->emission_seen.push_back({id, seen_emission});
+  } else {
+    value += seen_emission;
+  }
+  const glm::ivec2 at = layout_.mosaic_pixel(p, x.t);
+  for (int ch = 0; ch < 3; ++ch) out_.mosaic.at(at.x, at.y, ch) = value[ch];
+  out_.standard_error.at(at.x, at.y, 0) = std::sqrt(std::max(x.variance, 0.0f));
+}
+
+}  // namespace phyir::render

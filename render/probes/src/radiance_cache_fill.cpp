@@ -1,0 +1,154 @@
+#include "radiance_cache.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "phyir/core/safe_math.h"
+#include "phyir/render/direct_lighting.h"
+#include "phyir/render/emitter_sampler.h"
+#include "phyir/render/frame.h"
+#include "phyir/render/ray_offset.h"
+#include "phyir/render/streams.h"
+#include "phyir/render/sampling.h"
+#include "punctual_deposit.h"
+
+// The radiance cache's fill: a cell's irradiance estimates (docs/probes.md, "The radiance
+// cache": fill and lookup). Discovery, layout, smoothing and lookups: radiance_cache.cpp.
+
+namespace phyir::render {
+
+void RadianceCache::fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) const {
+  // Direct light only far from every emitter (the header note); with no emitters at all the
+  // direct part is exactly 0 and needs no sampling.
+  const EmitterSampler& emitters = scene_->emitters();
+  float nearest = std::numeric_limits<float>::infinity();
+  for (int k = 0; k < cell->count; ++k) nearest = std::min(nearest, emitters.distance_bound(cell->points[k].position));
+  cell->has_direct = settings_.direct_distance_cells > 0.0f &&
+                     nearest >= settings_.direct_distance_cells * settings_.cell_size;
+  const bool sample_direct = cell->has_direct && has_lights(*scene_) && max_bounces_ >= 1;
+
+  // samples_per_cell estimates shared out over the points, each point's own cosine
+  // directions and light points stratified over the unit square.
+  const int total = samples_in(*cell);
+  std::array<glm::dvec3, kEdgeBands> band_sum{};
+  glm::dvec3 indirect(0.0), direct(0.0);
+  std::vector<glm::vec2> directions, light_points;
+  int sample = 0;
+  for (int k = 0; k < cell->count; ++k) {
+    const int n = total / cell->count + (k < total % cell->count ? 1 : 0);
+    const uint64_t point_key = item_stream_key(settings_.seed, cell->key, Purpose::kCachePoint, uint64_t(k));
+    Rng permutation = stream(point_key, Purpose::kCacheFillDirections);
+    stratified_square(n, permutation, &directions);
+    if (sample_direct) {
+      Rng light_permutation = stream(point_key, Purpose::kCacheFillLightPoints);
+      stratified_square(n, light_permutation, &light_points);
+    }
+    // The point moved towards the edge, per band (the same directions and random numbers).
+    std::array<CachePoint, kEdgeBands> moved;
+    std::array<bool, kEdgeBands> on_surface{};
+    for (int b = 0; edge && b < kEdgeBands; ++b) {
+      on_surface[size_t(b)] = band_point(*edge, cell->points[k], b, &moved[size_t(b)]);
+      ++counters->rays;
+      if (on_surface[size_t(b)]) edge->band_pairs[size_t(b)] += n;
+    }
+    for (int s = 0; s < n; ++s) {
+      const uint64_t key = sample_key(settings_.seed, cell->key, uint64_t(sample++));
+      const float u_select = sample_direct ? stream(key, Purpose::kCacheFillLight).next_float() : 0.0f;
+      const CachedIrradiance e = estimate(cell->points[k], directions[size_t(s)], sample_direct, u_select,
+                                          sample_direct ? light_points[size_t(s)] : glm::vec2(0.0f), key, counters);
+      indirect += glm::dvec3(e.indirect);
+      direct += glm::dvec3(e.direct);
+      for (int b = 0; edge && b < kEdgeBands; ++b) {
+        if (!on_surface[size_t(b)]) continue;
+        const CachedIrradiance m =
+            estimate(moved[size_t(b)], directions[size_t(s)], false, 0.0f, glm::vec2(0.0f), key, counters);
+        band_sum[size_t(b)] += glm::dvec3(m.indirect) - glm::dvec3(e.indirect);
+      }
+    }
+  }
+  if (sample_direct && !emitters.delta_lights().empty()) {
+    glm::vec3 punctual(0.0f);
+    for (int k = 0; k < cell->count; ++k) {
+      const CachePoint& point = cell->points[k];
+      punctual += punctual_irradiance(*scene_, point.position, point.shading_normal, point.geometric_normal,
+                                      &counters->rays);
+    }
+    cell->punctual = punctual / float(std::max(cell->count, 1));
+  }
+  const double count = double(std::max(sample, 1));
+  cell->indirect = glm::vec3(indirect / count);
+  cell->direct = glm::vec3(direct / count);
+  for (int b = 0; edge && b < kEdgeBands; ++b)
+    if (edge->band_pairs[size_t(b)] > 0)
+      edge->band_delta[size_t(b)] = glm::vec3(band_sum[size_t(b)] / double(edge->band_pairs[size_t(b)]));
+}
+
+CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec2& u, bool direct, float u_select,
+                                         const glm::vec2& u_light, uint64_t key, PathCounters* counters) const {
+  // Indirect: what arrives from surfaces after scattering at least once (the emission of
+  // the surface a direction hits is direct light), plus the environment. One
+  // cosine-distributed direction: cos / pdf = pi; the environment also by a sample of its
+  // own, power heuristic. Direct (if asked): one light sample and
+  // the same cosine direction's emission, power heuristic.
+  CachedIrradiance out;
+  out.has_direct = direct;
+  if (max_bounces_ < 1) return out;  // nothing is reflected at all
+  const RenderScene& scene = *scene_;
+  const glm::vec3& ns = point.shading_normal;
+  const glm::vec3& ng = point.geometric_normal;
+  ShadingPoint x;
+  x.position = point.position;
+  x.geometric_normal = ng;
+  x.frame = Frame(ns);
+  if (direct && has_lights(scene)) {
+    DirectLightOptions irradiance;
+    irradiance.lobes = Lobes::kCosine;
+    irradiance.punctual = false;  // exact in Cell::punctual
+    const glm::vec3 E = sample_emitter_light(scene, x, LightVariates{u_select, u_light}, irradiance, glm::vec3(1.0f),
+                                             nullptr, counters);
+    if (is_finite(E)) out.direct += E;
+    else ++counters->nonfinite_samples;
+  }
+  const EnvironmentLight* environment = scene.environment();
+  glm::vec3 E = environment ? environment_irradiance(x, key, counters) : glm::vec3(0.0f);
+  const glm::vec3 local = sample_cosine_hemisphere(u);
+  const glm::vec3 wi = x.frame.to_world(local);
+  if (!(local.z >= kMinCosine) || glm::dot(wi, ng) <= 0.0f) return finish_indirect(E, &out, counters);
+  const Ray ray{spawn_origin(point.position, ng, wi), wi};
+  SurfaceInteraction si;
+  ++counters->rays;
+  if (!scene.trace(ray, &si)) {
+    // The environment seen by the cosine ray, weighted against its own sample.
+    if (environment) E += environment->radiance(wi) * (kPi * environment_hit_weight(scene, local.z * kInvPi, wi));
+  } else {
+    const glm::vec3 Le = si.emits ? si.emission : glm::vec3(0.0f);
+    if (direct && si.emits) {
+      const float w = emitter_hit_weight(scene, point.position, local.z * kInvPi, si, 1, false);
+      const glm::vec3 D = kPi * Le * w;
+      if (is_finite(D)) out.direct += D;
+      else ++counters->nonfinite_samples;
+    }
+    // The light the hit reflects (its emission is direct light, above).
+    if (max_bounces_ >= 2) E += kPi * tracer_.continue_from(si, ray, key, max_bounces_ - 1, counters);
+  }
+  return finish_indirect(E, &out, counters);
+}
+
+CachedIrradiance RadianceCache::finish_indirect(const glm::vec3& E, CachedIrradiance* out, PathCounters* counters) {
+  if (is_finite(E)) out->indirect = E;
+  else ++counters->nonfinite_samples;
+  return *out;
+}
+
+glm::vec3 RadianceCache::environment_irradiance(const ShadingPoint& x, uint64_t key, PathCounters* counters) const {
+  // The sky through a window is a small, bright part of a cell's hemisphere that cosine rays
+  // alone find a few times in a fill: one sample of the environment by its own density as
+  // well, both weighted by the power heuristic (the cosine ray's half is in estimate()).
+  Rng rng = stream(key, Purpose::kCacheFillEnvironment);
+  const glm::vec3 u(rng.next_float(), rng.next_float(), rng.next_float());
+  return sample_environment_light(*scene_, x, u, glm::vec3(1.0f), counters, Lobes::kCosine);
+}
+
+}  // namespace phyir::render
