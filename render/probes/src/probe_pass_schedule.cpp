@@ -17,6 +17,7 @@ ProbeSettings pass_settings(const ProbeSettings& base, int k) {
   s.cache.cell_size = base.cache.cell_size * shrink;
   s.cache.direct_distance_cells = base.cache.direct_distance_cells / shrink;
   s.sharing.parallax_texels = base.sharing.parallax_texels * shrink;
+  s.chain_end_paths = 1.0f - shrink * shrink;
   return s;
 }
 

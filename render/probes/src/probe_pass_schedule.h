@@ -15,9 +15,13 @@
 //   - the cache's cell: cell_size x s_k;
 //   - direct light cached from the same distance in metres (direct_distance_cells / s_k): the
 //     interpolation's error at that distance, ~0.75 (cell / distance)^2, then shrinks as s_k^2;
-//   - sharing's parallax bound: parallax_texels x s_k.
-// What has no kernel is not scheduled: the uniform-light lobe where a glossy chain ends in the
-// cache, and the photons (docs/probes.md, "Where the error is").
+//   - sharing's parallax bound: parallax_texels x s_k;
+//   - where a specular chain ends (its last hit y, after a glossy bounce, or a polished y seen
+//     in a rough lobe: path regularisation), the cache's uniformly lit lobe at y is replaced
+//     by the path tracer's own light from y with probability 1 - s_k^2, so the approximation's
+//     bias, (1 - p) times its error, shrinks as s_k^2 too.
+// The photons are combined with the directions by multiple importance sampling and need no
+// schedule.
 #include "phyir/render/probe_settings.h"
 
 namespace phyir::render {

@@ -38,6 +38,8 @@ void ProbeSettings::validate() const {
   // A million photons from each light: far more than any texel's share needs.
   if (photons_per_light < 0 || photons_per_light > 1 << 20)
     fail_setting("probe.photons_per_light", "{} must be between 0 (none) and 2^20", photons_per_light);
+  if (!(chain_end_paths >= 0.0f && chain_end_paths <= 1.0f))
+    fail_setting("probe.chain_end_paths", "{} must be a probability, between 0 and 1", chain_end_paths);
   if (!(target_error >= 0.0f && target_error < 10.0f))
     fail_setting("probe.target_error", "{} must be between 0 (one pass) and 10 (a relative error)", target_error);
 }

@@ -164,6 +164,13 @@ glm::vec3 TexelEstimator::reflected_at(const Ray& ray, const SurfaceInteraction&
   }
   if (from_glossy && y.brdf.roughness < settings_.glossy_roughness && next < kMaxSpecularDepth)
     return reflected(y, -ray.direction, next, key, c);
+  // The chain's end: in the cache, the lobe as if lit uniformly, or (progressive passes) with
+  // probability chain_end_paths the path tracer's own light, which that approximation biases.
+  if (settings_.chain_end_paths > 0.0f &&
+      stream(key, Purpose::kTexelChainEnd, uint64_t(depth)).next_float() < settings_.chain_end_paths) {
+    const int budget = std::max(settings_.path.max_bounces - std::min(next, kMaxSpecularDepth), 0);
+    return tracer_.continue_from(y, ray, stream_key(key, Purpose::kTexelChainEndPath, uint64_t(depth)), budget, c);
+  }
   return terminal(y, -ray.direction, next, key, c);
 }
 

@@ -38,6 +38,8 @@ enum class Purpose : uint64_t {
   kTexelGlass = 204,              // key of the path traced through glass
   kTexelSpecularRoulette = 205,   // whether the specular ray is followed
   kTexelLightRepeat = 206,        // key of the k-th light sample of a multi-sample estimate
+  kTexelChainEnd = 207,           // whether a specular chain's end is path traced (progressive passes)
+  kTexelChainEndPath = 208,       // key of that path
   // The probe renderer, per texel; `index` is the first sample id of a batch.
   kProbeDiscovery = 301,    // the ray that offers the texel's first hit to the cache
   kProbeStrata = 302,       // permutation of a batch's strata

@@ -60,6 +60,10 @@ struct ProbeSettings {
   // mean (plus a small floor) is hard: an edge, a highlight or a shadow boundary in it.
   float spread_threshold = 0.75f;
   float glossy_roughness = 0.3f;  // secondary hits smoother than this are traced on
+  // The probability that a specular chain's end is path traced instead of ending in the cache
+  // as a uniformly lit lobe (docs/probes.md, "The texel estimator", 5). Set by the passes'
+  // schedule (probe_pass_schedule.h): 0 in the first pass.
+  float chain_end_paths = 0.0f;
   ProbeSharing sharing;           // texels averaged with neighbouring probes' (docs/probes.md, "Sharing between neighbours")
   bool correct_foot = true;       // the cache's error at each probe's foot taken out (docs/probes.md, "The foot correction")
   // Photons from each point and spot light, and per square metre of the sun's beam where it
