@@ -7,11 +7,13 @@
 // cells (interpolation, the 3x3x3 smoothing, the concave edges' layers), the distance beyond
 // which a cell caches direct light, and sharing's parallax bound. Each biases a pass by an
 // amount that shrinks with its kernel, so pass k (k = 0 the first) takes every kernel
-// shrunk by s_k = (k + 1)^(-1/3), as progressive photon mapping shrinks its radius
-// (Hachisuka and Jensen 2009; Knaus and Zwicker 2011, whose alpha = 2/3 on the squared
-// radius is this exponent): a bias of order s_k^2 averages over n passes to order n^(-2/3),
-// which vanishes, while each pass's noise stays about the same (a cell keeps its number of
-// fill estimates), so the mean's noise still falls as n^(-1/2).
+// shrunk by s_k = (k + 1)^(-1/3), as progressive photon mapping shrinks its radius between
+// passes (Hachisuka and Jensen 2009; Knaus and Zwicker 2011): a bias of order s_k^2 averages
+// over n passes to order n^(-2/3), which vanishes. Photon mapping must shrink slowly (its
+// radius as n^(-1/6)) because fewer photons fall in a smaller disc; a cell keeps its number
+// of fill estimates whatever its size, so a pass's noise stays about the same and the mean's
+// still falls as n^(-1/2), faster than the bias: the price is the fill's cost, the cells
+// growing in number as s_k^(-2).
 //   - the cache's cell: cell_size x s_k;
 //   - direct light cached from the same distance in metres (direct_distance_cells / s_k): the
 //     interpolation's error at that distance, ~0.75 (cell / distance)^2, then shrinks as s_k^2;
