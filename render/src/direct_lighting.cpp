@@ -125,20 +125,58 @@ glm::vec3 punctual_light(const RenderScene& scene, const ShadingPoint& x, Lobes 
   return is_finite(sum) ? sum : glm::vec3(0.0f);
 }
 
-glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint& x, const glm::vec3& u,
-                                   const glm::vec3& throughput, PathCounters* counters, Lobes lobes) {
-  const EnvironmentLight* environment = scene.environment();
-  glm::vec3 wi_world, Le;
-  float pdf;
-  if (!environment || !environment->sample(u, &wi_world, &Le, &pdf) || !(pdf > 0.0f)) return glm::vec3(0.0f);
+namespace {
+
+// With light portals, the environment's next-event sample goes through them with this
+// probability, else by the environment's own density.
+constexpr float kPortalStrategyProbability = 0.5f;
+
+// One environment sample in direction wi_world of radiance Le, drawn with density `pdf`,
+// against other_pdf() (the other environment strategy's density for it, asked only of an
+// unoccluded sample) and the BRDF's.
+template <class OtherPdf>
+glm::vec3 environment_sample(const RenderScene& scene, const ShadingPoint& x, Lobes lobes, const glm::vec3& wi_world,
+                             const glm::vec3& Le, float pdf, const OtherPdf& other_pdf, const glm::vec3& throughput,
+                             PathCounters* counters) {
   const glm::vec3 wi = x.frame.to_local(wi_world);
   const glm::vec3 f = lobe_eval(x, lobes, wi);
   if (!(wi.z > 0.0f) || !can_arrive(x, wi_world) || !(max_component(f) > 0.0f)) return glm::vec3(0.0f);
   ++counters->rays;
   const float through = scene.accelerator().transmittance(Ray{shadow_origin(x), wi_world});
   if (!(through > 0.0f)) return glm::vec3(0.0f);
-  const float w = power_heuristic(pdf, lobe_pdf(x, lobes, wi));
+  const float w = power_heuristic(pdf, lobe_pdf(x, lobes, wi), other_pdf());
   return throughput * f * Le * (wi.z * w * through / pdf);
+}
+
+}  // namespace
+
+glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint& x, const glm::vec3& u,
+                                   const glm::vec3& u_portal, const glm::vec3& throughput, PathCounters* counters,
+                                   Lobes lobes) {
+  const EnvironmentLight* environment = scene.environment();
+  if (!environment) return glm::vec3(0.0f);
+  const EnvironmentPortals& portals = scene.portals();
+  glm::vec3 wi_world, Le;
+  float pdf;
+  if (portals.empty()) {
+    if (!environment->sample(u, &wi_world, &Le, &pdf) || !(pdf > 0.0f)) return glm::vec3(0.0f);
+    return environment_sample(scene, x, lobes, wi_world, Le, pdf, [] { return 0.0f; }, throughput, counters);
+  }
+  // One strategy, each chosen with probability 1/2 (one shadow ray, as without portals): the
+  // densities in every weight are the chosen ones', halved (environment_hit_weight too).
+  const float c = kPortalStrategyProbability;
+  if (u_portal.z < c) {
+    const glm::vec3 u_through(u_portal.x, u_portal.y, u_portal.z / c);
+    if (!portals.sample(x.position, u_through, &wi_world, &pdf)) return glm::vec3(0.0f);
+    const glm::vec3 d = wi_world;
+    auto environment_pdf = [&] { return (1.0f - c) * environment->pdf(d); };
+    return environment_sample(scene, x, lobes, d, environment->radiance(d), c * pdf, environment_pdf, throughput,
+                              counters);
+  }
+  if (!environment->sample(u, &wi_world, &Le, &pdf) || !(pdf > 0.0f)) return glm::vec3(0.0f);
+  const glm::vec3 d = wi_world;
+  auto portal_pdf = [&] { return c * portals.pdf(x.position, d); };
+  return environment_sample(scene, x, lobes, d, Le, (1.0f - c) * pdf, portal_pdf, throughput, counters);
 }
 
 float emitter_hit_weight(const RenderScene& scene, const glm::vec3& from, float brdf_pdf, const SurfaceInteraction& hit,
@@ -147,8 +185,11 @@ float emitter_hit_weight(const RenderScene& scene, const glm::vec3& from, float 
                                        scene.emitters().pdf(from, hit.mesh, hit.triangle, hit.position, punctual));
 }
 
-float environment_hit_weight(const RenderScene& scene, float brdf_pdf, const glm::vec3& direction) {
-  return power_heuristic(brdf_pdf, scene.environment()->pdf(direction));
+float environment_hit_weight(const RenderScene& scene, const glm::vec3& from, float brdf_pdf, const glm::vec3& direction) {
+  if (scene.portals().empty()) return power_heuristic(brdf_pdf, scene.environment()->pdf(direction));
+  const float c = kPortalStrategyProbability;
+  return power_heuristic(brdf_pdf, (1.0f - c) * scene.environment()->pdf(direction),
+                         c * scene.portals().pdf(from, direction));
 }
 
 }  // namespace phyir::render

@@ -54,7 +54,7 @@ class PathKernel {
     if (!scene_.trace(ray_, si)) {
       if (environment_) {
         const float w =
-            previous_delta_ ? 1.0f : environment_hit_weight(scene_, previous_pdf_, ray_.direction);
+            previous_delta_ ? 1.0f : environment_hit_weight(scene_, previous_position_, previous_pdf_, ray_.direction);
         L_ += beta_ * environment_->radiance(ray_.direction) * w;
       }
       return false;
@@ -108,7 +108,7 @@ class PathKernel {
       L_ += sample_emitter_light(scene_, x, u, DirectLightOptions{}, beta_, nullptr, counters_);
     }
     if constexpr (kEnvironment) {
-      if (environment_) L_ += sample_environment_light(scene_, x, environment_u_, beta_, counters_);
+      if (environment_) L_ += sample_environment_light(scene_, x, environment_u_, portal_u_, beta_, counters_);
     }
   }
 
@@ -121,6 +121,10 @@ class PathKernel {
     const float u_texel = rng.next_float();  // its own statement: argument order is unspecified
     environment_u_ = glm::vec3(u_texel, rng.next_2d());
     environment_->prefetch(environment_u_);
+    if (scene_.portals().empty()) return;  // no numbers drawn: such scenes keep their streams
+    Rng portal = stream(key_, Purpose::kPathPortal, uint64_t(bounce));
+    const float u_choice = portal.next_float();
+    portal_u_ = glm::vec3(portal.next_2d(), u_choice);
   }
 
   // The next ray, by sampling the BRDF.
@@ -176,6 +180,7 @@ class PathKernel {
   float previous_pdf_ = 0.0f;
   glm::vec3 previous_position_{0.0f};
   glm::vec3 environment_u_{0.0f};  // draw_environment_variates' numbers for this bounce
+  glm::vec3 portal_u_{0.0f};       // and the portals' (light portals only)
 };
 
 template <bool kEmitters, bool kEnvironment, bool kTransmission>

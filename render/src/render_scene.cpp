@@ -42,6 +42,7 @@ void warn_about_missing_tangents(const scenes::Scene& scene) {
 
 RenderScene::RenderScene(const scenes::Scene& scene, std::unique_ptr<EnvironmentLight> environment)
     : scene_(&scene), accelerator_(scene), emitters_(scene, &accelerator_), environment_(std::move(environment)) {
+  if (environment_) portals_ = EnvironmentPortals(scene.portals);
   warn_about_missing_tangents(scene);
 }
 

@@ -76,6 +76,13 @@ glm::vec2 sample_uniform_triangle(const glm::vec2& u) {
   return glm::vec2(b1, 1.0f - b0 - b1);
 }
 
+float power_heuristic(float pdf_a, float pdf_b, float pdf_c) {
+  if (pdf_c == 0.0f) return power_heuristic(pdf_a, pdf_b);
+  const float a2 = pdf_a * pdf_a;
+  if (std::isinf(a2)) return 1.0f;
+  return safe_div(a2, a2 + pdf_b * pdf_b + pdf_c * pdf_c);
+}
+
 float power_heuristic(float pdf_a, float pdf_b) {
   const float a2 = pdf_a * pdf_a;
   const float b2 = pdf_b * pdf_b;

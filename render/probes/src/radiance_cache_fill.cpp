@@ -121,7 +121,8 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
   ++counters->rays;
   if (!scene.trace(ray, &si)) {
     // The environment seen by the cosine ray, weighted against its own sample.
-    if (environment) E += environment->radiance(wi) * (kPi * environment_hit_weight(scene, local.z * kInvPi, wi));
+    if (environment)
+      E += environment->radiance(wi) * (kPi * environment_hit_weight(scene, point.position, local.z * kInvPi, wi));
   } else {
     const glm::vec3 Le = si.emits ? si.emission : glm::vec3(0.0f);
     if (direct && si.emits) {
@@ -148,7 +149,13 @@ glm::vec3 RadianceCache::environment_irradiance(const ShadingPoint& x, uint64_t 
   // well, both weighted by the power heuristic (the cosine ray's half is in estimate()).
   Rng rng = stream(key, Purpose::kCacheFillEnvironment);
   const glm::vec3 u(rng.next_float(), rng.next_float(), rng.next_float());
-  return sample_environment_light(*scene_, x, u, glm::vec3(1.0f), counters, Lobes::kCosine);
+  glm::vec3 u_portal(0.0f);
+  if (!scene_->portals().empty()) {
+    Rng portal = stream(key, Purpose::kCacheFillPortal);
+    const float u_choice = portal.next_float();
+    u_portal = glm::vec3(portal.next_2d(), u_choice);
+  }
+  return sample_environment_light(*scene_, x, u, u_portal, glm::vec3(1.0f), counters, Lobes::kCosine);
 }
 
 }  // namespace phyir::render

@@ -88,9 +88,13 @@ glm::vec3 punctual_light(const RenderScene& scene, const ShadingPoint& x, Lobes 
                          const float* diffuse_elsewhere = nullptr);
 
 // The same towards the environment, through `lobes` (the path tracer: kAll; the radiance
-// cache's fill: kCosine, irradiance).
+// cache's fill: kCosine, irradiance): one direction by the environment's own density (u) or,
+// where the scene has light portals, through them (u_portal; unused without), each chosen
+// with probability 1/2 by u_portal.z and weighted against the other and the BRDF's density
+// by the power heuristic (environment_hit_weight is the BRDF ray's weight against both).
 glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint& x, const glm::vec3& u,
-                                   const glm::vec3& throughput, PathCounters* counters, Lobes lobes = Lobes::kAll);
+                                   const glm::vec3& u_portal, const glm::vec3& throughput, PathCounters* counters,
+                                   Lobes lobes = Lobes::kAll);
 
 // The MIS weight of a BRDF-sampled ray from `from` with density `brdf_pdf` (solid angle,
 // the probability of tracing it included) that hits the emitter at `hit`, against
@@ -99,7 +103,8 @@ glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint&
 float emitter_hit_weight(const RenderScene& scene, const glm::vec3& from, float brdf_pdf, const SurfaceInteraction& hit,
                          int light_samples = 1, bool punctual = true);
 
-// The same for a ray that leaves the scene and sees the environment in `direction`.
-float environment_hit_weight(const RenderScene& scene, float brdf_pdf, const glm::vec3& direction);
+// The same for a ray from `from` that leaves the scene and sees the environment in
+// `direction`, against the environment's sample and (with portals) the portals'.
+float environment_hit_weight(const RenderScene& scene, const glm::vec3& from, float brdf_pdf, const glm::vec3& direction);
 
 }  // namespace phyir::render

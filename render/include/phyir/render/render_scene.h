@@ -6,6 +6,7 @@
 #include "phyir/render/accelerator.h"
 #include "phyir/render/emitter_sampler.h"
 #include "phyir/render/environment_light.h"
+#include "phyir/render/environment_portals.h"
 #include "phyir/render/interaction.h"
 #include "phyir/render/ray.h"
 #include "phyir/scenes/scene.h"
@@ -21,6 +22,8 @@ class RenderScene {
   const Accelerator& accelerator() const { return accelerator_; }
   const EmitterSampler& emitters() const { return emitters_; }
   const EnvironmentLight* environment() const { return environment_.get(); }
+  // The scene's light portals (scenes::Portal), where it has an environment; else empty.
+  const EnvironmentPortals& portals() const { return portals_; }
 
   // Interpolates attributes and evaluates the material (textures, factors, alpha,
   // normal map) at `hit` of `ray`. Never produces NaN: degenerate triangles fall back to
@@ -41,6 +44,7 @@ class RenderScene {
   Accelerator accelerator_;
   EmitterSampler emitters_;
   std::unique_ptr<EnvironmentLight> environment_;
+  EnvironmentPortals portals_;
 };
 
 }  // namespace phyir::render

@@ -31,6 +31,9 @@ glm::vec2 sample_uniform_triangle(const glm::vec2& u);
 
 // Balance-free power heuristic (beta = 2) for multiple importance sampling.
 float power_heuristic(float pdf_a, float pdf_b);
+// The same with three strategies, one sample each: pdf_a^2 / (pdf_a^2 + pdf_b^2 + pdf_c^2);
+// exactly the two-strategy weight where pdf_c is 0.
+float power_heuristic(float pdf_a, float pdf_b, float pdf_c);
 
 // A piecewise-constant 1D distribution, for light and environment sampling.
 class Distribution1D {

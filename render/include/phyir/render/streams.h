@@ -24,6 +24,7 @@ enum class Purpose : uint64_t {
   kPathEnvironment = 3,  // next-event estimation on the environment
   kPathRoulette = 4,     // Russian roulette
   kPathGlass = 5,        // lobe choice and direction at glass
+  kPathPortal = 6,       // next-event estimation on the environment through the light portals
   // The radiance cache, per estimate.
   kCacheFallbackDirection = 102,  // a lookup outside every cell
   kCacheFillDirections = 103,     // permutation of a cache point's stratified cosine directions
@@ -31,6 +32,7 @@ enum class Purpose : uint64_t {
   kCacheFillLightPoints = 105,    // permutation of a cache point's stratified light points
   kCachePoint = 106,              // per item (cell), index = the cell's point: its fill's key
   kCacheFillEnvironment = 107,    // the environment sample of a fill estimate
+  kCacheFillPortal = 108,         // its sample through the light portals
   // The probe texel estimator, per specular depth.
   kTexelLight = 201,              // a next-event sample
   kTexelBrdf = 202,               // the BRDF- or GGX-sampled ray

@@ -133,6 +133,14 @@ struct SceneEnvironment {
   float scale = 1.0f;
 };
 
+// A light portal: an opening (a window) through which the environment lights the interior,
+// the parallelogram corner + a edge_u + b edge_v (a, b in [0, 1]), edge_u x edge_v pointing
+// into the interior. Renderers sample the environment through it (environment_portals.h);
+// it is not geometry (docs/gltf-support.md#light-portals).
+struct Portal {
+  glm::vec3 corner{0.0f}, edge_u{0.0f}, edge_v{0.0f};
+};
+
 struct Bounds {
   glm::vec3 min{1e30f};
   glm::vec3 max{-1e30f};
@@ -175,6 +183,7 @@ struct Scene {
   // Further valid viewpoints (world space), from the scene's extras.phyir.candidate_viewpoints.
   std::vector<glm::vec3> candidate_viewpoints;
   std::optional<SceneEnvironment> environment;  // from the scene's extras.phyir.environment
+  std::vector<Portal> portals;  // from the scene's extras.phyir.portals
   Bounds bounds;
   std::vector<std::string> warnings;  // everything the loader skipped or approximated
 

@@ -58,12 +58,35 @@ GltfCamera living_room_camera(const ApartmentPlan& plan, const std::vector<Apart
   return camera;
 }
 
+// A window to the outside as a light portal (phyir::scenes::Portal): the hole's outer face,
+// its edges crossed into the room.
+nlohmann::json window_portal(const WallOpening& o) {
+  const int along = o.wall_axis == 0 ? 0 : 1, across = 1 - along;
+  const float face = o.outward[across] > 0.0f ? o.footprint.max[across] : o.footprint.min[across];
+  auto world = [](const glm::vec2& plan, float y) { return glm::vec3(plan.x, y, plan.y); };
+  glm::vec2 start, width(0.0f);
+  start[along] = o.footprint.min[along];
+  start[across] = face;
+  width[along] = o.width();
+  glm::vec3 u = world(width, 0.0f), v(0.0f, o.top - o.bottom, 0.0f);
+  const glm::vec3 inward = -world(o.outward, 0.0f);
+  if (glm::dot(glm::cross(u, v), inward) < 0.0f) std::swap(u, v);
+  auto mm = [](const glm::vec3& p) {
+    return nlohmann::json::array({std::round(p.x * 1000.0) / 1000.0, std::round(p.y * 1000.0) / 1000.0,
+                                  std::round(p.z * 1000.0) / 1000.0});
+  };
+  return {{"corner", mm(world(start, o.bottom))}, {"edge_u", mm(u)}, {"edge_v", mm(v)}};
+}
+
 nlohmann::json scene_extras(const ApartmentPlan& plan, const std::vector<ApartmentViewpoint>& viewpoints,
                             ApartmentLighting lighting, const PiecesWritten& pieces) {
   nlohmann::json points = nlohmann::json::array(), rooms = nlohmann::json::array();
   for (const ApartmentViewpoint& v : viewpoints)
     points.push_back({std::round(v.position.x * 1000.0) / 1000.0, std::round(v.position.y * 1000.0) / 1000.0,
                       std::round(v.position.z * 1000.0) / 1000.0});
+  nlohmann::json portals = nlohmann::json::array();
+  for (const WallOpening& o : plan.openings)
+    if (o.kind == WallOpeningKind::Window && o.other < 0) portals.push_back(window_portal(o));
   for (const ApartmentRoom& r : plan.rooms)
     rooms.push_back({{"name", r.name}, {"type", room_type_name(r.type)},
                      {"floor", {r.floor.min.x, r.floor.min.y, r.floor.max.x, r.floor.max.y}}});
@@ -74,6 +97,7 @@ nlohmann::json scene_extras(const ApartmentPlan& plan, const std::vector<Apartme
             {"index", plan.index},
             {"lighting", apartment_lighting_name(lighting)},
             {"rooms", rooms},
+            {"portals", portals},
             {"emission_unit", "W/(sr m^2) = emissiveFactor * KHR_materials_emissive_strength"}}},
           {"attribution", pieces.attributions}};
 }

@@ -9,6 +9,7 @@
 
 #include "gltf/read/gltf_cameras.h"
 #include "gltf/read/gltf_environment.h"
+#include "gltf/read/gltf_portals.h"
 #include "gltf/read/gltf_extensions.h"
 #include "gltf/read/gltf_file.h"
 #include "gltf/read/gltf_geometry.h"
@@ -237,6 +238,7 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
   scene.lights = read_lights(ctx, instances);
   scene.candidate_viewpoints = read_candidate_viewpoints(ctx, default_scene);
   scene.environment = read_environment(ctx, default_scene, path);
+  scene.portals = read_portals(ctx, default_scene);
   scene.info = source_info(model, default_scene, counts);
   scene.bounds = scene.compute_bounds();
   // Camera hits filter textures to their footprint; each pyramid is independent of the others.
