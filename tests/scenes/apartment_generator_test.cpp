@@ -64,6 +64,18 @@ TEST(ApartmentGenerator, FixtureLibraryFurnishesWhatItHasAndNamesWhatItLacks) {
   }
   EXPECT_GT(tables, 0u);
   EXPECT_GT(windows, 0u);
+  // Every window to the outside is a light portal facing into the apartment: a step inwards
+  // from its centre is inside the scene's bounds, a step outwards is not.
+  ASSERT_FALSE(scene.portals.empty());
+  for (const Portal& p : scene.portals) {
+    const glm::vec3 centre = p.corner + 0.5f * (p.edge_u + p.edge_v);
+    const glm::vec3 inward = glm::normalize(glm::cross(p.edge_u, p.edge_v));
+    auto inside = [&](const glm::vec3& q) {
+      return glm::all(glm::greaterThan(q, scene.bounds.min)) && glm::all(glm::lessThan(q, scene.bounds.max));
+    };
+    EXPECT_TRUE(inside(centre + 0.5f * inward));
+    EXPECT_FALSE(inside(centre - 0.5f * inward));
+  }
 }
 
 TEST(ApartmentGenerator, NightHasNoSkyAndDayAndNightShareTheFurniture) {
