@@ -27,6 +27,7 @@ struct GenerateOptions {
   std::string assets = scenes::kDefaultAssetDir.string();  // apartments only
   std::string lighting = "mixed";                          // apartments only: day, night or mixed
   int rooms = 0;                                           // apartments only: 0 = from the seed
+  bool portals = false;                                    // apartments only: windows as light portals
 };
 
 nlohmann::json to_json(const scenes::RoomSummary& s, int index) {
@@ -65,6 +66,7 @@ scenes::AssetLibrary open_furniture_library(const std::filesystem::path& dir) {
 scenes::ApartmentOptions apartment_options(const GenerateOptions& options) {
   scenes::ApartmentOptions a;
   a.rooms = options.rooms;
+  a.portals = options.portals;
   if (options.lighting == "day") a.lighting = scenes::ApartmentLighting::Day;
   else if (options.lighting == "night") a.lighting = scenes::ApartmentLighting::Night;
   else if (options.lighting != "mixed") fail("--lighting must be day, night or mixed, got '{}'", options.lighting);
@@ -139,6 +141,9 @@ void add_scenes_generate_command(CLI::App& scenes) {
       ->capture_default_str();
   cmd->add_option("--rooms", options->rooms, "apartment: rooms per apartment, 2 to 6; 0 draws it from the seed")
       ->capture_default_str();
+  cmd->add_flag("--portals", options->portals,
+                "apartment: declare the windows as light portals, through which the renderers sample the sky "
+                "(docs/gltf-support.md#light-portals)");
   cmd->callback([options] { run(*options); });
 }
 

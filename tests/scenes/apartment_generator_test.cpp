@@ -37,6 +37,7 @@ TEST(ApartmentGenerator, FixtureLibraryFurnishesWhatItHasAndNamesWhatItLacks) {
   ApartmentOptions options;
   options.rooms = 2;  // a living room without a kitchen: it gets the dining set
   options.lighting = ApartmentLighting::Day;
+  options.portals = true;
   const fs::path a = fresh_dir("a"), b = fresh_dir("b");
   const ApartmentSummary s = generate_apartment(a, 0, 5, library, options);
   generate_apartment(b, 0, 5, library, options);

@@ -29,6 +29,10 @@ std::vector<ApartmentViewpoint> plan_apartment_viewpoints(const ApartmentPlan& p
 struct ApartmentOptions {
   std::optional<ApartmentLighting> lighting;  // unset: day or night from the seed
   int rooms = 0;                              // 0: 2 to 6 from the seed
+  // Declare the windows to the outside as light portals (extras.phyir.portals), through which
+  // renderers sample the sky. Off by default: on the suite's day apartments, whose sun
+  // dominates, they cost more time than they save (docs/gltf-support.md#light-portals).
+  bool portals = false;
 };
 
 struct ApartmentSummary {

@@ -79,27 +79,26 @@ nlohmann::json window_portal(const WallOpening& o) {
 }
 
 nlohmann::json scene_extras(const ApartmentPlan& plan, const std::vector<ApartmentViewpoint>& viewpoints,
-                            ApartmentLighting lighting, const PiecesWritten& pieces) {
+                            ApartmentLighting lighting, const PiecesWritten& pieces, bool with_portals) {
   nlohmann::json points = nlohmann::json::array(), rooms = nlohmann::json::array();
   for (const ApartmentViewpoint& v : viewpoints)
     points.push_back({std::round(v.position.x * 1000.0) / 1000.0, std::round(v.position.y * 1000.0) / 1000.0,
                       std::round(v.position.z * 1000.0) / 1000.0});
   nlohmann::json portals = nlohmann::json::array();
   for (const WallOpening& o : plan.openings)
-    if (o.kind == WallOpeningKind::Window && o.other < 0) portals.push_back(window_portal(o));
+    if (with_portals && o.kind == WallOpeningKind::Window && o.other < 0) portals.push_back(window_portal(o));
   for (const ApartmentRoom& r : plan.rooms)
     rooms.push_back({{"name", r.name}, {"type", room_type_name(r.type)},
                      {"floor", {r.floor.min.x, r.floor.min.y, r.floor.max.x, r.floor.max.y}}});
-  return {{"phyir",
-           {{"candidate_viewpoints", points},
-            {"preset", "apartment"},
-            {"seed", plan.seed},
-            {"index", plan.index},
-            {"lighting", apartment_lighting_name(lighting)},
-            {"rooms", rooms},
-            {"portals", portals},
-            {"emission_unit", "W/(sr m^2) = emissiveFactor * KHR_materials_emissive_strength"}}},
-          {"attribution", pieces.attributions}};
+  nlohmann::json phyir = {{"candidate_viewpoints", points},
+                          {"preset", "apartment"},
+                          {"seed", plan.seed},
+                          {"index", plan.index},
+                          {"lighting", apartment_lighting_name(lighting)},
+                          {"rooms", rooms},
+                          {"emission_unit", "W/(sr m^2) = emissiveFactor * KHR_materials_emissive_strength"}};
+  if (!portals.empty()) phyir["portals"] = portals;
+  return {{"phyir", phyir}, {"attribution", pieces.attributions}};
 }
 
 }  // namespace
@@ -122,7 +121,8 @@ ApartmentSummary generate_apartment(const fs::path& out_dir, int index, uint64_t
   const PiecesWritten pieces = add_apartment_pieces(doc, furnishing, models, stem, material_rng);
   if (lighting == ApartmentLighting::Day) add_daylight(doc, out_dir, stem, light_rng);
   doc.cameras.push_back(living_room_camera(plan, viewpoints));
-  doc.scene_extras = scene_extras(plan, viewpoints, lighting, pieces);
+  doc.scene_extras =
+      scene_extras(plan, viewpoints, lighting, pieces, options.portals && lighting == ApartmentLighting::Day);
   write_gltf(out_dir / (stem + ".gltf"), doc);
 
   ApartmentSummary summary;
