@@ -1,7 +1,7 @@
 #pragma once
 // Light portals: the openings (windows) through which the environment lights an interior,
-// sampled so that directions towards the sky go where the sky can be seen (docs/
-// conventions.md, "Light portals"; as Cycles' portal lights and Mitsuba's and Arnold's
+// sampled so that directions towards the sky go where the sky can be seen
+// (docs/gltf-support.md#light-portals; as Cycles' portal lights and Mitsuba's and Arnold's
 // equivalents).
 //
 // From a point x inside, a direction is drawn uniformly over the solid angle the portals
@@ -9,9 +9,9 @@
 // uniformly inside it (Arvo's spherical triangles, spherical_triangle.h). Its density is
 // (portals the direction passes through) / (their total solid angle), so overlapping portals
 // stay exact. It says nothing about the environment's brightness: next-event estimation
-// combines it with the environment's own density and the BRDF's by multiple importance
-// sampling (direct_lighting.h), and every strategy keeps its weight, so a portal missing
-// from the list only costs noise, never light.
+// chooses it or the environment's own density per sample and weights both against the
+// BRDF's by multiple importance sampling (direct_lighting.h); every strategy keeps its
+// weight, so a portal missing from the list only costs noise, never light.
 #include <vector>
 
 #include <glm/glm.hpp>
