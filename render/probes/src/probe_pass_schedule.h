@@ -18,10 +18,12 @@
 //   - direct light cached from the same distance in metres (direct_distance_cells / s_k): the
 //     interpolation's error at that distance, ~0.75 (cell / distance)^2, then shrinks as s_k^2;
 //   - sharing's parallax bound: parallax_texels x s_k;
-//   - where a specular chain ends (its last hit y, after a glossy bounce, or a polished y seen
-//     in a rough lobe: path regularisation), the cache's uniformly lit lobe at y is replaced
-//     by the path tracer's own light from y with probability 1 - s_k^2, so the approximation's
-//     bias, (1 - p) times its error, shrinks as s_k^2 too.
+//   - where a specular chain ends on a glossy y (the chain's cap, or a polished y seen in a
+//     rough lobe: path regularisation), the cache's uniformly lit lobe at y is replaced by the
+//     path tracer's own light from y with probability 1 - s_k^2, so the approximation's bias,
+//     (1 - p) times its error, shrinks as s_k^2 too. On a rough y (roughness >=
+//     glossy_roughness) the lobe stays: nearly uniform, its error is a small part of a small
+//     specular share, and a full path there would double a pass's cost.
 // The photons are combined with the directions by multiple importance sampling and need no
 // schedule.
 #include "phyir/render/probe_settings.h"

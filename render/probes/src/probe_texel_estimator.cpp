@@ -164,9 +164,11 @@ glm::vec3 TexelEstimator::reflected_at(const Ray& ray, const SurfaceInteraction&
   }
   if (from_glossy && y.brdf.roughness < settings_.glossy_roughness && next < kMaxSpecularDepth)
     return reflected(y, -ray.direction, next, key, c);
-  // The chain's end: in the cache, the lobe as if lit uniformly, or (progressive passes) with
-  // probability chain_end_paths the path tracer's own light, which that approximation biases.
-  if (settings_.chain_end_paths > 0.0f &&
+  // The chain's end: in the cache, the lobe as if lit uniformly, or (progressive passes), on a
+  // glossy y, with probability chain_end_paths the path tracer's own light: there the uniform
+  // lobe misses the sharp images y reflects. A rough y's lobe is nearly uniform, and a path
+  // from it would cost a full path for a few percent of its light.
+  if (settings_.chain_end_paths > 0.0f && glossy(y.brdf) &&
       stream(key, Purpose::kTexelChainEnd, uint64_t(depth)).next_float() < settings_.chain_end_paths) {
     const int budget = std::max(settings_.path.max_bounces - std::min(next, kMaxSpecularDepth), 0);
     return tracer_.continue_from(y, ray, stream_key(key, Purpose::kTexelChainEndPath, uint64_t(depth)), budget, c);
