@@ -2,8 +2,9 @@
 # `phyir render --probes` end to end on a generated `mini` room with a small grid: the four
 # probe files exist with the promised sizes, hold no NaN, Inf or negative radiance, the mask
 # is 1 exactly where a probe is a valid label, render.json has its "probes" block; same seed
-# gives identical probes with --threads 1 and 2; turning probes on leaves color.exr as it
-# was and writes nothing of the probes when off; bad probe flags fail with a message.
+# gives identical probes with --threads 1 and 2 (with --probe-error too, whose passes
+# render.json reports); turning probes on leaves color.exr as it was and writes nothing of
+# the probes when off; bad probe flags fail with a message.
 #   $1 = phyir binary, $2 = scratch folder (emptied).
 set -euo pipefail
 phyir=$1
@@ -75,13 +76,34 @@ assert "probes.exr" in r["files"], r["files"]
 assert "probes" not in json.load(open(f"{plain}/render.json")), "probes block without --probes"
 PY
 
+# An error target: more passes where the noise is, reported in render.json, the same output
+# whatever the thread count.
+target=(--probe-error 0.02)
+"$phyir" --log-level warn render "$scene" --out "$work/t1" "${common[@]}" "${probes[@]}" "${target[@]}" --threads 1
+"$phyir" --log-level warn render "$scene" --out "$work/t2" "${common[@]}" "${probes[@]}" "${target[@]}" --threads 2
+for f in probes.exr probe_stderr.exr; do
+  cmp -s "$work/t1/$f" "$work/t2/$f" || die "$f with --probe-error differs between --threads 1 and 2"
+done
+/usr/bin/python3 - "$work/a" "$work/t1" <<'PY' || die "error target check failed"
+import json, sys
+once = json.load(open(f"{sys.argv[1]}/render.json"))["probes"]
+more = json.load(open(f"{sys.argv[2]}/render.json"))["probes"]
+assert "target_relative" not in once["error"] and once["error"]["estimated_relative"] > 0.02, once["error"]
+e = more["error"]
+assert abs(e["target_relative"] - 0.02) < 1e-6 and e["passes"] > 1 and e["refined_probes"] > 0, e
+assert e["estimated_relative"] <= 0.02 * (1 + 1e-5) or e["passes"] == 16, e
+assert e["estimated_relative"] < once["error"]["estimated_relative"], (e, once["error"])
+assert more["target_error"] == 0.02 or abs(more["target_error"] - 0.02) < 1e-6, more
+PY
+
 # Bad probe flags: a clear message, a non-zero exit, no render.json.
 if "$phyir" render "$scene" --out "$work/bad" --probes --probe-grid 8 2> "$work/err.txt"; then die "--probe-grid 8 accepted"; fi
 grep -q -- "--probe-grid" "$work/err.txt" || die "error does not name --probe-grid: $(cat "$work/err.txt")"
 if "$phyir" render "$scene" --out "$work/bad" --probes --probe-mode fast 2> "$work/err.txt"; then die "--probe-mode fast accepted"; fi
 grep -q -- "--probe-mode" "$work/err.txt" || die "error does not name --probe-mode"
 if "$phyir" render "$scene" --out "$work/bad" --probes --probe-spp 0 2> "$work/err.txt"; then die "--probe-spp 0 accepted"; fi
-for bad in "--probe-spread-threshold 0" "--probe-cache-direct-cells -1" "--probe-share-radius 5" "--probe-share-parallax 0"; do
+for bad in "--probe-spread-threshold 0" "--probe-cache-direct-cells -1" "--probe-share-radius 5" "--probe-share-parallax 0" \
+           "--probe-error -0.1"; do
   flag=${bad%% *}
   # shellcheck disable=SC2086
   if "$phyir" render "$scene" --out "$work/bad" --probes $bad 2> "$work/err.txt"; then die "$bad accepted"; fi
