@@ -20,6 +20,7 @@ void add_train_slurm_command(CLI::App& train);      // command_train_slurm.cpp
 void add_infer_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
+void add_insert_command(CLI::App& app);             // command_insert.cpp
 void add_bench_probes_command(CLI::App& bench);      // command_bench_probes.cpp
 void add_bench_model_command(CLI::App& bench);       // command_bench_model.cpp
 void add_bench_suite_command(CLI::App& bench);       // command_bench_suite.cpp

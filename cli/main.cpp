@@ -60,6 +60,7 @@ int main(int argc, char** argv) {
   phyir::cli::add_infer_command(app);
   phyir::cli::add_eval_command(app);
   phyir::cli::add_bench_command(app);
+  phyir::cli::add_insert_command(app);
 
   try {
     app.parse(argc, argv);

@@ -160,6 +160,7 @@ glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint&
   float pdf;
   if (portals.empty()) {
     if (!environment->sample(u, &wi_world, &Le, &pdf) || !(pdf > 0.0f)) return glm::vec3(0.0f);
+    if (environment->positional()) Le = environment->radiance_at(x.position, wi_world);
     return environment_sample(scene, x, lobes, wi_world, Le, pdf, [] { return 0.0f; }, throughput, counters);
   }
   // One strategy, each chosen with probability 1/2 (one shadow ray, as without portals): the
@@ -170,10 +171,11 @@ glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint&
     if (!portals.sample(x.position, u_through, &wi_world, &pdf)) return glm::vec3(0.0f);
     const glm::vec3 d = wi_world;
     auto environment_pdf = [&] { return (1.0f - c) * environment->pdf(d); };
-    return environment_sample(scene, x, lobes, d, environment->radiance(d), c * pdf, environment_pdf, throughput,
+    return environment_sample(scene, x, lobes, d, environment->radiance_at(x.position, d), c * pdf, environment_pdf, throughput,
                               counters);
   }
   if (!environment->sample(u, &wi_world, &Le, &pdf) || !(pdf > 0.0f)) return glm::vec3(0.0f);
+  if (environment->positional()) Le = environment->radiance_at(x.position, wi_world);
   const glm::vec3 d = wi_world;
   auto portal_pdf = [&] { return c * portals.pdf(x.position, d); };
   return environment_sample(scene, x, lobes, d, Le, (1.0f - c) * pdf, portal_pdf, throughput, counters);

@@ -55,7 +55,7 @@ class PathKernel {
       if (environment_) {
         const float w =
             previous_delta_ ? 1.0f : environment_hit_weight(scene_, previous_position_, previous_pdf_, ray_.direction);
-        L_ += beta_ * environment_->radiance(ray_.direction) * w;
+        L_ += beta_ * environment_->radiance_at(previous_position_, ray_.direction) * w;
       }
       return false;
     }

@@ -1,0 +1,39 @@
+#pragma once
+// The light the local scene is rendered under (docs/insert.md "Lighting"):
+//   gt         the view's probes.exr, spatially varying (ProbeField)
+//   predicted  a prediction folder's probes.exr (`phyir infer`), spatially varying
+//   global     one probe for the whole object: the valid probe nearest the placement pixel
+//   constant   one colour from every direction: the mean radiance of the view's valid probes
+//   FILE       an HDR equirect environment file, the same everywhere
+// Spatially varying sources sample directions by the global probe's texels and take the
+// radiance from the probes nearest each path vertex (render::PositionalRadiance).
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "phyir/insert/insert_view.h"
+#include "phyir/render/environment_light.h"
+#include "phyir/view/probe_mosaic.h"
+
+namespace phyir::insert {
+
+struct LightingRequest {
+  std::string source = "gt";            // gt | predicted | global | constant | an HDR file
+  std::filesystem::path predicted_dir;  // the prediction folder (predicted)
+};
+
+struct Lighting {
+  std::unique_ptr<render::EnvironmentLight> environment;
+  nlohmann::json record;  // what insert.json says about it
+};
+
+// The probes of `dir`, checked against the view: the grid must have the panorama's aspect ratio
+// (one probe per block of pixels). Missing or mismatched: phyir::Error naming the file.
+view::ProbeMosaic read_view_probes(const std::filesystem::path& dir, const InsertView& view);
+
+// The lighting for an object standing on pixel (x, y) of `view`.
+Lighting make_lighting(const LightingRequest& request, const InsertView& view, int x, int y);
+
+}  // namespace phyir::insert

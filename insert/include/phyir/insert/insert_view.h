@@ -1,0 +1,42 @@
+#pragma once
+// A view as insertion reads it (docs/conventions.md "View folders"): the background colour,
+// the first-surface maps that give the world point and material under a pixel, the camera
+// centre, and the exposure and display view its PNGs were made with. A dataset view folder or
+// a `phyir render` folder; the maps may come from a prediction folder (`phyir infer`).
+#include <filesystem>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "phyir/core/image.h"
+
+namespace phyir::insert {
+
+struct InsertView {
+  std::filesystem::path dir;
+  Image color;                  // linear HDR background (color.exr)
+  Image depth, normal;          // Euclidean distance from the camera; world normal
+  Image basecolor, roughness, metalness;
+  glm::vec3 camera{0.0f};       // panorama centre, metres
+  double exposure_stops = 0.0;  // input.png's (view.json), else color.png's (render.json), else 0
+  std::string display_view = "Standard";
+  int width() const { return color.width; }
+  int height() const { return color.height; }
+};
+
+// Reads `dir`; `maps_dir` (empty: `dir`) holds depth, normal and the material maps. Missing or
+// mismatched files: phyir::Error naming the file and the problem.
+InsertView read_insert_view(const std::filesystem::path& dir, const std::filesystem::path& maps_dir = {});
+
+// What a pixel of the view shows: its world point, normal and material.
+struct SurfacePoint {
+  glm::vec3 position{0.0f}, normal{0.0f, 1.0f, 0.0f};
+  glm::vec3 base_color{0.5f};
+  float roughness = 1.0f, metalness = 0.0f;
+};
+
+// The surface under pixel (x, y), the world point at the pixel centre: camera + depth x the
+// pixel's direction. A pixel outside the image or on no surface (depth 0): phyir::Error.
+SurfacePoint surface_at(const InsertView& view, int x, int y);
+
+}  // namespace phyir::insert

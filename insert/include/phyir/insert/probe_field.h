@@ -1,0 +1,37 @@
+#pragma once
+// A view's probe grid as light that varies with position (render::PositionalRadiance): a
+// world point is projected into the panorama from the camera, and the radiance arriving there
+// from a direction is the bilinear blend, over the four grid cells around that projection, of
+// the valid probes' texels in that direction (invalid probes take no weight). Where none of the
+// four is valid, the nearest valid probe of the grid along the row, then anywhere.
+#include <glm/glm.hpp>
+
+#include <vector>
+
+#include "phyir/render/environment_light.h"
+#include "phyir/view/probe_mosaic.h"
+
+namespace phyir::insert {
+
+class ProbeField : public render::PositionalRadiance {
+ public:
+  // `camera`: the panorama's centre. The mosaic must hold at least one valid probe.
+  ProbeField(const view::ProbeMosaic& probes, const glm::vec3& camera);
+
+  glm::vec3 radiance(const glm::vec3& position, const glm::vec3& direction) const override;
+  // Probe (i, j)'s radiance from `direction` (its texel, piecewise constant).
+  glm::vec3 probe_radiance(int i, int j, const glm::vec3& direction) const;
+  // The grid cell (i, j) a world point projects to (the probe nearest it on the grid).
+  glm::ivec2 cell_of(const glm::vec3& position) const;
+  // The probe (row i, column j) used where cell (i, j) and its neighbours are all invalid.
+  glm::ivec2 nearest_valid(int i, int j) const;
+  // The mean of every valid probe's texels, weighted by solid angle (the constant baseline).
+  glm::vec3 mean_radiance() const;
+
+ private:
+  view::ProbeMosaic probes_;
+  glm::vec3 camera_;
+  std::vector<glm::ivec2> fallback_;  // per cell, the valid probe nearest it
+};
+
+}  // namespace phyir::insert

@@ -1,0 +1,49 @@
+#include "phyir/insert/differential_composite.h"
+
+#include <algorithm>
+
+#include "phyir/core/error.h"
+
+namespace phyir::insert {
+
+namespace {
+
+// Whether a local surface at `local` metres is in front of (or on) the view's at `view`.
+bool in_front(float local, float view) {
+  return !(view > 0.0f) || local <= view + kDepthToleranceMetres + kDepthToleranceRelative * view;
+}
+
+}  // namespace
+
+Composite differential_composite(const Image& background, const Image& view_depth, const LocalRender& with_object,
+                                 const LocalRender& without_object) {
+  const int w = background.width, h = background.height;
+  for (const Image* i : {&view_depth, &with_object.color, &with_object.depth, &without_object.color,
+                         &without_object.depth})
+    if (i->width != w || i->height != h) fail("differential composite: images of different sizes");
+  Composite out;
+  out.color = Image(w, h, 3);
+  out.mask = Image(w, h, 1);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float vd = view_depth.at(x, y, 0);
+      const bool hit = with_object.mask.at(x, y, 0) > 0.5f, surface = without_object.mask.at(x, y, 0) > 0.5f;
+      const float d = with_object.depth.at(x, y, 0);
+      // The object: seen where the surface-only render sees nothing or something farther.
+      const bool object = hit && (!surface || d < without_object.depth.at(x, y, 0) - 1e-4f) && in_front(d, vd);
+      out.mask.at(x, y, 0) = object ? 1.0f : 0.0f;
+      for (int c = 0; c < 3; ++c) {
+        const float bg = background.at(x, y, c);
+        float v = bg;
+        if (object) {
+          v = with_object.color.at(x, y, c);
+        } else if (surface && in_front(without_object.depth.at(x, y, 0), vd)) {
+          v = std::max(0.0f, bg + (with_object.color.at(x, y, c) - without_object.color.at(x, y, c)));
+        }
+        out.color.at(x, y, c) = v;
+      }
+    }
+  return out;
+}
+
+}  // namespace phyir::insert

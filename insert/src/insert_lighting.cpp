@@ -1,0 +1,84 @@
+#include "phyir/insert/insert_lighting.h"
+
+#include "phyir/core/error.h"
+#include "phyir/core/image_io.h"
+#include "phyir/insert/probe_field.h"
+#include "phyir/view/view_files.h"
+
+namespace phyir::insert {
+
+namespace fs = std::filesystem;
+
+view::ProbeMosaic read_view_probes(const fs::path& dir, const InsertView& view) {
+  if (!view::has_probes(dir))
+    fail("{}: missing (render the view with --probes, or choose --lighting global/constant/FILE with a view "
+         "that has them)",
+         (dir / view::kProbesFile).string());
+  view::ProbeMosaic probes = view::read_probe_mosaic(dir);
+  const view::ProbeLayout& l = probes.layout;
+  // One probe per block of pixels: the grid and the panorama share their aspect ratio.
+  if (int64_t(l.grid_width) * view.height() != int64_t(l.grid_height) * view.width())
+    fail("{}: a {}x{} probe grid does not match the {}x{} view {} (probe grids have the panorama's aspect ratio)",
+         (dir / view::kProbeMaskFile).string(), l.grid_height, l.grid_width, view.height(), view.width(),
+         view.dir.string());
+  return probes;
+}
+
+namespace {
+
+// The probe grid cell of pixel (x, y).
+glm::ivec2 pixel_cell(const view::ProbeLayout& l, const InsertView& view, int x, int y) {
+  return {std::min(l.grid_height - 1, y * l.grid_height / view.height()),
+          std::min(l.grid_width - 1, x * l.grid_width / view.width())};
+}
+
+Lighting from_probes(const view::ProbeMosaic& probes, const InsertView& view, int x, int y, bool varying) {
+  auto field = std::make_shared<ProbeField>(probes, view.camera);
+  const glm::ivec2 cell = pixel_cell(probes.layout, view, x, y);
+  const glm::ivec2 nearest = field->nearest_valid(cell.x, cell.y);
+  Lighting lighting;
+  lighting.environment = std::make_unique<render::EnvironmentLight>(probes.probe(nearest.x, nearest.y));
+  if (varying) lighting.environment->set_positional(field);
+  lighting.record = {{"global_probe", {nearest.x, nearest.y}},
+                     {"grid", {probes.layout.grid_height, probes.layout.grid_width}},
+                     {"resolution", {probes.layout.res_height, probes.layout.res_width}},
+                     {"spatially_varying", varying}};
+  return lighting;
+}
+
+Lighting constant(const view::ProbeMosaic& probes, const InsertView& view) {
+  const glm::vec3 mean = ProbeField(probes, view.camera).mean_radiance();
+  Image one(1, 1, 3);
+  for (int k = 0; k < 3; ++k) one.pixels[size_t(k)] = mean[k];
+  Lighting lighting;
+  lighting.environment = std::make_unique<render::EnvironmentLight>(one);
+  lighting.record = {{"radiance", {mean.x, mean.y, mean.z}}, {"spatially_varying", false}};
+  return lighting;
+}
+
+}  // namespace
+
+Lighting make_lighting(const LightingRequest& request, const InsertView& view, int x, int y) {
+  Lighting lighting;
+  const std::string& s = request.source;
+  if (s == "gt" || s == "global") {
+    lighting = from_probes(read_view_probes(view.dir, view), view, x, y, s == "gt");
+    lighting.record["probes"] = view.dir.string();
+  } else if (s == "predicted") {
+    if (request.predicted_dir.empty()) fail("--lighting predicted needs --predicted DIR (a `phyir infer` folder)");
+    lighting = from_probes(read_view_probes(request.predicted_dir, view), view, x, y, true);
+    lighting.record["probes"] = request.predicted_dir.string();
+  } else if (s == "constant") {
+    lighting = constant(read_view_probes(view.dir, view), view);
+    lighting.record["probes"] = view.dir.string();
+  } else {
+    if (!fs::is_regular_file(s))
+      fail("--lighting {}: neither gt, predicted, global, constant nor an existing HDR file", s);
+    lighting.environment = std::make_unique<render::EnvironmentLight>(read_image(s));
+    lighting.record = {{"file", s}, {"spatially_varying", false}};
+  }
+  lighting.record["source"] = (s == "gt" || s == "predicted" || s == "global" || s == "constant") ? s : "file";
+  return lighting;
+}
+
+}  // namespace phyir::insert

@@ -1,0 +1,75 @@
+#include "phyir/insert/insert_object.h"
+
+#include <chrono>
+
+#include "phyir/render/camera.h"
+#include "phyir/render/render_view.h"
+
+namespace phyir::insert {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+nlohmann::json vec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+
+// The local scene as the view's camera sees it: same panorama, same centre. Both renders use
+// the same seed, so the noise of the surface mostly cancels in their difference.
+LocalRender render_local(const scenes::Scene& scene, const Lighting& lighting, const InsertView& view,
+                         const InsertRequest& request) {
+  const render::RenderScene rs(scene, std::make_unique<render::EnvironmentLight>(*lighting.environment));
+  render::CameraModel camera;
+  camera.projection = render::Projection::Equirectangular;
+  camera.position = view.camera;
+  camera.width = view.width();
+  camera.height = view.height();
+  render::RenderSettings settings;
+  settings.spp = request.spp;
+  settings.seed = request.seed;
+  settings.path.max_bounces = request.max_bounces;
+  settings.aovs = true;
+  settings.progress = request.progress;
+  const render::RenderOutput out = render::render_view(rs, camera, settings);
+  return {out.film.color(), out.film.aov("depth"), out.film.aov("mask_geometry")};
+}
+
+}  // namespace
+
+InsertResult insert_object(const InsertView& view, const scenes::Scene& object, const InsertRequest& request) {
+  const auto start = Clock::now();
+  InsertResult result;
+  result.ground = surface_at(view, request.x, request.y);
+  const Lighting lighting = make_lighting(request.lighting, view, request.x, request.y);
+  const scenes::Scene placed = place_object(object, result.ground, request.placement);
+  const float radius = disc_radius_for(placed, result.ground);
+  const scenes::Scene disc = support_disc(result.ground, radius);
+  const scenes::Scene local = merge_scenes(disc, placed);
+  const double setup_seconds = seconds_since(start);
+  const auto render_start = Clock::now();
+  result.with_object = render_local(local, lighting, view, request);
+  result.without_object = render_local(disc, lighting, view, request);
+  const double render_seconds = seconds_since(render_start);
+  result.composite = differential_composite(view.color, view.depth, result.with_object, result.without_object);
+  const scenes::Bounds b = placed.compute_bounds();
+  result.record = {
+      {"view", view.dir.string()},
+      {"object", {{"file", object.source}, {"triangles", object.triangle_count()},
+                  {"bounds_min", vec(b.min)}, {"bounds_max", vec(b.max)}}},
+      {"placement", {{"pixel", {request.x, request.y}}, {"world_position", vec(result.ground.position)},
+                     {"normal", vec(result.ground.normal)}, {"scale", request.placement.scale},
+                     {"yaw_radians", request.placement.yaw}}},
+      {"support_surface", {{"radius", radius}, {"base_color", vec(result.ground.base_color)},
+                           {"roughness", result.ground.roughness}, {"metalness", result.ground.metalness}}},
+      {"lighting", lighting.record},
+      {"settings", {{"spp", request.spp}, {"max_bounces", request.max_bounces}, {"seed", request.seed}}},
+      {"display", {{"exposure_stops", view.exposure_stops}, {"view", view.display_view}}},
+      {"timings", {{"setup_seconds", setup_seconds}, {"render_seconds", render_seconds},
+                   {"total_seconds", seconds_since(start)}}}};
+  return result;
+}
+
+}  // namespace phyir::insert

@@ -1,0 +1,117 @@
+#include "phyir/insert/probe_field.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "phyir/core/equirect.h"
+#include "phyir/core/error.h"
+
+namespace phyir::insert {
+
+namespace {
+
+int wrap(int j, int n) { return ((j % n) + n) % n; }
+
+// Grid distance between cells, columns wrapping around the panorama.
+float cell_distance(int i0, int j0, int i1, int j1, int width) {
+  const int dj = std::abs(j0 - j1);
+  const float dx = float(std::min(dj, width - dj));
+  return std::hypot(float(i0 - i1), dx);
+}
+
+}  // namespace
+
+ProbeField::ProbeField(const view::ProbeMosaic& probes, const glm::vec3& camera) : probes_(probes), camera_(camera) {
+  const view::ProbeLayout& l = probes_.layout;
+  std::vector<glm::ivec2> valid;
+  for (int i = 0; i < l.grid_height; ++i)
+    for (int j = 0; j < l.grid_width; ++j)
+      if (probes_.valid(i, j)) valid.emplace_back(i, j);
+  if (valid.empty()) fail("probe_mask.exr: no valid probe in the {}x{} grid", l.grid_height, l.grid_width);
+  // Nearest valid probe per cell: a brute-force search, once (grids are at most 256x512 cells,
+  // and insertion asks for the few cells the object projects to; precomputing only those would
+  // complicate the lookup for no measured gain).
+  fallback_.resize(size_t(l.probe_count()));
+  const size_t stride = std::max<size_t>(1, valid.size() / 4096);  // caps the search's cost
+  for (int i = 0; i < l.grid_height; ++i)
+    for (int j = 0; j < l.grid_width; ++j) {
+      float best = std::numeric_limits<float>::max();
+      glm::ivec2 pick = valid[0];
+      for (size_t k = 0; k < valid.size(); k += stride) {
+        const float d = cell_distance(i, j, valid[k].x, valid[k].y, l.grid_width);
+        if (d < best) best = d, pick = valid[k];
+      }
+      fallback_[size_t(i) * l.grid_width + j] = probes_.valid(i, j) ? glm::ivec2(i, j) : pick;
+    }
+}
+
+glm::vec3 ProbeField::probe_radiance(int i, int j, const glm::vec3& direction) const {
+  const view::ProbeLayout& l = probes_.layout;
+  const glm::vec2 uv = equirect_uv(direction);
+  const int c = std::clamp(int(uv.x * float(l.res_width)), 0, l.res_width - 1);
+  const int r = std::clamp(int(uv.y * float(l.res_height)), 0, l.res_height - 1);
+  const int x = j * l.res_width + c, y = i * l.res_height + r;
+  const Image& m = probes_.radiance;
+  return glm::max(glm::vec3(m.at(x, y, 0), m.at(x, y, 1), m.at(x, y, 2)), glm::vec3(0.0f));
+}
+
+glm::ivec2 ProbeField::cell_of(const glm::vec3& position) const {
+  const view::ProbeLayout& l = probes_.layout;
+  const glm::vec2 uv = equirect_uv(glm::normalize(position - camera_));
+  const int j = wrap(int(std::floor(uv.x * float(l.grid_width))), l.grid_width);
+  const int i = std::clamp(int(std::floor(uv.y * float(l.grid_height))), 0, l.grid_height - 1);
+  return {i, j};
+}
+
+glm::ivec2 ProbeField::nearest_valid(int i, int j) const {
+  return fallback_[size_t(i) * probes_.layout.grid_width + j];
+}
+
+glm::vec3 ProbeField::radiance(const glm::vec3& position, const glm::vec3& direction) const {
+  const view::ProbeLayout& l = probes_.layout;
+  const glm::vec3 offset = position - camera_;
+  if (!(glm::dot(offset, offset) > 1e-12f)) {
+    const glm::ivec2 p = nearest_valid(l.grid_height / 2, l.grid_width / 2);
+    return probe_radiance(p.x, p.y, direction);
+  }
+  // Continuous grid coordinates: cell (i, j)'s centre is at (i + 0.5, j + 0.5).
+  const glm::vec2 uv = equirect_uv(glm::normalize(offset));
+  const float gx = uv.x * float(l.grid_width) - 0.5f, gy = uv.y * float(l.grid_height) - 0.5f;
+  const int j0 = int(std::floor(gx)), i0 = int(std::floor(gy));
+  const float fx = gx - float(j0), fy = gy - float(i0);
+  glm::vec3 sum(0.0f);
+  float weight = 0.0f;
+  for (int di = 0; di < 2; ++di)
+    for (int dj = 0; dj < 2; ++dj) {
+      const int i = std::clamp(i0 + di, 0, l.grid_height - 1), j = wrap(j0 + dj, l.grid_width);
+      const float w = (di ? fy : 1.0f - fy) * (dj ? fx : 1.0f - fx);
+      if (!(w > 0.0f) || !probes_.valid(i, j)) continue;
+      sum += w * probe_radiance(i, j, direction);
+      weight += w;
+    }
+  if (weight > 0.0f) return sum / weight;
+  const glm::ivec2 c = cell_of(position);
+  const glm::ivec2 p = nearest_valid(c.x, c.y);
+  return probe_radiance(p.x, p.y, direction);
+}
+
+glm::vec3 ProbeField::mean_radiance() const {
+  const view::ProbeLayout& l = probes_.layout;
+  double sum[3] = {0, 0, 0}, area = 0.0;
+  for (int i = 0; i < l.grid_height; ++i)
+    for (int j = 0; j < l.grid_width; ++j) {
+      if (!probes_.valid(i, j)) continue;
+      for (int r = 0; r < l.res_height; ++r) {
+        const double a = equirect_texel_solid_angle(r, l.res_width, l.res_height);
+        for (int c = 0; c < l.res_width; ++c) {
+          const int x = j * l.res_width + c, y = i * l.res_height + r;
+          for (int k = 0; k < 3; ++k) sum[k] += a * std::max(0.0f, probes_.radiance.at(x, y, k));
+          area += a;
+        }
+      }
+    }
+  return glm::vec3(float(sum[0] / area), float(sum[1] / area), float(sum[2] / area));
+}
+
+}  // namespace phyir::insert

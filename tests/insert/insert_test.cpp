@@ -1,0 +1,102 @@
+// phyir insert: placement, the differential composite, the spatially varying lookup, bad input.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "insert_test_view.h"
+#include "phyir/core/error.h"
+#include "phyir/insert/insert_object.h"
+#include "phyir/insert/probe_field.h"
+
+namespace phyir::insert {
+namespace {
+
+using namespace testing;
+
+constexpr int kWidth = 64, kHeight = 32;
+
+// The floor pixel straight ahead (-Z), 2 m away: the camera is 1 m up, so 26.6 degrees down.
+void ahead_pixel(int* x, int* y) {
+  *x = kWidth / 2;
+  *y = int(kHeight * (0.5 + std::atan(0.5) / M_PI));
+}
+
+InsertRequest request_at(int x, int y, const std::string& lighting) {
+  InsertRequest r;
+  r.x = x, r.y = y;
+  r.lighting.source = lighting;
+  r.spp = 16;
+  r.seed = 3;
+  return r;
+}
+
+TEST(InsertPlacement, StandsOnThePixelsWorldPoint) {
+  const fs::path dir = temp_dir("placement");
+  write_floor_view(dir, kWidth, kHeight, make_probes(kHeight / 4, kWidth / 4, uniform_light));
+  const InsertView view = read_insert_view(dir);
+  int x, y;
+  ahead_pixel(&x, &y);
+  const SurfacePoint ground = surface_at(view, x, y);
+  // The pixel centre's ray meets the floor at y = 0, straight ahead.
+  const glm::vec3 d = equirect_direction(glm::vec2((x + 0.5f) / kWidth, (y + 0.5f) / kHeight));
+  const glm::vec3 expected = kCamera + d * (kCamera.y / -d.y);
+  EXPECT_NEAR(ground.position.y, 0.0f, 1e-4f);
+  EXPECT_NEAR(ground.position.x, expected.x, 1e-4f);
+  EXPECT_NEAR(ground.position.z, expected.z, 1e-4f);
+  EXPECT_LT(ground.position.z, -1.0f);
+  Placement p;
+  p.scale = 2.0f;
+  const scenes::Scene placed = place_object(box_object(0.1f), ground, p);
+  const scenes::Bounds b = placed.compute_bounds();
+  EXPECT_NEAR(0.5f * (b.min.x + b.max.x), ground.position.x, 1e-5f);
+  EXPECT_NEAR(0.5f * (b.min.z + b.max.z), ground.position.z, 1e-5f);
+  EXPECT_NEAR(b.min.y, ground.position.y, 1e-3f);  // resting on it, lifted 0.5 mm
+  EXPECT_NEAR(b.max.y - b.min.y, 0.4f, 1e-5f);     // scaled
+  fs::remove_all(dir);
+}
+
+TEST(InsertComposite, ZeroSizeObjectLeavesTheBackgroundByteIdentical) {
+  const fs::path dir = temp_dir("zero");
+  write_floor_view(dir, kWidth, kHeight, make_probes(kHeight / 4, kWidth / 4, uniform_light));
+  const InsertView view = read_insert_view(dir);
+  int x, y;
+  ahead_pixel(&x, &y);
+  InsertRequest r = request_at(x, y, "gt");
+  r.placement.scale = 0.0f;
+  const InsertResult result = insert_object(view, box_object(0.2f), r);
+  ASSERT_EQ(result.composite.color.pixels.size(), view.color.pixels.size());
+  EXPECT_EQ(0, std::memcmp(result.composite.color.pixels.data(), view.color.pixels.data(),
+                           view.color.pixels.size() * sizeof(float)));
+  for (float m : result.composite.mask.pixels) EXPECT_EQ(m, 0.0f);
+  // And a real object does change it (the test can fail).
+  r.placement.scale = 1.0f;
+  const InsertResult real = insert_object(view, box_object(0.2f), r);
+  EXPECT_NE(0, std::memcmp(real.composite.color.pixels.data(), view.color.pixels.data(),
+                           view.color.pixels.size() * sizeof(float)));
+  fs::remove_all(dir);
+}
+
+TEST(InsertComposite, ObjectCastsAShadowOnItsSurface) {
+  const fs::path dir = temp_dir("shadow");
+  write_floor_view(dir, kWidth, kHeight, make_probes(kHeight / 4, kWidth / 4, uniform_light));
+  const InsertView view = read_insert_view(dir);
+  int x, y;
+  ahead_pixel(&x, &y);
+  InsertRequest r = request_at(x, y, "gt");
+  r.spp = 64;
+  const InsertResult result = insert_object(view, box_object(0.15f), r);
+  // Floor pixels just below the object's mask, beside its foot, darker than the background.
+  int darker = 0, floor_pixels = 0;
+  for (int py = 0; py < kHeight; ++py)
+    for (int px = 0; px < kWidth; ++px) {
+      if (result.composite.mask.at(px, py) > 0.5f || result.without_object.mask.at(px, py) < 0.5f) continue;
+      ++floor_pixels;
+      if (result.composite.color.at(px, py, 1) < view.color.at(px, py, 1) - 1e-3f) ++darker;
+    }
+  EXPECT_GT(floor_pixels, 0);
+  EXPECT_GT(darker, 0);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace phyir::insert

@@ -1,0 +1,84 @@
+// The spatially varying lookup: a point between a bright and a dark probe is lit by both.
+#include <gtest/gtest.h>
+
+#include "insert_test_view.h"
+#include "phyir/core/equirect.h"
+#include "phyir/insert/insert_object.h"
+#include "phyir/insert/probe_field.h"
+
+namespace phyir::insert {
+namespace {
+
+using namespace testing;
+
+// The left half of the grid (u < 0.5) bright, the right half dark.
+glm::vec3 bright_left(int, int j) { return j < 2 ? glm::vec3(10.0f) : glm::vec3(0.1f); }
+// The same on a 4 x 8 grid, whose bright and dark centres are closer (u 0.4375 and 0.5625).
+glm::vec3 bright_left_8(int, int j) { return j < 4 ? glm::vec3(10.0f) : glm::vec3(0.1f); }
+
+glm::vec3 point_at_u(float u) {
+  return kCamera + 2.0f * equirect_direction(glm::vec2(u, 0.5f));
+}
+
+TEST(ProbeField, CellCentresReadTheirProbeAndBetweenBlends) {
+  const ProbeField field(make_probes(2, 4, bright_left), kCamera);
+  const glm::vec3 up(0.0f, 1.0f, 0.0f);
+  // u = 0.375 is column 1's centre (bright), 0.625 column 2's (dark).
+  EXPECT_NEAR(field.radiance(point_at_u(0.375f), up).x, 10.0f, 1e-4f);
+  EXPECT_NEAR(field.radiance(point_at_u(0.625f), up).x, 0.1f, 1e-4f);
+  const float middle = field.radiance(point_at_u(0.5f), up).x;
+  EXPECT_NEAR(middle, 0.5f * (10.0f + 0.1f), 1e-3f);
+}
+
+TEST(ProbeField, InvalidProbesTakeNoWeight) {
+  view::ProbeMosaic probes = make_probes(2, 4, bright_left);
+  probes.mask.at(2, 0) = 0.0f;  // the dark neighbours of the middle
+  probes.mask.at(2, 1) = 0.0f;
+  const ProbeField field(probes, kCamera);
+  EXPECT_NEAR(field.radiance(point_at_u(0.5f), glm::vec3(0, 1, 0)).x, 10.0f, 1e-4f);
+}
+
+// Mean green of the object's pixels left and right of the panorama's centre column.
+void half_means(const InsertResult& r, float* left, float* right) {
+  double sum[2] = {0, 0};
+  int n[2] = {0, 0};
+  const Image& m = r.composite.mask;
+  for (int y = 0; y < m.height; ++y)
+    for (int x = 0; x < m.width; ++x)
+      if (m.at(x, y) > 0.5f) {
+        const int side = x < m.width / 2 ? 0 : 1;
+        sum[side] += r.composite.color.at(x, y, 1);
+        ++n[side];
+      }
+  ASSERT_GT(n[0], 0);
+  ASSERT_GT(n[1], 0);
+  *left = float(sum[0] / n[0]);
+  *right = float(sum[1] / n[1]);
+}
+
+TEST(ProbeField, ObjectBetweenABrightAndADarkProbeIsLitByBoth) {
+  const int width = 128, height = 64;
+  const fs::path dir = temp_dir("field");
+  write_floor_view(dir, width, height, make_probes(4, 8, bright_left_8));
+  const InsertView view = read_insert_view(dir);
+  InsertRequest r;
+  r.x = width / 2;  // straight ahead, on the boundary between the bright and the dark half
+  r.y = int(height * (0.5 + std::atan(0.5) / M_PI));
+  r.spp = 32;
+  r.lighting.source = "gt";
+  float left, right;
+  half_means(insert_object(view, box_object(0.5f), r), &left, &right);
+  // Its left side takes the bright probes, its right the dark: both light it, unequally.
+  EXPECT_GT(left, 1.5f * right);
+  EXPECT_GT(right, 0.0f);
+  // One global probe lights both halves alike (a symmetric box, the same light everywhere).
+  r.lighting.source = "global";
+  float gl, gr;
+  half_means(insert_object(view, box_object(0.5f), r), &gl, &gr);
+  EXPECT_LT(gl / gr, 1.3f);
+  EXPECT_GT(gl / gr, 1.0f / 1.3f);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace phyir::insert
