@@ -34,6 +34,11 @@ void add_train_group_flags(CLI::App* cmd, TrainFlags& f) {
   wopt->add_option("--w-probe", f.weights.probe, "beta_L");
   wopt->add_option("--w-coherence", f.weights.coherence, "beta_SC");
   wopt->add_option("--w-render", f.weights.render, "beta_render");
+  cmd->add_option("--probe-loss-weight", o.probe_loss_weight,
+                  "none, or stderr: weight each probe texel's loss term by its ground truth's standard error "
+                  "(probe_stderr.exr; docs/model.md \"Probe loss weighting\")")
+      ->check(CLI::IsMember({"none", "stderr"}))
+      ->capture_default_str();
   auto* aug = cmd->add_option_group("augmentation", "training only, drawn per (seed, epoch, view); docs/model.md");
   aug->add_flag("!--no-augment", o.augment.enabled, "no yaw rotation, mirroring or exposure jitter");
   aug->add_flag("!--no-rotate", o.augment.rotate, "no yaw rotation");
@@ -74,7 +79,7 @@ void record_train_settings(CLI::App* cmd) {
       {"prefetch", "--prefetch"},      {"device", "--device"},
       {"max_steps", "--max-steps"},    {"checkpoint_every", "--checkpoint-every"},
       {"max_views", "--max-views"},    {"encoder_weights", "--encoder-weights"},
-      {"target_units", "--target-units"}, {"augment.exposure_min_stops", "--exposure-jitter"},
+      {"target_units", "--target-units"}, {"probe_loss_weight", "--probe-loss-weight"}, {"augment.exposure_min_stops", "--exposure-jitter"},
       {"validation.split", "--val-split"}, {"validation.every", "--val-every"},
       {"validation.max_views", "--val-views"}, {"validation.best_metric", "--best-metric"},
       {"schedule.kind", "--lr-schedule"}, {"schedule.step_epochs", "--lr-step-epochs"},

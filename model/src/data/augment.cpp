@@ -57,6 +57,10 @@ static torch::Tensor ViewTensors::*const kPixelMaps[] = {
     &ViewTensors::roughness, &ViewTensors::metalness,     &ViewTensors::mask,             &ViewTensors::mask_emissive,
     &ViewTensors::mask_transparent, &ViewTensors::color_lo, &ViewTensors::render_mask, &ViewTensors::probe_mask};
 
+// The view's per-probe-texel maps ([Hr, Wr, h, w, C]): the probes and their standard error,
+// which must move and turn together.
+static torch::Tensor ViewTensors::*const kProbeMaps[] = {&ViewTensors::probes, &ViewTensors::probe_stderr};
+
 ViewTensors rotate_view(const ViewTensors& v, int steps, int divisions) {
   steps = ((steps % divisions) + divisions) % divisions;
   if (steps == 0) return v;
@@ -66,7 +70,8 @@ ViewTensors rotate_view(const ViewTensors& v, int steps, int divisions) {
   r.normal = rotate_about_y(r.normal, static_cast<double>(steps) / divisions);
   // Probes [Hr, Wr, h, w, 3]: each moves with its pixel, and its texels (a world-aligned
   // equirect image) turn with the world.
-  r.probes = roll_columns(roll_columns(v.probes, steps, divisions, 1), steps, divisions, 3);
+  for (torch::Tensor ViewTensors::*const m : kProbeMaps)
+    r.*m = roll_columns(roll_columns(v.*m, steps, divisions, 1), steps, divisions, 3);
   return r;
 }
 
@@ -75,7 +80,7 @@ ViewTensors mirror_view(const ViewTensors& v) {
   for (torch::Tensor ViewTensors::*const m : kPixelMaps)
     r.*m = flip_if_defined(v.*m, {-1});
   r.normal = r.normal * torch::tensor({-1.0f, 1.0f, 1.0f}, r.normal.options()).view({3, 1, 1});
-  r.probes = flip_if_defined(v.probes, {1, 3});
+  for (torch::Tensor ViewTensors::*const m : kProbeMaps) r.*m = flip_if_defined(v.*m, {1, 3});
   return r;
 }
 
@@ -86,7 +91,8 @@ ViewTensors expose_view(const ViewTensors& v, double stops, view::RadianceUnits 
   r.image = reexpose_ldr(v.image, f, v.exposure.raw_view());
   if (units == view::RadianceUnits::kAbsolute) return r;
   r.color_lo = v.color_lo * f;
-  if (v.probes.defined()) r.probes = v.probes * f;
+  for (torch::Tensor ViewTensors::*const m : kProbeMaps)
+    if ((v.*m).defined()) r.*m = v.*m * f;
   return r;
 }
 

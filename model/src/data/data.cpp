@@ -92,12 +92,7 @@ torch::Tensor resample_probes(const torch::Tensor& mosaic, const view::ProbeLayo
     imgs = resize(imgs, h, w);
     probes = imgs.permute({0, 2, 3, 1}).reshape({grid_h, grid_w, h, w, 3});
   }
-  if (grid_h != Hr || grid_w != Wr) {
-    // The probe of the grid cell containing each target pixel centre.
-    const torch::Tensor rows = ((torch::arange(Hr, probes.options().dtype(torch::kDouble)) + 0.5) * grid_h / Hr).floor().to(torch::kLong);
-    const torch::Tensor cols = ((torch::arange(Wr, probes.options().dtype(torch::kDouble)) + 0.5) * grid_w / Wr).floor().to(torch::kLong);
-    probes = probes.index_select(0, rows).index_select(1, cols);
-  }
+  probes = nearest_grid(probes, Hr, Wr);
   return probes.contiguous();
 }
 
@@ -158,6 +153,11 @@ void load_probes(const fs::path& dir, const ModelConfig& c, ViewTensors& v) {
                       .reshape({1, Hr, Wr}) > 0.5)
                      .to(torch::kFloat) *
                  v.render_mask;
+  if (probes.standard_error.pixels.empty()) return;
+  v.probe_stderr = resample_probe_stderr(image_to_tensor(probes.standard_error), probes.layout, Hr, Wr,
+                                         c.probe_height, c.probe_width);
+  if (!torch::isfinite(v.probe_stderr).all().item<bool>())
+    fail("{}: non-finite values", (dir / view::kProbeStderrFile).string());
 }
 
 }  // namespace
@@ -198,6 +198,8 @@ ViewTensors load_view(const view::ViewRecord& record, const ModelConfig& c, view
     const double f = v.exposure.factor();
     v.color_lo = v.color_lo * f;
     if (v.probes.defined()) v.probes = v.probes * f;
+    // A standard error scales with the radiance it is the error of.
+    if (v.probe_stderr.defined()) v.probe_stderr = v.probe_stderr * f;
   }
   return v;
 }
@@ -218,6 +220,7 @@ Batch collate(const std::vector<ViewTensors>& views) {
     b.ids.push_back(v.id.empty() ? v.name : v.id);
     index.push_back(v.index);
     if (v.census) b.census.push_back(v.census);
+    if (v.probes.defined() && !v.probe_stderr.defined()) b.without_probe_stderr.push_back(b.ids.back());
   }
   b.index = torch::tensor(index, torch::TensorOptions().dtype(torch::kLong));
   b.image = stack(&ViewTensors::image);
@@ -233,6 +236,7 @@ Batch collate(const std::vector<ViewTensors>& views) {
   b.render_mask = stack(&ViewTensors::render_mask);
   b.probes = stack(&ViewTensors::probes);
   b.probe_mask = stack(&ViewTensors::probe_mask);
+  b.probe_stderr = stack(&ViewTensors::probe_stderr);
   return b;
 }
 
@@ -243,7 +247,7 @@ Batch Batch::to(const torch::Device& device) const {
   for (torch::Tensor Batch::*m : {&Batch::index, &Batch::image, &Batch::depth, &Batch::normal, &Batch::base_color,
                                   &Batch::roughness, &Batch::metalness, &Batch::mask, &Batch::mask_emissive,
                                   &Batch::mask_transparent, &Batch::color_lo, &Batch::render_mask, &Batch::probes,
-                                  &Batch::probe_mask})
+                                  &Batch::probe_mask, &Batch::probe_stderr})
     b.*m = move(this->*m);
   return b;
 }

@@ -35,6 +35,9 @@ struct ViewTensors {
   torch::Tensor render_mask; // surface, not emissive, not transparent, at the rendering resolution
   torch::Tensor probes;      // undefined when the view has no probes.exr
   torch::Tensor probe_mask;  // [1, Hr, Wr]
+  // [Hr, Wr, h, w, 1]: each probe texel's standard error (luminance, the probes' unit);
+  // undefined when the view has no probe_stderr.exr.
+  torch::Tensor probe_stderr;
   // Held while the view's tensors live when a ViewCensus counts decoded views (view_census.h).
   std::shared_ptr<const void> census;
 };
@@ -46,6 +49,8 @@ struct Batch {
   torch::Tensor image, depth, normal, base_color, roughness, metalness, mask;
   torch::Tensor mask_emissive, mask_transparent;
   torch::Tensor color_lo, render_mask, probes, probe_mask;  // probes undefined if any view lacks them
+  torch::Tensor probe_stderr;  // undefined if any view lacks it
+  std::vector<std::string> without_probe_stderr;  // ids of the views with probes but no probe_stderr.exr
   std::vector<std::shared_ptr<const void>> census;          // the views' census tokens
 
   // Every tensor on `device` (a no-op on the CPU).
@@ -84,5 +89,15 @@ torch::Tensor resize(const torch::Tensor& x, int height, int width);
 // probes on an Hr x Wr grid of h x w texels: each probe is area-resized, the grid is sampled
 // at the nearest probe (as view::ProbeMosaic::resampled). Returns [Hr, Wr, h, w, 3].
 torch::Tensor resample_probes(const torch::Tensor& mosaic, const view::ProbeLayout& layout, int Hr, int Wr, int h, int w);
+
+// A probe mosaic's standard error ([C, H*hp, W*wp], first channel) resampled as resample_probes
+// resamples the probes, propagating variances through the same linear resize (an area mean of
+// n texels: sqrt(sum sigma_i^2) / n). Returns [Hr, Wr, h, w, 1].
+torch::Tensor resample_probe_stderr(const torch::Tensor& mosaic, const view::ProbeLayout& layout, int Hr, int Wr,
+                                    int h, int w);
+
+// Probes [Hg, Wg, ...] on an Hr x Wr grid: each target pixel takes the probe of the grid cell
+// containing its centre.
+torch::Tensor nearest_grid(const torch::Tensor& probes, int Hr, int Wr);
 
 }  // namespace phyir::model

@@ -58,7 +58,7 @@ torch::Tensor gradient_loss(const torch::Tensor& pred, const torch::Tensor& gt, 
   return masked_mean((dx(pred) - dx(gt)).abs(), mx) + masked_mean((dy(pred) - dy(gt)).abs(), my);
 }
 
-torch::Tensor ssim_map(const torch::Tensor& x, const torch::Tensor& y) {
+torch::Tensor ssim_map(const torch::Tensor& x, const torch::Tensor& y, const torch::Tensor& weights) {
   const int64_t C = x.size(1);
   const int radius = 2;
   const double sigma = 1.5;
@@ -69,21 +69,33 @@ torch::Tensor ssim_map(const torch::Tensor& x, const torch::Tensor& y) {
   auto blur = [&](const torch::Tensor& t) {
     return F::conv2d(cirpad(t, radius, radius), kernel.contiguous(), F::Conv2dFuncOptions().groups(C));
   };
+  // Weighted local statistics: each texel enters the window's means and moments with its
+  // weight, so a texel of weight 0 is as if it were missing.
+  const torch::Tensor wt = weights.defined() ? weights.expand_as(x) : torch::Tensor();
+  const torch::Tensor wsum = wt.defined() ? blur(wt).clamp_min(1e-12) : torch::Tensor();
+  auto mean = [&](const torch::Tensor& t) { return wt.defined() ? blur(wt * t) / wsum : blur(t); };
   const double C1 = 0.01 * 0.01, C2 = 0.03 * 0.03;
-  const torch::Tensor mx = blur(x), my = blur(y);
-  const torch::Tensor sxx = blur(x * x) - mx * mx, syy = blur(y * y) - my * my, sxy = blur(x * y) - mx * my;
+  const torch::Tensor mx = mean(x), my = mean(y);
+  const torch::Tensor sxx = mean(x * x) - mx * mx, syy = mean(y * y) - my * my, sxy = mean(x * y) - mx * my;
   return ((2.0 * mx * my + C1) * (2.0 * sxy + C2)) / ((mx * mx + my * my + C1) * (sxx + syy + C2));
 }
 
-torch::Tensor probe_ssim_loss(const torch::Tensor& pred_log, const torch::Tensor& gt_log, const torch::Tensor& mask_in) {
+torch::Tensor probe_ssim_loss(const torch::Tensor& pred_log, const torch::Tensor& gt_log, const torch::Tensor& mask_in,
+                              const torch::Tensor& texel_weights) {
   const int64_t B = pred_log.size(0), H = pred_log.size(1), W = pred_log.size(2), h = pred_log.size(3),
                 w = pred_log.size(4);
   const torch::Tensor mask = mask_in.defined() ? mask_in.to(pred_log.dtype()).reshape({B, H, W, 1, 1, 1})
                                                : torch::ones({B, H, W, 1, 1, 1}, pred_log.options());
-  auto images = [&](const torch::Tensor& p) {
-    return (p * mask).permute({0, 1, 2, 5, 3, 4}).reshape({B * H * W, 3, h, w});
+  auto images = [&](const torch::Tensor& p, int64_t c) {
+    return (p * mask).permute({0, 1, 2, 5, 3, 4}).reshape({B * H * W, c, h, w});
   };
-  const torch::Tensor s = ssim_map(images(pred_log), images(gt_log)).mean({1, 2, 3});  // per probe
+  torch::Tensor s;  // per probe
+  if (texel_weights.defined()) {
+    const torch::Tensor tw = images(texel_weights.to(pred_log.dtype()), 1);
+    s = (ssim_map(images(pred_log, 3), images(gt_log, 3), tw) * tw).mean({1, 2, 3});
+  } else {
+    s = ssim_map(images(pred_log, 3), images(gt_log, 3)).mean({1, 2, 3});
+  }
   const torch::Tensor m = mask.reshape({B * H * W});
   const torch::Tensor probes = batch_sum(m);
   const torch::Tensor mean_ssim = batch_sum(s * m) / probes.clamp_min(1.0);

@@ -30,13 +30,16 @@ torch::Tensor gradient_loss(const torch::Tensor& pred, const torch::Tensor& gt, 
 
 // SSIM of two batches of images [N,C,h,w] with a 5x5 Gaussian window (sigma 1.5) and
 // CirP borders (the images are equirect probes), C1 = 0.01^2, C2 = 0.03^2. Returns the SSIM
-// map [N,C,h,w].
-torch::Tensor ssim_map(const torch::Tensor& x, const torch::Tensor& y);
+// map [N,C,h,w]. With `weights` ([N,1,h,w] or [N,C,h,w]) the window's means and moments are
+// weighted by them (a texel of weight 0 does not enter its neighbours' statistics).
+torch::Tensor ssim_map(const torch::Tensor& x, const torch::Tensor& y, const torch::Tensor& weights = {});
 
 // Eq. 7: 0.5 (1 - SSIM(L_log . M, L~_log . M)) on per-pixel probes [B,H,W,h,w,3] (log space),
-// the SSIM averaged over the probes of the pixels in the mask.
+// the SSIM averaged over the probes of the pixels in the mask. With `texel_weights`
+// [B,H,W,h,w,1] (probe_weights.h: mean 1 over the valid texels) each texel's SSIM term, and its
+// share of its neighbours' window statistics, is weighted: equal weights give the unweighted loss.
 torch::Tensor probe_ssim_loss(const torch::Tensor& pred_log, const torch::Tensor& gt_log,
-                              const torch::Tensor& mask);
+                              const torch::Tensor& mask, const torch::Tensor& texel_weights = {});
 
 // Eq. 8: mean over neighbouring pixel pairs (p, q) (right neighbour with wrap-around, lower
 // neighbour) of |Warp_{q->p}(L~) - L~_p| e^{alpha |D~_q - D~_p|}, probes in log space

@@ -3,6 +3,7 @@
 
 #include "batch_share.h"
 #include "losses.h"
+#include "probe_weights.h"
 #include "phyir/core/error.h"
 #include "phyir/view/view_files.h"
 
@@ -25,10 +26,22 @@ void add_gm_losses(StepLoss& L, const LossWeights& w, const GMOutput& p, const B
   }
 }
 
+// The probe loss's texel weights: undefined (unweighted) unless the stderr weighting is on.
+torch::Tensor probe_weights(const LossWeights& w, const Batch& b) {
+  if (!w.probe_stderr) return {};
+  if (!b.probe_stderr.defined()) {
+    std::string folders;
+    for (const std::string& id : b.without_probe_stderr) folders += (folders.empty() ? "" : ", ") + id;
+    fail("--probe-loss-weight stderr: view folder(s) {} have no {} (render the probes again, or train with "
+         "--probe-loss-weight none)", folders, view::kProbeStderrFile);
+  }
+  return probe_stderr_weights(b.probes, b.probe_stderr, b.probe_mask);
+}
+
 void add_light_losses(StepLoss& L, const LossWeights& w, const ModelConfig& c, const LightResult& r,
                       const GMOutput& gm, const Batch& b) {
   if (!b.probes.defined()) fail("stage needs probes: a view folder has no {}", view::kProbesFile);
-  L.add("probe", w.probe, probe_ssim_loss(r.log_probes, torch::log1p(b.probes), b.probe_mask));
+  L.add("probe", w.probe, probe_ssim_loss(r.log_probes, torch::log1p(b.probes), b.probe_mask, probe_weights(w, b)));
   if (w.coherence != 0.0)
     L.add("coherence", w.coherence,
           spatial_coherence_loss(r.log_probes, area(gm.depth, c.render_height, c.render_width), b.render_mask));

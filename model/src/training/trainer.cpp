@@ -10,6 +10,7 @@
 #include "data_parallel.h"
 #include "device.h"
 #include "phyir/core/error.h"
+#include "phyir/view/view_files.h"
 #include "phyir/core/setting_error.h"
 #include "phyir/core/log.h"
 
@@ -99,6 +100,9 @@ void Trainer::settle_settings() {
   batch_size_ = o_.batch_size > 0 ? o_.batch_size : o_.resume ? resumed_.at("batch_size").get<int>() : defaults_.batch_size;
   weights_ = o_.custom_weights ? o_.weights : defaults_.weights;
   if (o_.resume && !o_.custom_weights) weights_ = weights_from_json(resumed_.at("weights"));
+  if (o_.probe_loss_weight != "none" && o_.probe_loss_weight != "stderr")
+    fail_setting("probe_loss_weight", "'{}': none or stderr", o_.probe_loss_weight);
+  weights_.probe_stderr = o_.probe_loss_weight == "stderr";
   if (o_.resume && resumed_.contains("augment") && resumed_["augment"] != augment_to_json(o_.augment))
     spdlog::warn("resuming: augmentation {} differs from the checkpoint's {}: the run will not equal an "
                  "uninterrupted one", augment_to_json(o_.augment).dump(), resumed_["augment"].dump());
@@ -185,6 +189,9 @@ void Trainer::load_data() {
   // One view read now: a stage that needs probes fails before the first step, not in a worker.
   if (stage_.lnet && !views.get(0).probes.defined())
     fail("stage {}: {} has no probes.exr (render the dataset with probes)", stage_name_, views.folder(0).string());
+  if (stage_.lnet && weights_.probe_stderr && !views.get(0).probe_stderr.defined())
+    fail("stage {}: --probe-loss-weight stderr: {} has no {} (render the probes again, or train with "
+         "--probe-loss-weight none)", stage_name_, views.folder(0).string(), view::kProbeStderrFile);
   views_ = static_cast<int64_t>(views.size().value());
   batch_ = std::min<int64_t>(batch_size_, views_);
   batches_per_epoch_ = global_batches(views_, batch_, ranks_);

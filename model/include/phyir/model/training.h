@@ -40,6 +40,9 @@ struct LossWeights {
   double base_color = 1.0, roughness = 1.0, metalness = 1.0, depth = 1.0;
   double normal = 0.1, gradient = 0.1;
   double probe = 1.0, coherence = 1.0, render = 1.0;
+  // The probe loss's texels weighted by their ground truth's standard error (probe_stderr.exr;
+  // docs/model.md "Probe loss weighting"); set from TrainOptions::probe_loss_weight.
+  bool probe_stderr = false;
 };
 
 // Appendix B.1's learning rate, batch size, epochs and loss weights for a stage.
@@ -118,6 +121,8 @@ struct TrainOptions {
   int max_views = 0;           // use only the first N views (0: all)
   std::string target_units;    // input | absolute: overrides the `init` checkpoint's (a study switch,
                                // docs/model.md "Exposure and units"); empty: the checkpoint's, else input
+  std::string probe_loss_weight = "none";  // none | stderr: weight the probe loss's texels by their
+                                           // ground truth's standard error (docs/model.md)
   bool progress = true;        // one line per step with live loss values
   std::string plot_script;     // scripts/plot_training.py; empty: no loss-curve PNG
   AugmentOptions augment;
