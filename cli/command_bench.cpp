@@ -180,6 +180,7 @@ void add_bench_command(CLI::App& app) {
   thr->callback(with_threads(&run_throughput, "throughput.json"));
   add_bench_probes_command(*bench);
   add_bench_suite_command(*bench);
+  add_bench_insert_command(*bench);
   add_bench_model_command(*bench);
 }
 

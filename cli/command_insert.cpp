@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "command_insert_path.h"
 #include "commands.h"
 #include "sampling_flags.h"
 #include "phyir/core/error.h"
@@ -25,6 +26,8 @@ struct InsertOptions {
   std::string out = "insert-out";
   std::string maps;  // a prediction folder whose maps replace the view's
   std::vector<int> pixel;
+  std::vector<int> path_end;  // --path: the last step's pixel
+  int steps = 8;
   double yaw_degrees = 0.0;
   int threads = 0;
   insert::InsertRequest request;
@@ -48,6 +51,11 @@ void run(const InsertOptions& o) {
   if (!(request.placement.scale >= 0.0f)) fail("--scale {}: must be 0 or more", request.placement.scale);
   const insert::InsertView view = insert::read_insert_view(o.view, o.maps);
   const scenes::Scene object = load_object(o.object);
+  if (!o.path_end.empty()) {
+    insert_along_path(view, object, request, {request.x, request.y}, {o.path_end.at(0), o.path_end.at(1)}, o.steps,
+                      o.out);
+    return;
+  }
   const insert::InsertResult result = insert::insert_object(view, object, request);
   insert::write_insert_outputs(o.out, view, result);
   spdlog::info("insert: {} into {} at pixel ({}, {}), lighting {}: {}/composite.png ({:.1f} s)", o.object, o.view,
@@ -65,6 +73,9 @@ void add_insert_command(CLI::App& app) {
       ->check(CLI::ExistingDirectory);
   cmd->add_option("object", o->object, "glTF/GLB object, in metres, +Y up")->required();
   cmd->add_option("--pixel", o->pixel, "X Y: the panorama pixel the object stands on")->required()->expected(2);
+  cmd->add_option("--path", o->path_end, "X Y: move the object from --pixel to this pixel (dynamic insertion)")
+      ->expected(2);
+  cmd->add_option("--steps", o->steps, "frames along --path")->capture_default_str();
   cmd->add_option("--scale", o->request.placement.scale, "uniform scale of the object")->capture_default_str();
   cmd->add_option("--yaw", o->yaw_degrees, "rotation about +Y, degrees")->capture_default_str();
   cmd->add_option("--lighting", o->request.lighting.source,

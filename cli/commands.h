@@ -24,6 +24,7 @@ void add_insert_command(CLI::App& app);             // command_insert.cpp
 void add_bench_probes_command(CLI::App& bench);      // command_bench_probes.cpp
 void add_bench_model_command(CLI::App& bench);       // command_bench_model.cpp
 void add_bench_suite_command(CLI::App& bench);       // command_bench_suite.cpp
+void add_bench_insert_command(CLI::App& bench);      // command_bench_insert.cpp
 void add_assets_command(CLI::App& app);             // command_assets*.cpp
 
 // This process's command line without the program name (main() records it): commands that
