@@ -32,8 +32,13 @@ glm::ivec2 pixel_cell(const view::ProbeLayout& l, const InsertView& view, int x,
           std::min(l.grid_width - 1, x * l.grid_width / view.width())};
 }
 
-Lighting from_probes(const view::ProbeMosaic& probes, const InsertView& view, int x, int y, bool varying) {
+Lighting from_probes(const view::ProbeMosaic& probes, const InsertView& view, int x, int y, bool varying,
+                     const fs::path& dir, float radius) {
   auto field = std::make_shared<ProbeField>(probes, view.camera);
+  const fs::path positions = dir / view::kProbePositionFile;
+  bool local = false;
+  if (varying && radius > 0.0f && fs::is_regular_file(positions))
+    local = field->use_neighbourhood(read_image(positions), surface_at(view, x, y).position, radius);
   const glm::ivec2 cell = pixel_cell(probes.layout, view, x, y);
   const glm::ivec2 nearest = field->nearest_valid(cell.x, cell.y);
   Lighting lighting;
@@ -42,7 +47,9 @@ Lighting from_probes(const view::ProbeMosaic& probes, const InsertView& view, in
   lighting.record = {{"global_probe", {nearest.x, nearest.y}},
                      {"grid", {probes.layout.grid_height, probes.layout.grid_width}},
                      {"resolution", {probes.layout.res_height, probes.layout.res_width}},
-                     {"spatially_varying", varying}};
+                     {"spatially_varying", varying},
+                     {"blend", !varying ? "none" : local ? "local" : "projected"},
+                     {"local_probes", field->local_probe_count()}};
   return lighting;
 }
 
@@ -62,11 +69,13 @@ Lighting make_lighting(const LightingRequest& request, const InsertView& view, i
   Lighting lighting;
   const std::string& s = request.source;
   if (s == "gt" || s == "global") {
-    lighting = from_probes(read_view_probes(view.dir, view), view, x, y, s == "gt");
+    lighting = from_probes(read_view_probes(view.dir, view), view, x, y, s == "gt", view.dir,
+                           request.neighbourhood_radius);
     lighting.record["probes"] = view.dir.string();
   } else if (s == "predicted") {
     if (request.predicted_dir.empty()) fail("--lighting predicted needs --predicted DIR (a `phyir infer` folder)");
-    lighting = from_probes(read_view_probes(request.predicted_dir, view), view, x, y, true);
+    lighting = from_probes(read_view_probes(request.predicted_dir, view), view, x, y, true, request.predicted_dir,
+                           request.neighbourhood_radius);
     lighting.record["probes"] = request.predicted_dir.string();
   } else if (s == "constant") {
     lighting = constant(read_view_probes(view.dir, view), view);

@@ -68,7 +68,41 @@ glm::ivec2 ProbeField::nearest_valid(int i, int j) const {
   return fallback_[size_t(i) * probes_.layout.grid_width + j];
 }
 
+bool ProbeField::use_neighbourhood(const Image& positions, const glm::vec3& centre, float radius) {
+  const view::ProbeLayout& l = probes_.layout;
+  if (positions.width != l.grid_width || positions.height != l.grid_height || positions.channels < 3)
+    fail("probe_position.exr: {}x{}, but the probe grid is {}x{}", positions.width, positions.height, l.grid_width,
+         l.grid_height);
+  std::vector<std::pair<float, LocalProbe>> near;
+  for (int i = 0; i < l.grid_height; ++i)
+    for (int j = 0; j < l.grid_width; ++j) {
+      const glm::vec3 p(positions.at(j, i, 0), positions.at(j, i, 1), positions.at(j, i, 2));
+      const float d = glm::length(p - centre);
+      if (probes_.valid(i, j) && d <= radius) near.push_back({d, LocalProbe{{i, j}, p}});
+    }
+  std::sort(near.begin(), near.end(), [](const auto& a, const auto& b) {
+    return a.first < b.first || (a.first == b.first && a.second.cell.x * 100000 + a.second.cell.y <
+                                                            b.second.cell.x * 100000 + b.second.cell.y);
+  });
+  local_.clear();
+  for (size_t k = 0; k < near.size() && k < kMaxLocalProbes; ++k) local_.push_back(near[k].second);
+  return !local_.empty();
+}
+
 glm::vec3 ProbeField::radiance(const glm::vec3& position, const glm::vec3& direction) const {
+  if (local_.empty()) return projected_radiance(position, direction);
+  glm::vec3 sum(0.0f);
+  float weight = 0.0f;
+  for (const LocalProbe& p : local_) {
+    const glm::vec3 d = position - p.position;
+    const float w = 1.0f / (glm::dot(d, d) + kLocalSmoothing * kLocalSmoothing);
+    sum += w * probe_radiance(p.cell.x, p.cell.y, direction);
+    weight += w;
+  }
+  return sum / weight;
+}
+
+glm::vec3 ProbeField::projected_radiance(const glm::vec3& position, const glm::vec3& direction) const {
   const view::ProbeLayout& l = probes_.layout;
   const glm::vec3 offset = position - camera_;
   if (!(glm::dot(offset, offset) > 1e-12f)) {

@@ -1,6 +1,8 @@
 // phyir insert: placement, the differential composite, the spatially varying lookup, bad input.
 #include <gtest/gtest.h>
 
+#include <tbb/global_control.h>
+
 #include <cstring>
 
 #include "insert_test_view.h"
@@ -95,6 +97,26 @@ TEST(InsertComposite, ObjectCastsAShadowOnItsSurface) {
     }
   EXPECT_GT(floor_pixels, 0);
   EXPECT_GT(darker, 0);
+  fs::remove_all(dir);
+}
+
+TEST(InsertComposite, SameSeedSameCompositeWhateverTheThreadCount) {
+  const fs::path dir = temp_dir("threads");
+  write_floor_view(dir, kWidth, kHeight, make_probes(kHeight / 4, kWidth / 4, uniform_light));
+  const InsertView view = read_insert_view(dir);
+  int x, y;
+  ahead_pixel(&x, &y);
+  const InsertRequest r = request_at(x, y, "gt");
+  Image one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = insert_object(view, box_object(0.2f), r).composite.color;
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = insert_object(view, box_object(0.2f), r).composite.color;
+  }
+  EXPECT_EQ(one.pixels, two.pixels);
   fs::remove_all(dir);
 }
 

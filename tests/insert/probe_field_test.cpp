@@ -82,3 +82,34 @@ TEST(ProbeField, ObjectBetweenABrightAndADarkProbeIsLitByBoth) {
 
 }  // namespace
 }  // namespace phyir::insert
+
+namespace phyir::insert {
+namespace {
+
+using namespace testing;
+
+// Local mode: probes blended by distance to the vertex in the world, not by projection.
+TEST(ProbeField, LocalModeBlendsTheProbesNearTheVertex) {
+  view::ProbeMosaic probes = make_probes(2, 4, bright_left);
+  Image positions(4, 2, 3, 0.0f);
+  // Only two valid probes, 1 m apart on a floor: the bright one at x = -0.5, the dark at +0.5.
+  for (float& m : probes.mask.pixels) m = 0.0f;
+  probes.mask.at(1, 1) = 1.0f;  // column 1: bright
+  probes.mask.at(2, 1) = 1.0f;  // column 2: dark
+  positions.at(1, 1, 0) = -0.5f;
+  positions.at(2, 1, 0) = 0.5f;
+  ProbeField field(probes, kCamera);
+  ASSERT_TRUE(field.use_neighbourhood(positions, glm::vec3(0.0f), 1.0f));
+  EXPECT_EQ(field.local_probe_count(), 2u);
+  const glm::vec3 up(0.0f, 1.0f, 0.0f);
+  const float middle = field.radiance(glm::vec3(0.0f, 0.2f, 0.0f), up).x;
+  EXPECT_NEAR(middle, 0.5f * (10.0f + 0.1f), 1e-3f);  // equidistant: lit by both alike
+  EXPECT_GT(field.radiance(glm::vec3(-0.4f, 0.1f, 0.0f), up).x, 9.0f);  // beside the bright one
+  EXPECT_LT(field.radiance(glm::vec3(0.4f, 0.1f, 0.0f), up).x, 1.1f);   // beside the dark one
+  // Nothing within reach: projection mode stays.
+  ProbeField far(probes, kCamera);
+  EXPECT_FALSE(far.use_neighbourhood(positions, glm::vec3(10.0f, 0.0f, 0.0f), 1.0f));
+}
+
+}  // namespace
+}  // namespace phyir::insert

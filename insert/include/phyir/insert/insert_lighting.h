@@ -22,6 +22,9 @@ namespace phyir::insert {
 struct LightingRequest {
   std::string source = "gt";            // gt | predicted | global | constant | an HDR file
   std::filesystem::path predicted_dir;  // the prediction folder (predicted)
+  // gt: with probe_position.exr, blend the probes within this distance of the placement point
+  // (ProbeField::use_neighbourhood); 0, or no positions: project into the panorama instead.
+  float neighbourhood_radius = 0.5f;
 };
 
 struct Lighting {

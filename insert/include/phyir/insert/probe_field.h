@@ -13,6 +13,11 @@
 
 namespace phyir::insert {
 
+inline constexpr size_t kMaxLocalProbes = 64;
+// Distance (metres) added in quadrature in the Shepard weights: a vertex on a probe's origin
+// does not take that probe alone (each probe's texels carry their own noise).
+inline constexpr float kLocalSmoothing = 0.05f;
+
 class ProbeField : public render::PositionalRadiance {
  public:
   // `camera`: the panorama's centre. The mosaic must hold at least one valid probe.
@@ -25,6 +30,12 @@ class ProbeField : public render::PositionalRadiance {
   glm::ivec2 cell_of(const glm::vec3& position) const;
   // The probe (row i, column j) used where cell (i, j) and its neighbours are all invalid.
   glm::ivec2 nearest_valid(int i, int j) const;
+  // Local mode: only the valid probes whose origins (`positions`: probe_position.exr) lie within
+  // `radius` of `centre` (at most kMaxLocalProbes, the nearest), blended by inverse squared
+  // distance to the path vertex (Shepard): probes near the object light it, not those of the
+  // surfaces behind it along the camera ray. False (projection mode kept) when none is in reach.
+  bool use_neighbourhood(const Image& positions, const glm::vec3& centre, float radius);
+  size_t local_probe_count() const { return local_.size(); }
   // The mean of every valid probe's texels, weighted by solid angle (the constant baseline).
   glm::vec3 mean_radiance() const;
 
@@ -32,6 +43,12 @@ class ProbeField : public render::PositionalRadiance {
   view::ProbeMosaic probes_;
   glm::vec3 camera_;
   std::vector<glm::ivec2> fallback_;  // per cell, the valid probe nearest it
+  struct LocalProbe {
+    glm::ivec2 cell;
+    glm::vec3 position;
+  };
+  std::vector<LocalProbe> local_;  // local mode's probes (empty: projection mode)
+  glm::vec3 projected_radiance(const glm::vec3& position, const glm::vec3& direction) const;
 };
 
 }  // namespace phyir::insert
