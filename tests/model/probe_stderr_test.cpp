@@ -216,3 +216,26 @@ TEST(ProbeStderr, ViewWithoutTheFileLoadsAndRefusesTheWeighting) {
     EXPECT_NE(what.find("view0"), std::string::npos) << what;
   }
 }
+
+// Not a check: the weights' spread on a dataset (PHYIR_STDERR_DATA, train split), the figures of
+// docs/model.md "Probe loss weighting". Run with --gtest_also_run_disabled_tests.
+TEST(ProbeStderr, DISABLED_MeasureWeightsOnADataset) {
+  const char* data = std::getenv("PHYIR_STDERR_DATA");
+  if (data == nullptr) GTEST_SKIP() << "PHYIR_STDERR_DATA not set";
+  pm::ModelConfig c;
+  c.input_height = 32, c.input_width = 64, c.render_height = 16, c.render_width = 32;
+  c.probe_height = 4, c.probe_width = 8;
+  std::vector<pm::ViewTensors> views;
+  for (const auto& scene : fs::directory_iterator(fs::path(data) / "views"))
+    for (const auto& view : fs::directory_iterator(scene.path()))
+      views.push_back(pm::load_view(view.path(), c, phyir::view::RadianceUnits::kInput));
+  const pm::Batch b = pm::collate(views);
+  const torch::Tensor w = pm::probe_stderr_weights(b.probes, b.probe_stderr, b.probe_mask);
+  const torch::Tensor valid = b.probe_mask.reshape({b.probes.size(0), b.probes.size(1), b.probes.size(2), 1, 1, 1})
+                                  .expand_as(w) > 0.5;
+  const torch::Tensor wv = w.masked_select(valid), rel = (b.probe_stderr / (1.0 + luminance(b.probes))).masked_select(valid);
+  const auto q = [](const torch::Tensor& t, double p) { return torch::quantile(t, p).item<double>(); };
+  std::printf("views %zu texels %lld: sigma/(1+Y) p10 %.4f p50 %.4f p90 %.4f; weight p10 %.3f p50 %.3f p90 %.3f, "
+              "share under 0.5x mean %.3f\n", views.size(), static_cast<long long>(wv.numel()), q(rel, 0.1),
+              q(rel, 0.5), q(rel, 0.9), q(wv, 0.1), q(wv, 0.5), q(wv, 0.9), (wv < 0.5).to(torch::kFloat).mean().item<double>());
+}
