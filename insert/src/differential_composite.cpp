@@ -1,6 +1,7 @@
 #include "phyir/insert/differential_composite.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "phyir/core/error.h"
 
@@ -8,10 +9,15 @@ namespace phyir::insert {
 
 namespace {
 
+float tolerance(float view) { return kDepthToleranceMetres + kDepthToleranceRelative * view; }
+
 // Whether a local surface at `local` metres is in front of (or on) the view's at `view`.
-bool in_front(float local, float view) {
-  return !(view > 0.0f) || local <= view + kDepthToleranceMetres + kDepthToleranceRelative * view;
-}
+bool in_front(float local, float view) { return !(view > 0.0f) || local <= view + tolerance(view); }
+
+// Whether the support disc at `local` metres is the view's own surface there: where the disc
+// overhangs that surface (past a table's edge) it stands for nothing in the image, and its
+// change would darken whatever lies behind.
+bool on_surface(float local, float view) { return view > 0.0f && std::abs(local - view) <= tolerance(view); }
 
 }  // namespace
 
@@ -37,7 +43,7 @@ Composite differential_composite(const Image& background, const Image& view_dept
         float v = bg;
         if (object) {
           v = with_object.color.at(x, y, c);
-        } else if (surface && in_front(without_object.depth.at(x, y, 0), vd)) {
+        } else if (surface && on_surface(without_object.depth.at(x, y, 0), vd)) {
           v = std::max(0.0f, bg + (with_object.color.at(x, y, c) - without_object.color.at(x, y, c)));
         }
         out.color.at(x, y, c) = v;

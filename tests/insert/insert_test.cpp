@@ -122,3 +122,21 @@ TEST(InsertComposite, SameSeedSameCompositeWhateverTheThreadCount) {
 
 }  // namespace
 }  // namespace phyir::insert
+
+namespace phyir::insert {
+namespace {
+
+// A disc overhanging the view's surface (a table's edge, the floor 2 m farther) changes nothing.
+TEST(InsertComposite, OverhangingSupportSurfaceLeavesTheBackground) {
+  Image background(2, 1, 3, 0.5f), view_depth(2, 1, 1, 1.0f);
+  view_depth.at(1, 0) = 3.0f;  // pixel 1: the floor below the table's edge
+  LocalRender with{Image(2, 1, 3, 0.1f), Image(2, 1, 1, 1.0f), Image(2, 1, 1, 1.0f)};
+  LocalRender without{Image(2, 1, 3, 0.3f), Image(2, 1, 1, 1.0f), Image(2, 1, 1, 1.0f)};
+  const Composite c = differential_composite(background, view_depth, with, without);
+  EXPECT_NEAR(c.color.at(0, 0, 0), 0.5f + 0.1f - 0.3f, 1e-6f);  // on the table: the shadow
+  EXPECT_EQ(c.color.at(1, 0, 0), 0.5f);                        // past its edge: untouched
+  EXPECT_EQ(c.mask.at(0, 0), 0.0f);
+}
+
+}  // namespace
+}  // namespace phyir::insert

@@ -3,7 +3,8 @@
 // its support surface, in linear HDR. Per pixel:
 //   object visible (in the with-object render, nearer than the surface-only render and than
 //   the view's own surface there):        the with-object render itself;
-//   support surface visible (not behind the view's surface): background + (with - without);
+//   support surface visible where it coincides with the view's surface (same depth within the
+//   tolerance): background + (with - without);
 //   anything else:                        the background, untouched.
 #include "phyir/core/image.h"
 
