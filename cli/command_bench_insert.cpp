@@ -48,35 +48,10 @@ struct BenchObject {
   scenes::Scene scene;
 };
 
-// A UV sphere of `radius` standing on y = 0, of one material.
+// The relighting sphere of `material` (eval's), `radius`, standing on y = 0.
 scenes::Scene sphere_object(const eval::SphereMaterial& material, float radius) {
-  constexpr int kSegments = 64, kRings = 32;
-  scenes::Scene s;
-  s.source = "sphere (" + material.key + ")";
-  scenes::Material m;
-  m.name = material.key;
-  m.base_color_factor = glm::vec4(material.base_color, 1.0f);
-  m.roughness_factor = material.roughness;
-  m.metallic_factor = material.metalness;
-  s.materials.push_back(m);
-  scenes::Mesh mesh;
-  mesh.name = "sphere";
-  for (int r = 0; r <= kRings; ++r)
-    for (int k = 0; k <= kSegments; ++k) {
-      const double theta = M_PI * r / kRings, phi = 2.0 * M_PI * k / kSegments;
-      const glm::vec3 n(float(std::sin(theta) * std::sin(phi)), float(std::cos(theta)),
-                        float(std::sin(theta) * std::cos(phi)));
-      mesh.positions.push_back(radius * n + glm::vec3(0.0f, radius, 0.0f));
-      mesh.normals.push_back(n);
-    }
-  const unsigned stride = kSegments + 1;
-  for (int r = 0; r < kRings; ++r)
-    for (int k = 0; k < kSegments; ++k) {
-      const unsigned a = r * stride + k, b = a + 1, c = a + stride, d = c + 1;
-      if (r != 0) mesh.triangles.emplace_back(a, c, b);
-      if (r != kRings - 1) mesh.triangles.emplace_back(b, c, d);
-    }
-  s.meshes.push_back(mesh);
+  scenes::Scene s = eval::material_sphere(material, radius, 64, 32);
+  for (glm::vec3& p : s.meshes[0].positions) p.y += radius;
   s.bounds = s.compute_bounds();
   return s;
 }
@@ -124,10 +99,7 @@ Image true_render(const scenes::Scene& scene, const scenes::Scene& placed, const
                   const BenchInsertOptions& o) {
   const scenes::Scene both = insert::merge_scenes(scene, placed);
   const render::RenderScene rs(both, render::scene_environment(scene));
-  render::CameraModel camera;
-  camera.position = v.camera;
-  camera.width = v.width();
-  camera.height = v.height();
+  const render::CameraModel camera = insert::panorama_camera(v);
   render::RenderSettings settings;
   settings.spp = o.truth_spp;
   settings.seed = o.seed;

@@ -52,17 +52,22 @@ const std::array<SphereMaterial, 3>& sphere_materials() {
   return materials;
 }
 
-RelitSphere relight_sphere(const Image& probe, const SphereMaterial& material, const RelightSettings& settings) {
+scenes::Scene material_sphere(const SphereMaterial& material, float radius, int segments, int rings) {
   scenes::Scene scene;
-  scene.source = "phyir eval: relighting sphere";
+  scene.source = "sphere (" + material.key + ")";
   scenes::Material m;
   m.name = material.key;
   m.base_color_factor = glm::vec4(material.base_color, 1.0f);
   m.roughness_factor = material.roughness;
   m.metallic_factor = material.metalness;
   scene.materials.push_back(m);
-  scene.meshes.push_back(uv_sphere(1.0f, 96, 48));
+  scene.meshes.push_back(uv_sphere(radius, segments, rings));
   for (const glm::vec3& p : scene.meshes[0].positions) scene.bounds.extend(p);
+  return scene;
+}
+
+RelitSphere relight_sphere(const Image& probe, const SphereMaterial& material, const RelightSettings& settings) {
+  const scenes::Scene scene = material_sphere(material, 1.0f, 96, 48);
 
   // Radiance cannot be negative; a method's probe might be (the environment's sampling
   // distribution needs non-negative texels).

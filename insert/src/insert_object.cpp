@@ -22,11 +22,7 @@ nlohmann::json vec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 LocalRender render_local(const scenes::Scene& scene, const Lighting& lighting, const InsertView& view,
                          const InsertRequest& request) {
   const render::RenderScene rs(scene, std::make_unique<render::EnvironmentLight>(*lighting.environment));
-  render::CameraModel camera;
-  camera.projection = render::Projection::Equirectangular;
-  camera.position = view.camera;
-  camera.width = view.width();
-  camera.height = view.height();
+  const render::CameraModel camera = panorama_camera(view);
   render::RenderSettings settings;
   settings.spp = request.spp;
   settings.seed = request.seed;

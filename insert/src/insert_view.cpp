@@ -90,4 +90,13 @@ SurfacePoint surface_at(const InsertView& view, int x, int y) {
   return s;
 }
 
+render::CameraModel panorama_camera(const InsertView& view) {
+  render::CameraModel camera;
+  camera.projection = render::Projection::Equirectangular;
+  camera.position = view.camera;
+  camera.width = view.width();
+  camera.height = view.height();
+  return camera;
+}
+
 }  // namespace phyir::insert

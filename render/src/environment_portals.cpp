@@ -58,38 +58,37 @@ bool EnvironmentPortals::passes_through(const Quad& q, const glm::vec3& x, const
   return a >= 0.0f && a <= 1.0f && b >= 0.0f && b <= 1.0f;
 }
 
-double EnvironmentPortals::solid_angle(const glm::vec3& x, std::vector<double>* triangles) const {
+double EnvironmentPortals::solid_angle(const glm::vec3& x) const {
   double total = 0.0;
-  if (triangles) triangles->assign(2 * portals_.size(), 0.0);
-  for (size_t k = 0; k < portals_.size(); ++k) {
-    const Quad& q = portals_[k];
-    if (!faces(q, x)) continue;
-    for (int which = 0; which < 2; ++which) {
-      const double omega = quad_triangle_solid_angle(x, q.corner, q.edge_u, q.edge_v, which);
-      total += omega;
-      if (triangles) (*triangles)[2 * k + size_t(which)] = omega;
-    }
-  }
+  for (const Quad& q : portals_)
+    if (faces(q, x))
+      for (int which = 0; which < 2; ++which) total += quad_triangle_solid_angle(x, q.corner, q.edge_u, q.edge_v, which);
   return total;
 }
 
-bool EnvironmentPortals::sample(const glm::vec3& x, const glm::vec3& u, glm::vec3* direction, float* density) const {
-  std::vector<double> triangles;
-  const double total = solid_angle(x, &triangles);
-  if (!(total > 0.0)) return false;
-  // The triangle whose share of the total holds u.z.
-  double target = double(u.z) * total, below = 0.0;
-  size_t chosen = triangles.size();
-  for (size_t i = 0; i < triangles.size(); ++i) {
-    if (!(triangles[i] > 0.0)) continue;
-    chosen = i;
-    if (target < below + triangles[i]) break;
-    below += triangles[i];
+bool EnvironmentPortals::pick_triangle(const glm::vec3& x, double target, const Quad** quad, int* which) const {
+  double below = 0.0;
+  *quad = nullptr;
+  for (const Quad& q : portals_) {
+    if (!faces(q, x)) continue;
+    for (int w = 0; w < 2; ++w) {
+      const double omega = quad_triangle_solid_angle(x, q.corner, q.edge_u, q.edge_v, w);
+      if (!(omega > 0.0)) continue;
+      *quad = &q, *which = w;  // the last with any: where rounding puts target past the total
+      if (target < below + omega) return true;
+      below += omega;
+    }
   }
-  if (chosen == triangles.size()) return false;
-  const Quad& q = portals_[chosen / 2];
+  return *quad != nullptr;
+}
+
+bool EnvironmentPortals::sample(const glm::vec3& x, const glm::vec3& u, glm::vec3* direction, float* density) const {
+  const double total = solid_angle(x);
+  const Quad* q = nullptr;
+  int which = 0;
+  if (!(total > 0.0) || !pick_triangle(x, double(u.z) * total, &q, &which)) return false;
   SphericalTriangle t;
-  if (!set_triangle(&t, x, q.corner, q.edge_u, q.edge_v, int(chosen % 2))) return false;
+  if (!set_triangle(&t, x, q->corner, q->edge_u, q->edge_v, which)) return false;
   *direction = t.sample(glm::vec2(u.x, u.y));
   int through = 0;
   for (const Quad& p : portals_) through += passes_through(p, x, *direction) ? 1 : 0;
@@ -101,7 +100,7 @@ float EnvironmentPortals::pdf(const glm::vec3& x, const glm::vec3& direction) co
   int through = 0;
   for (const Quad& q : portals_) through += passes_through(q, x, direction) ? 1 : 0;
   if (through == 0) return 0.0f;
-  const double total = solid_angle(x, nullptr);
+  const double total = solid_angle(x);
   return total > 0.0 ? float(double(through) / total) : 0.0f;
 }
 

@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 
 #include "phyir/core/image.h"
+#include "phyir/scenes/scene.h"
 
 namespace phyir::eval {
 
@@ -40,6 +41,10 @@ struct RelitSphere {
   Image color;  // size x size RGB linear
   Image mask;   // 1 on the sphere
 };
+
+// A UV sphere of `radius` at the origin (smooth outward normals, `segments` x `rings`) of
+// `material` alone: the relighting sphere, and the insertion benchmark's objects.
+scenes::Scene material_sphere(const SphereMaterial& material, float radius, int segments, int rings);
 
 // Renders `material` lit by `probe` (an h x w equirect RGB image, linear radiance).
 RelitSphere relight_sphere(const Image& probe, const SphereMaterial& material, const RelightSettings& settings);

@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "phyir/core/image.h"
+#include "phyir/render/camera.h"
 
 namespace phyir::insert {
 
@@ -23,6 +24,9 @@ struct InsertView {
   int width() const { return color.width; }
   int height() const { return color.height; }
 };
+
+// The view's own camera: an equirectangular panorama at its centre, at its size.
+render::CameraModel panorama_camera(const InsertView& view);
 
 // Reads `dir`; `maps_dir` (empty: `dir`) holds depth, normal and the material maps. Missing or
 // mismatched files: phyir::Error naming the file and the problem.

@@ -40,8 +40,11 @@ class EnvironmentPortals {
   };
   bool faces(const Quad& q, const glm::vec3& x) const;
   bool passes_through(const Quad& q, const glm::vec3& x, const glm::vec3& direction) const;
-  // The portals' total solid angle from x (and each triangle's, when `triangles` is given).
-  double solid_angle(const glm::vec3& x, std::vector<double>* triangles) const;
+  // The portals' total solid angle from x.
+  double solid_angle(const glm::vec3& x) const;
+  // The triangle (quad, which of its two) whose share of the portals' solid angle from x
+  // holds `target` (in [0, total)), walking the portals in order without keeping a list.
+  bool pick_triangle(const glm::vec3& x, double target, const Quad** quad, int* which) const;
 
   std::vector<Quad> portals_;
 };
