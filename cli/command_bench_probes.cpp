@@ -11,6 +11,7 @@
 #include <optional>
 #include <sstream>
 
+#include "bench_probes_summary.h"
 #include "bench_suite_runner.h"
 #include "commands.h"
 #include "flag_registry.h"
@@ -131,12 +132,13 @@ void log_breakdown(const std::string& config, const nlohmann::json& b) {
 struct BenchTables {
   std::ostringstream csv;
   nlohmann::json summary;
+  std::string markdown;  // probes_summary.md
 };
 
 std::string size_text(int height, int width) { return fmt::format("{}x{}", height, width); }
 
 void add_row(const BenchProbeFlags& f, const render::ProbeStudy& study, const render::ProbeStudyRow& row,
-             BenchTables& tables) {
+             const LightingMetrics& lighting, BenchTables& tables) {
   const render::ProbeSettings& t = row.setting.settings;
   const std::string grid = size_text(t.layout.grid_height, t.layout.grid_width);
   const std::string res = size_text(t.layout.res_height, t.layout.res_width);
@@ -149,17 +151,27 @@ void add_row(const BenchProbeFlags& f, const render::ProbeStudy& study, const re
                "standard error: median |e|/sigma {:.2f} x Gaussian, {:.0f}% within 2 sigma",
                grid, res, text, row.seconds, row.cpu_seconds, row.extrapolated ? " extrapolated" : "",
                row.error.relative_rmse, noise, row.calibration.median_ratio, 100.0 * row.calibration.within_two_sigma);
+  spdlog::info("{}: per-probe relative RMSE median {:.4f}, 90th percentile {:.4f} (reference noise {:.4f}, {:.4f})",
+               text, row.per_probe.median, row.per_probe.p90, study.reference_noise_per_probe().median,
+               study.reference_noise_per_probe().p90);
+  log_lighting(text, lighting);
   tables.csv << fs::path(f.scene).stem().string() << ',' << grid << ',' << res << ',' << text << ','
              << render::probe_mode_name(t.mode) << ',' << t.spp << ',' << t.cache.samples_per_cell << ','
              << t.cache.cell_size << ',' << study.computed_probes() << ',' << row.seconds << ',' << row.cpu_seconds
              << ',' << (row.extrapolated ? 1 : 0) << ',' << row.rays << ',' << row.error.relative_rmse << ','
              << row.error.rmse << ',' << noise << ',' << f.study.reference_spp << ',' << study.subset().size() << ','
-             << row.stats.cache_cells << ',' << row.stats.cache_fallbacks << '\n';
+             << row.stats.cache_cells << ',' << row.stats.cache_fallbacks << ',' << row.per_probe.median << ','
+             << row.per_probe.p90 << ',' << lighting.mae[0] << ',' << lighting.mae[1] << ',' << lighting.mae[2] << ','
+             << lighting.ssim << '\n';
   tables.summary["rows"].push_back({{"resolution", res}, {"config", text}, {"seconds", row.seconds},
                                     {"cpu_seconds", row.cpu_seconds}, {"extrapolated", row.extrapolated},
                                     {"relative_rmse", row.error.relative_rmse}, {"reference_noise", noise},
                                     {"calibration", row.calibration.to_json()},
-                                    {"stats", row.stats.to_json()}});
+                                    {"stats", row.stats.to_json()},
+                                    {"per_probe_relative_rmse",
+                                     {{"median", row.per_probe.median}, {"p90", row.per_probe.p90},
+                                      {"values", row.per_probe.relative_rmse}}},
+                                    {"lighting", lighting.to_json()}});
   // Keep what was measured so far, in case the run is interrupted.
   write_file_atomic(fs::path(f.out) / "probes.csv", tables.csv.str());
 }
@@ -178,10 +190,21 @@ void measure_resolution(const BenchProbeFlags& f, const render::RenderScene& sce
                                           {"probes", study.subset_json()}};
   write_file_atomic(fs::path(f.out) / ("subset_" + tag + ".json"), study.subset_json().dump(1) + "\n");
   study.make_reference(f.out);
+  // The paper's lighting metrics with eval's default spheres (docs/probes_lighting_metrics.md).
+  const eval::RelightSettings spheres;
+  const ReferenceLighting reference = reference_lighting(study, spheres);
+  log_lighting("reference half 0 vs half 1", reference.halves);
+  log_lighting("relighting's own noise (the reference's spheres, another seed)", reference.relight_noise);
+  tables.summary["reference_lighting"][canonical] = reference_json(reference);
   std::vector<render::ProbeStudyRow> rows;
+  std::vector<SummaryRow> summary;
   for (const std::string& text : f.configs) {
     rows.push_back(study.measure(parse_config(text, options.base)));
-    add_row(f, study, rows.back(), tables);
+    const render::ProbeLayout& l = options.base.layout;
+    const LitProbes lit = light_probes(rows.back().strip, l.res_height, l.res_width, spheres);
+    const LightingMetrics lighting = lighting_metrics(lit, reference.mean);
+    add_row(f, study, rows.back(), lighting, tables);
+    summary.push_back(summary_row(rows.back(), lighting));
   }
   // Where the error is, per configuration; paired with a run of the same setting under
   // another seed where the configurations hold one.
@@ -193,7 +216,13 @@ void measure_resolution(const BenchProbeFlags& f, const render::RenderScene& sce
     const nlohmann::json breakdown = study.breakdown(row, other);
     log_breakdown(row.setting.name, breakdown);
     tables.summary["breakdown"][canonical][row.setting.name] = breakdown;
+    SummaryRow& line = summary[size_t(&row - rows.data())];
+    line.bias = breakdown["total"].value("bias", -1.0);
+    line.noise = breakdown["total"].value("noise", -1.0);
   }
+  tables.markdown += summary_markdown(fs::path(f.scene).stem().string(), size_text(options.base.layout.grid_height,
+                                      options.base.layout.grid_width), canonical, reference, summary);
+  write_file_atomic(fs::path(f.out) / "probes_summary.md", tables.markdown);
 }
 
 void run_bench_probes(const BenchProbeFlags& f) {
@@ -212,7 +241,8 @@ void run_bench_probes(const BenchProbeFlags& f) {
   const render::ProbeLayout& layout = f.base.layout;
   BenchTables tables;
   tables.csv << "scene,grid,resolution,config,mode,spp,cache_spp,cache_cell_m,probes,seconds,cpu_seconds,extrapolated,"
-                "rays,relative_rmse,rmse,reference_noise,reference_spp,subset_probes,cache_cells,cache_fallbacks\n";
+                "rays,relative_rmse,rmse,reference_noise,reference_spp,subset_probes,cache_cells,cache_fallbacks,"
+                "per_probe_median,per_probe_p90,diffuse_mae,matte_silver_mae,mirror_silver_mae,probe_ssim\n";
   tables.summary = {{"scene", f.scene},
                     {"machine", machine_description()},
                     {"grid", size_text(layout.grid_height, layout.grid_width)},
@@ -262,7 +292,7 @@ void add_bench_probes_command(CLI::App& bench) {
   cmd->add_option("scene", f->scene, "glTF scene to measure on (or --suite)")->check(CLI::ExistingFile);
   cmd->add_option("--suite", f->suite, "suite.json of 'phyir bench suite': measure on every scene, into OUT/<name>/")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--out", f->out, "folder for probes.csv, probes.png, probes.json and the cached references")->capture_default_str();
+  cmd->add_option("--out", f->out, "folder for probes.csv, probes.png, probes.json, probes_summary.md and the cached references")->capture_default_str();
   add_study_flags(cmd, *f);
   add_threads_flag(cmd, f->threads);
   add_max_bounces_flag(cmd, f->base.path.max_bounces);

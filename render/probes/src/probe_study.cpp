@@ -110,6 +110,8 @@ void ProbeStudy::make_reference(const fs::path& cache) {
   for (size_t k = 0; k < reference_.pixels.size(); ++k)
     reference_.pixels[k] = 0.5f * (halves_[0].pixels[k] + halves_[1].pixels[k]);
   reference_noise_ = image_error(halves_[0], halves_[1]).relative_rmse / 2.0;
+  reference_noise_per_probe_ =
+      probe_spread(per_probe_relative_rmse(halves_[0], halves_[1], reference_, s.layout.res_width, 0.5));
   spdlog::info("reference noise (relative RMSE of the mean of two halves): {:.4f}", reference_noise_);
   classes_ = classify_texels(scene_, sites_, subset_, s.layout, s.glossy_roughness);
 }
@@ -135,6 +137,7 @@ ProbeStudyRow ProbeStudy::measure(const ProbeStudySetting& setting) const {
   row.stats = out.stats;
   row.strip = probe_strip(out.mosaic, t.layout, subset_);
   row.error = image_error(row.strip, reference_);
+  row.per_probe = probe_spread(per_probe_relative_rmse(row.strip, reference_, reference_, t.layout.res_width));
   if (!reference_stderr_.empty())
     row.calibration = probe_calibration(row.strip, probe_strip(out.standard_error, t.layout, subset_), reference_,
                                         reference_stderr_);

@@ -21,6 +21,7 @@
 #include "phyir/render/effects.h"
 #include "phyir/render/probe_calibration.h"
 #include "phyir/render/probe_renderer.h"
+#include "phyir/render/probe_study_spread.h"
 
 namespace phyir::render {
 
@@ -46,6 +47,7 @@ struct ProbeStudyRow {
   double rays = 0.0;         // scaled the same way
   bool extrapolated = false;
   ImageError error;          // against the reference, on the subset
+  ProbeSpread per_probe;     // each subset probe's relative RMSE, median and 90th percentile
   ProbeCalibration calibration;  // its standard error against its actual error (probe_calibration.h)
   ProbeStats stats;
   Image strip;               // the subset's probes side by side (probe_strip)
@@ -72,6 +74,13 @@ class ProbeStudy {
   // rendered and written there.
   void make_reference(const std::filesystem::path& cache);
   double reference_noise() const { return reference_noise_; }
+  // The reference's own noise per probe (its halves' difference / 2, relative to each probe's
+  // mean |reference|), as ProbeStudyRow::per_probe is the error.
+  const ProbeSpread& reference_noise_per_probe() const { return reference_noise_per_probe_; }
+  // The reference (mean of the halves) and its halves, as strips (make_reference first).
+  const Image& reference() const { return reference_; }
+  const Image& reference_half(int h) const { return halves_[h]; }
+  const ProbeLayout& layout() const { return options_.base.layout; }
 
   // One setting, timed and compared with the reference (make_reference first).
   ProbeStudyRow measure(const ProbeStudySetting& setting) const;
@@ -94,6 +103,7 @@ class ProbeStudy {
   Image reference_;
   Image reference_stderr_;   // the reference's: sqrt(s0^2 + s1^2) / 2
   double reference_noise_ = 0.0;
+  ProbeSpread reference_noise_per_probe_;
   std::vector<int> classes_;  // texel classes of the subset (classify_texels)
 };
 
