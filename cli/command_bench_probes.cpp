@@ -220,8 +220,11 @@ void measure_resolution(const BenchProbeFlags& f, const render::RenderScene& sce
     line.bias = breakdown["total"].value("bias", -1.0);
     line.noise = breakdown["total"].value("noise", -1.0);
   }
-  tables.markdown += summary_markdown(fs::path(f.scene).stem().string(), size_text(options.base.layout.grid_height,
-                                      options.base.layout.grid_width), canonical, reference, summary);
+  // Named by the output folder too: a suite's generated rooms are all room_0.gltf.
+  const fs::path out = fs::path(f.out).has_filename() ? fs::path(f.out) : fs::path(f.out).parent_path();
+  const std::string name = out.filename().string() + ": " + fs::path(f.scene).filename().string();
+  const std::string grid = size_text(options.base.layout.grid_height, options.base.layout.grid_width);
+  tables.markdown += summary_markdown(name, grid, canonical, reference, summary);
   write_file_atomic(fs::path(f.out) / "probes_summary.md", tables.markdown);
 }
 
