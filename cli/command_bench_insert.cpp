@@ -1,27 +1,25 @@
 // phyir bench insert: object insertion scored against the truth. On a rendered view of a scene
 // we have, the object is rendered into the scene itself by the path tracer (full global
 // illumination, same camera), and the composites made under the view's probes (spatially
-// varying), one global probe and a constant environment are scored against it: RMSE in linear
-// HDR over the object and its support surface (its shadow region), per material and placement.
+// varying), one global probe and a constant environment are scored against it over several
+// seeds (bench_insert.h): RMSE and SSIM per placement, object and lighting, and the temporal
+// consistency of the object's shading along a floor path.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <cmath>
-#include <fstream>
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "bench_insert.h"
 #include "commands.h"
 #include "phyir/core/atomic_file.h"
-#include "phyir/core/colour.h"
 #include "phyir/core/error.h"
-#include "phyir/core/image_io.h"
 #include "phyir/core/machine.h"
 #include "phyir/eval/relight.h"
-#include "phyir/insert/insert_object.h"
-#include "phyir/render/render_job.h"
-#include "phyir/render/render_view.h"
+#include "phyir/scenes/asset_gltf.h"
+#include "phyir/scenes/asset_library.h"
 #include "phyir/scenes/gltf_loader.h"
 
 namespace phyir::cli {
@@ -29,24 +27,6 @@ namespace phyir::cli {
 namespace fs = std::filesystem;
 
 namespace {
-
-struct BenchInsertOptions {
-  std::string view, scene, object, out = "bench-insert";
-  int spp = 64;           // the composites' local renders
-  int truth_spp = 512;    // the true render with the object in the scene
-  float sphere_radius = 0.15f;
-  uint64_t seed = 1;
-};
-
-struct NamedPlacement {
-  std::string name;
-  int x = -1, y = -1;
-};
-
-struct BenchObject {
-  std::string name;
-  scenes::Scene scene;
-};
 
 // The relighting sphere of `material` (eval's), `radius`, standing on y = 0.
 scenes::Scene sphere_object(const eval::SphereMaterial& material, float radius) {
@@ -56,133 +36,91 @@ scenes::Scene sphere_object(const eval::SphereMaterial& material, float radius) 
   return s;
 }
 
-// Whether the 7x7 pixels around (x, y) are all one horizontal surface at one height (not an edge).
-bool flat_around(const insert::InsertView& v, int x, int y, float height) {
-  for (int dy = -3; dy <= 3; ++dy)
-    for (int dx = -3; dx <= 3; ++dx) {
-      const int px = (x + dx + v.width()) % v.width(), py = y + dy;
-      if (py < 0 || py >= v.height() || !(v.depth.at(px, py) > 0.0f) || v.normal.at(px, py, 1) < 0.95f) return false;
-      if (std::abs(insert::surface_at(v, px, py).position.y - height) > 0.01f) return false;
-    }
-  return true;
+bool listed(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
 }
 
-// The floor pixel nearest 2 m away, and a raised horizontal surface (a table, a box) nearest 1.5 m.
-std::vector<NamedPlacement> find_placements(const insert::InsertView& v) {
-  float floor_y = 1e30f;
-  for (int y = v.height() / 2; y < v.height(); ++y)
-    for (int x = 0; x < v.width(); ++x)
-      if (v.depth.at(x, y) > 0.0f && v.normal.at(x, y, 1) > 0.95f)
-        floor_y = std::min(floor_y, insert::surface_at(v, x, y).position.y);
-  NamedPlacement floor{"floor"}, raised{"table"};
-  float best_floor = 1e30f, best_raised = 1e30f;
-  for (int y = v.height() / 2; y < v.height(); ++y)
-    for (int x = 0; x < v.width(); ++x) {
-      if (!(v.depth.at(x, y) > 0.0f) || v.normal.at(x, y, 1) < 0.95f) continue;
-      const float h = insert::surface_at(v, x, y).position.y, d = v.depth.at(x, y);
-      const bool on_floor = h < floor_y + 0.02f, on_raised = h > floor_y + 0.3f && h < v.camera.y - 0.2f;
-      const float score = std::abs(d - (on_floor ? 2.0f : 1.5f));
-      if (!(on_floor ? score < best_floor : on_raised && score < best_raised) || !flat_around(v, x, y, h)) continue;
-      NamedPlacement& p = on_floor ? floor : raised;
-      (on_floor ? best_floor : best_raised) = score;
-      p.x = x, p.y = y;
-    }
-  std::vector<NamedPlacement> out;
-  for (const NamedPlacement& p : {floor, raised})
-    if (p.x >= 0) out.push_back(p);
-  if (out.empty()) fail("{}: no horizontal surface to place an object on", v.dir.string());
-  return out;
+// Letters and digits of a library id, for a file name ("Scopia#desk_lamp1" -> "Scopia_desk_lamp1").
+std::string file_stem(const std::string& id) {
+  std::string s = id;
+  for (char& c : s)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return s;
 }
 
-// The scene rendered with the object really in it, from the view's camera.
-Image true_render(const scenes::Scene& scene, const scenes::Scene& placed, const insert::InsertView& v,
-                  const BenchInsertOptions& o) {
-  const scenes::Scene both = insert::merge_scenes(scene, placed);
-  const render::RenderScene rs(both, render::scene_environment(scene));
-  const render::CameraModel camera = insert::panorama_camera(v);
-  render::RenderSettings settings;
-  settings.spp = o.truth_spp;
-  settings.seed = o.seed;
-  settings.aovs = false;
-  settings.progress = false;
-  return render::render_view(rs, camera, settings).film.color();
+// A furniture library piece as a glTF object (written to out/objects/), `height` metres tall.
+BenchObject asset_object(const scenes::AssetLibrary& library, const std::string& id, float height, const fs::path& out) {
+  const scenes::AssetEntry& entry = library.at(id);
+  const fs::path gltf = out / "objects" / (file_stem(id) + ".gltf");
+  fs::create_directories(gltf.parent_path());
+  scenes::write_asset_gltf(gltf, entry, scenes::load_model(entry));
+  scenes::Scene s = scenes::load_gltf(gltf);
+  const scenes::Bounds b = s.compute_bounds();
+  const float scale = height / std::max(b.max.y - b.min.y, 1e-6f);
+  for (scenes::Mesh& m : s.meshes)
+    for (glm::vec3& p : m.positions) p *= scale;
+  s.bounds = s.compute_bounds();
+  return {file_stem(id), std::move(s)};
 }
 
-// RMSE over the pixels where `region` is set, three channels.
-double masked_rmse(const Image& a, const Image& b, const Image& region) {
-  double sum = 0.0;
-  size_t n = 0;
-  for (int y = 0; y < a.height; ++y)
-    for (int x = 0; x < a.width; ++x) {
-      if (region.at(x, y) < 0.5f) continue;
-      for (int c = 0; c < 3; ++c) sum += std::pow(double(a.at(x, y, c)) - double(b.at(x, y, c)), 2.0);
-      n += 3;
-    }
-  return n ? std::sqrt(sum / double(n)) : 0.0;
-}
-
-struct CaseResult {
-  std::string placement, object;
-  std::vector<std::pair<std::string, double>> rmse;  // per lighting
-  double truth_seconds = 0.0;
-};
-
-CaseResult run_case(const insert::InsertView& v, const scenes::Scene& scene, const NamedPlacement& p,
-                    const BenchObject& object, const BenchInsertOptions& o, const fs::path& dir) {
-  CaseResult r{p.name, object.name};
-  insert::InsertRequest request;
-  request.x = p.x, request.y = p.y;
-  request.spp = o.spp;
-  request.seed = o.seed;
-  const auto start = std::chrono::steady_clock::now();
-  const Image truth =
-      true_render(scene, insert::place_object(object.scene, insert::surface_at(v, p.x, p.y), request.placement), v, o);
-  r.truth_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  fs::create_directories(dir);
-  write_image(dir / "truth.exr", truth);
-  write_image(dir / "truth.png", linear_to_display(truth, float(v.exposure_stops), v.display_view));
-  Image region;
-  for (const std::string lighting : {"gt", "global", "constant"}) {
-    request.lighting.source = lighting;
-    const insert::InsertResult result = insert::insert_object(v, object.scene, request);
-    if (region.empty()) region = result.with_object.mask;  // the object and its support surface
-    insert::write_insert_outputs(dir / lighting, v, result);
-    r.rmse.emplace_back(lighting, masked_rmse(result.composite.color, truth, region));
+std::vector<BenchObject> bench_objects(const BenchInsertOptions& o) {
+  std::vector<BenchObject> objects;
+  for (const eval::SphereMaterial& m : eval::sphere_materials()) objects.push_back({m.key, sphere_object(m, o.sphere_radius)});
+  for (const std::string& f : o.objects) objects.push_back({fs::path(f).stem().string(), scenes::load_gltf(f)});
+  if (!o.assets.empty()) {
+    const scenes::AssetLibrary library =
+        scenes::AssetLibrary::open(o.assets_dir.empty() ? scenes::kDefaultAssetDir : fs::path(o.assets_dir));
+    for (const std::string& id : o.assets) objects.push_back(asset_object(library, id, o.asset_height, o.out));
   }
-  return r;
-}
-
-std::string markdown_table(const std::vector<CaseResult>& results) {
-  std::string t = "| placement | object | GT probes (varying) | global probe | constant | truth render s |\n"
-                  "| --- | --- | --- | --- | --- | --- |\n";
-  for (const CaseResult& r : results)
-    t += fmt::format("| {} | {} | {:.4f} | {:.4f} | {:.4f} | {:.1f} |\n", r.placement, r.object, r.rmse[0].second,
-                     r.rmse[1].second, r.rmse[2].second, r.truth_seconds);
-  return t;
+  if (!o.only_objects.empty())
+    objects.erase(std::remove_if(objects.begin(), objects.end(), [&](const BenchObject& b) { return !listed(o.only_objects, b.name); }),
+                  objects.end());
+  if (objects.empty()) fail("bench insert: no object left to score (the object filter matches none)");
+  return objects;
 }
 
 void run(const BenchInsertOptions& o) {
+  if (o.seeds < 1) fail("--seeds {}: at least 1", o.seeds);
   const insert::InsertView v = insert::read_insert_view(o.view);
   const scenes::Scene scene = scenes::load_gltf(o.scene);
-  std::vector<BenchObject> objects;
-  for (const eval::SphereMaterial& m : eval::sphere_materials()) objects.push_back({m.key, sphere_object(m, o.sphere_radius)});
-  if (!o.object.empty()) objects.push_back({fs::path(o.object).stem().string(), scenes::load_gltf(o.object)});
-  std::vector<CaseResult> results;
+  const std::vector<BenchObject> objects = bench_objects(o);
+  float half_width = 0.0f, height = 0.0f;
+  for (const BenchObject& b : objects) {
+    const scenes::Bounds box = b.scene.compute_bounds();
+    half_width = std::max({half_width, 0.5f * (box.max.x - box.min.x), 0.5f * (box.max.z - box.min.z)});
+    height = std::max(height, box.max.y - box.min.y);
+  }
+  std::vector<std::string> skipped;
+  std::vector<NamedPlacement> placements = find_placements(v, scene, half_width, height, skipped);
+  if (!o.only_placements.empty())
+    placements.erase(std::remove_if(placements.begin(), placements.end(),
+                                    [&](const NamedPlacement& p) { return !listed(o.only_placements, p.name); }),
+                     placements.end());
+  for (const std::string& s : skipped) spdlog::info("bench insert: no placement {}", s);
   nlohmann::json record = {{"view", o.view}, {"scene", o.scene}, {"spp", o.spp}, {"truth_spp", o.truth_spp},
+                           {"seeds", o.seeds}, {"lightings", o.lightings}, {"skipped_placements", skipped},
                            {"machine", machine_description()}};
-  for (const NamedPlacement& p : find_placements(v))
+  std::vector<CaseScores> cases;
+  for (const NamedPlacement& p : placements)
     for (const BenchObject& object : objects) {
-      spdlog::info("bench insert: {} on the {} (pixel {}, {})", object.name, p.name, p.x, p.y);
-      results.push_back(run_case(v, scene, p, object, o, fs::path(o.out) / p.name / object.name));
-      nlohmann::json c = {{"placement", p.name}, {"pixel", {p.x, p.y}}, {"object", object.name},
-                          {"truth_seconds", results.back().truth_seconds}};
-      for (const auto& [lighting, rmse] : results.back().rmse) c["rmse"][lighting] = rmse;
-      record["cases"].push_back(c);
+      spdlog::info("bench insert: {} on the {} (pixel {}, {}; {})", object.name, p.name, p.x, p.y, p.note);
+      cases.push_back(run_case(v, scene, p, object, o, fs::path(o.out) / p.name / object.name));
+      record["cases"].push_back(case_record(cases.back(), p));
     }
-  const std::string table = markdown_table(results);
-  write_file_atomic(fs::path(o.out) / "insert_bench.md", table);
+  std::string md = cases_table(cases, o.lightings);
+  for (const std::string& s : skipped) md += fmt::format("\nNo placement {}.\n", s);
+  const auto floor = std::find_if(placements.begin(), placements.end(), [](const NamedPlacement& p) { return p.name == "floor"; });
+  if (o.path_steps > 1 && floor != placements.end()) {
+    std::vector<PathScores> paths;
+    for (const BenchObject& object : objects) {
+      paths.push_back(run_path(v, scene, *floor, object, o, fs::path(o.out) / "path" / object.name));
+      record["paths"].push_back(path_record(paths.back()));
+    }
+    md += "\n" + path_table(paths, o.lightings);
+  }
+  write_file_atomic(fs::path(o.out) / "insert_bench.md", md);
   write_file_atomic(fs::path(o.out) / "insert_bench.json", record.dump(2) + "\n");
-  fmt::print("{}", table);
+  fmt::print("{}", md);
 }
 
 }  // namespace
@@ -194,12 +132,23 @@ void add_bench_insert_command(CLI::App& bench) {
       ->required()
       ->check(CLI::ExistingDirectory);
   cmd->add_option("--scene", o->scene, "the view's glTF scene")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--object", o->object, "an extra (textured) glTF object to score besides the three spheres");
+  cmd->add_option("--object", o->objects, "an extra glTF object to score besides the three spheres (repeatable)");
+  cmd->add_option("--asset", o->assets,
+                  "a furniture library id (`phyir assets list`) to score as an object, converted to glTF (repeatable)");
+  cmd->add_option("--assets", o->assets_dir, "the furniture library folder or .sh3f (default: Debian's)");
+  cmd->add_option("--asset-height", o->asset_height, "metres: library pieces are scaled to this height")
+      ->capture_default_str();
+  cmd->add_option("--placements", o->only_placements, "only these placements (floor table lamp window)");
+  cmd->add_option("--objects", o->only_objects, "only these objects (diffuse matte_silver mirror_silver, file stems, asset ids)");
+  cmd->add_option("--lightings", o->lightings, "lighting sources to composite with (gt global constant, an HDR file)")
+      ->capture_default_str();
   cmd->add_option("--out", o->out, "output folder")->capture_default_str();
   cmd->add_option("--spp", o->spp, "paths per pixel of the composites' local renders")->capture_default_str();
   cmd->add_option("--truth-spp", o->truth_spp, "paths per pixel of the true render")->capture_default_str();
+  cmd->add_option("--seeds", o->seeds, "seeds per case (1..N): scores are mean ± sd over them")->capture_default_str();
+  cmd->add_option("--path-steps", o->path_steps, "frames of the floor path case (0: none)")->capture_default_str();
+  cmd->add_option("--path-stride", o->path_stride, "pixels between path frames")->capture_default_str();
   cmd->add_option("--radius", o->sphere_radius, "sphere radius, metres")->capture_default_str();
-  cmd->add_option("--seed", o->seed, "random seed")->capture_default_str();
   cmd->callback([o] { run(*o); });
 }
 

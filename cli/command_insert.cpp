@@ -49,6 +49,8 @@ void run(const InsertOptions& o) {
   request.y = o.pixel.at(1);
   request.placement.yaw = float(o.yaw_degrees * M_PI / 180.0);
   if (!(request.placement.scale >= 0.0f)) fail("--scale {}: must be 0 or more", request.placement.scale);
+  if (request.lighting.source == "predicted" && request.lighting.predicted_dir.empty())
+    fail("--lighting predicted needs --predicted DIR (a `phyir infer` folder)");
   const insert::InsertView view = insert::read_insert_view(o.view, o.maps);
   const scenes::Scene object = load_object(o.object);
   if (!o.path_end.empty()) {

@@ -11,8 +11,7 @@ namespace fs = std::filesystem;
 
 view::ProbeMosaic read_view_probes(const fs::path& dir, const InsertView& view) {
   if (!view::has_probes(dir))
-    fail("{}: missing (render the view with --probes, or choose --lighting global/constant/FILE with a view "
-         "that has them)",
+    fail("{}: missing (render the view with probes, or light the object from an HDR file)",
          (dir / view::kProbesFile).string());
   view::ProbeMosaic probes = view::read_probe_mosaic(dir);
   const view::ProbeLayout& l = probes.layout;
@@ -33,12 +32,23 @@ glm::ivec2 pixel_cell(const view::ProbeLayout& l, const InsertView& view, int x,
 }
 
 Lighting from_probes(const view::ProbeMosaic& probes, const InsertView& view, int x, int y, bool varying,
-                     const fs::path& dir, float radius) {
+                     const fs::path& dir, const LightingRequest& request) {
   auto field = std::make_shared<ProbeField>(probes, view.camera);
-  const fs::path positions = dir / view::kProbePositionFile;
+  const fs::path positions = dir / view::kProbePositionFile, normals_file = dir / view::kProbeNormalFile;
   bool local = false;
-  if (varying && radius > 0.0f && fs::is_regular_file(positions))
-    local = field->use_neighbourhood(read_image(positions), surface_at(view, x, y).position, radius);
+  const float radius = request.neighbourhood_radius;
+  if (varying && radius > 0.0f && fs::is_regular_file(positions)) {
+    const SurfacePoint ground = surface_at(view, x, y);
+    Image normals;
+    SupportPlane support;
+    if (request.support_plane_only) {
+      if (!fs::is_regular_file(normals_file))
+        fail("{}: missing (blending the support plane's probes needs their normals)", normals_file.string());
+      normals = read_image(normals_file);
+      support = {&normals, ground.normal};
+    }
+    local = field->use_neighbourhood(read_image(positions), ground.position, radius, support);
+  }
   const glm::ivec2 cell = pixel_cell(probes.layout, view, x, y);
   const glm::ivec2 nearest = field->nearest_valid(cell.x, cell.y);
   Lighting lighting;
@@ -48,7 +58,7 @@ Lighting from_probes(const view::ProbeMosaic& probes, const InsertView& view, in
                      {"grid", {probes.layout.grid_height, probes.layout.grid_width}},
                      {"resolution", {probes.layout.res_height, probes.layout.res_width}},
                      {"spatially_varying", varying},
-                     {"blend", !varying ? "none" : local ? "local" : "projected"},
+                     {"blend", !varying ? "none" : !local ? "projected" : request.support_plane_only ? "local_support_plane" : "local"},
                      {"local_probes", field->local_probe_count()}};
   return lighting;
 }
@@ -69,20 +79,19 @@ Lighting make_lighting(const LightingRequest& request, const InsertView& view, i
   Lighting lighting;
   const std::string& s = request.source;
   if (s == "gt" || s == "global") {
-    lighting = from_probes(read_view_probes(view.dir, view), view, x, y, s == "gt", view.dir,
-                           request.neighbourhood_radius);
+    lighting = from_probes(read_view_probes(view.dir, view), view, x, y, s == "gt", view.dir, request);
     lighting.record["probes"] = view.dir.string();
   } else if (s == "predicted") {
-    if (request.predicted_dir.empty()) fail("--lighting predicted needs --predicted DIR (a `phyir infer` folder)");
+    if (request.predicted_dir.empty()) fail("predicted lighting needs the prediction folder (a `phyir infer` result)");
     lighting = from_probes(read_view_probes(request.predicted_dir, view), view, x, y, true, request.predicted_dir,
-                           request.neighbourhood_radius);
+                           request);
     lighting.record["probes"] = request.predicted_dir.string();
   } else if (s == "constant") {
     lighting = constant(read_view_probes(view.dir, view), view);
     lighting.record["probes"] = view.dir.string();
   } else {
     if (!fs::is_regular_file(s))
-      fail("--lighting {}: neither gt, predicted, global, constant nor an existing HDR file", s);
+      fail("lighting source {}: neither gt, predicted, global, constant nor an existing HDR file", s);
     lighting.environment = std::make_unique<render::EnvironmentLight>(read_image(s));
     lighting.record = {{"file", s}, {"spatially_varying", false}};
   }

@@ -4,6 +4,7 @@
 
 #include "phyir/render/camera.h"
 #include "phyir/render/render_view.h"
+#include "phyir/view/input_exposure.h"
 
 namespace phyir::insert {
 
@@ -62,7 +63,7 @@ InsertResult insert_object(const InsertView& view, const scenes::Scene& object, 
                            {"roughness", result.ground.roughness}, {"metalness", result.ground.metalness}}},
       {"lighting", lighting.record},
       {"settings", {{"spp", request.spp}, {"max_bounces", request.max_bounces}, {"seed", request.seed}}},
-      {"display", {{"exposure_stops", view.exposure_stops}, {"view", view.display_view}}},
+      {"display", {{view::kExposureStopsKey, view.exposure_stops}, {"view", view.display_view}}},
       {"timings", {{"setup_seconds", setup_seconds}, {"render_seconds", render_seconds},
                    {"total_seconds", seconds_since(start)}}}};
   return result;

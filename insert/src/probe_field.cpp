@@ -6,6 +6,7 @@
 
 #include "phyir/core/equirect.h"
 #include "phyir/core/error.h"
+#include "phyir/view/view_files.h"
 
 namespace phyir::insert {
 
@@ -68,17 +69,34 @@ glm::ivec2 ProbeField::nearest_valid(int i, int j) const {
   return fallback_[size_t(i) * probes_.layout.grid_width + j];
 }
 
-bool ProbeField::use_neighbourhood(const Image& positions, const glm::vec3& centre, float radius) {
+namespace {
+
+void check_grid_image(const Image& image, const view::ProbeLayout& l, const char* file) {
+  if (image.width != l.grid_width || image.height != l.grid_height || image.channels < 3)
+    fail("{}: {}x{}, but the probe grid is {}x{}", file, image.width, image.height, l.grid_width, l.grid_height);
+}
+
+glm::vec3 texel3(const Image& image, int i, int j) { return {image.at(j, i, 0), image.at(j, i, 1), image.at(j, i, 2)}; }
+
+}  // namespace
+
+bool ProbeField::use_neighbourhood(const Image& positions, const glm::vec3& centre, float radius,
+                                   const SupportPlane& support) {
   const view::ProbeLayout& l = probes_.layout;
-  if (positions.width != l.grid_width || positions.height != l.grid_height || positions.channels < 3)
-    fail("probe_position.exr: {}x{}, but the probe grid is {}x{}", positions.width, positions.height, l.grid_width,
-         l.grid_height);
+  check_grid_image(positions, l, view::kProbePositionFile);
+  if (support.normals) check_grid_image(*support.normals, l, view::kProbeNormalFile);
+  const float min_cos = std::cos(glm::radians(kSupportNormalDegrees));
+  auto on_support = [&](int i, int j, const glm::vec3& p) {
+    if (!support.normals) return true;
+    return glm::dot(texel3(*support.normals, i, j), support.normal) >= min_cos &&
+           std::abs(glm::dot(p - centre, support.normal)) <= kSupportPlaneMetres;
+  };
   std::vector<std::pair<float, LocalProbe>> near;
   for (int i = 0; i < l.grid_height; ++i)
     for (int j = 0; j < l.grid_width; ++j) {
-      const glm::vec3 p(positions.at(j, i, 0), positions.at(j, i, 1), positions.at(j, i, 2));
+      const glm::vec3 p = texel3(positions, i, j);
       const float d = glm::length(p - centre);
-      if (probes_.valid(i, j) && d <= radius) near.push_back({d, LocalProbe{{i, j}, p}});
+      if (probes_.valid(i, j) && d <= radius && on_support(i, j, p)) near.push_back({d, LocalProbe{{i, j}, p}});
     }
   std::sort(near.begin(), near.end(), [](const auto& a, const auto& b) {
     return a.first < b.first || (a.first == b.first && a.second.cell.x * 100000 + a.second.cell.y <

@@ -1,8 +1,10 @@
 // The spatially varying lookup: a point between a bright and a dark probe is lit by both.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "insert_test_view.h"
 #include "phyir/core/equirect.h"
+#include "phyir/core/error.h"
 #include "phyir/insert/insert_object.h"
 #include "phyir/insert/probe_field.h"
 
@@ -109,6 +111,40 @@ TEST(ProbeField, LocalModeBlendsTheProbesNearTheVertex) {
   // Nothing within reach: projection mode stays.
   ProbeField far(probes, kCamera);
   EXPECT_FALSE(far.use_neighbourhood(positions, glm::vec3(10.0f, 0.0f, 0.0f), 1.0f));
+}
+
+// Support-plane mode: a probe on a wall or on a lower surface near the placement takes no
+// weight, one on the support surface's plane does.
+TEST(ProbeField, SupportPlaneModeBlendsOnlyTheProbesOnTheSupportPlane) {
+  view::ProbeMosaic probes = make_probes(2, 4, bright_left);
+  Image positions(4, 2, 3, 0.0f), normals(4, 2, 3, 0.0f);
+  for (float& m : probes.mask.pixels) m = 0.0f;
+  // Column 1 (bright): a wall probe 0.3 m away, facing +X. Column 2 (dark): on the table top,
+  // 1 cm above its plane y = 0.7. Column 3 (dark): the floor 0.4 m below.
+  const glm::vec3 centre(0.0f, 0.7f, 0.0f);
+  auto set = [&](int j, glm::vec3 p, glm::vec3 n) {
+    probes.mask.at(j, 1) = 1.0f;
+    for (int c = 0; c < 3; ++c) positions.at(j, 1, c) = p[c], normals.at(j, 1, c) = n[c];
+  };
+  set(1, {-0.3f, 0.8f, 0.0f}, {1.0f, 0.0f, 0.0f});
+  set(2, {0.2f, 0.71f, 0.0f}, {0.0f, 1.0f, 0.0f});
+  set(3, {0.0f, 0.31f, 0.2f}, {0.0f, 1.0f, 0.0f});
+  ProbeField all(probes, kCamera), plane(probes, kCamera);
+  ASSERT_TRUE(all.use_neighbourhood(positions, centre, 1.0f));
+  EXPECT_EQ(all.local_probe_count(), 3u);
+  ASSERT_TRUE(plane.use_neighbourhood(positions, centre, 1.0f, {&normals, glm::vec3(0.0f, 1.0f, 0.0f)}));
+  EXPECT_EQ(plane.local_probe_count(), 1u);
+  const glm::vec3 up(0.0f, 1.0f, 0.0f), vertex(-0.1f, 0.8f, 0.0f);
+  EXPECT_GT(all.radiance(vertex, up).x, 1.0f);             // the wall's bright probe takes weight
+  EXPECT_NEAR(plane.radiance(vertex, up).x, 0.1f, 1e-5f);  // only the table top's
+  // Normals of another size than the grid: an error naming the file.
+  const Image small(2, 1, 3);
+  try {
+    plane.use_neighbourhood(positions, centre, 1.0f, {&small, up});
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("probe_normal.exr"));
+  }
 }
 
 }  // namespace

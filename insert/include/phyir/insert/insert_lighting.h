@@ -25,6 +25,9 @@ struct LightingRequest {
   // gt: with probe_position.exr, blend the probes within this distance of the placement point
   // (ProbeField::use_neighbourhood); 0, or no positions: project into the panorama instead.
   float neighbourhood_radius = 0.5f;
+  // Blend only the probes on the support surface's plane (ProbeField::SupportPlane; needs
+  // probe_normal.exr): docs/insert.md says what the blend then estimates.
+  bool support_plane_only = false;
 };
 
 struct Lighting {

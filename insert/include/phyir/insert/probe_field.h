@@ -17,6 +17,17 @@ inline constexpr size_t kMaxLocalProbes = 64;
 // Distance (metres) added in quadrature in the Shepard weights: a vertex on a probe's origin
 // does not take that probe alone (each probe's texels carry their own noise).
 inline constexpr float kLocalSmoothing = 0.05f;
+// A probe is on the support surface's plane when its normal is within this angle of the
+// surface's (the probes' own "one surface" tolerance, docs/probes.md) and its origin, 1 cm off
+// its surface, within this distance of the plane (the offset plus tessellation and depth error).
+inline constexpr float kSupportNormalDegrees = 25.0f;
+inline constexpr float kSupportPlaneMetres = 0.03f;
+
+// The support surface a local blend may be restricted to (ProbeField::use_neighbourhood).
+struct SupportPlane {
+  const Image* normals = nullptr;  // probe_normal.exr; null: no restriction
+  glm::vec3 normal{0.0f, 1.0f, 0.0f};
+};
 
 class ProbeField : public render::PositionalRadiance {
  public:
@@ -34,7 +45,11 @@ class ProbeField : public render::PositionalRadiance {
   // `radius` of `centre` (at most kMaxLocalProbes, the nearest), blended by inverse squared
   // distance to the path vertex (Shepard): probes near the object light it, not those of the
   // surfaces behind it along the camera ray. False (projection mode kept) when none is in reach.
-  bool use_neighbourhood(const Image& positions, const glm::vec3& centre, float radius);
+  // `support`, when given, keeps only the probes on the support surface's own plane (their
+  // normals, probe_normal.exr, within kSupportNormalDegrees of its normal, their origins within
+  // kSupportPlaneMetres of its plane).
+  bool use_neighbourhood(const Image& positions, const glm::vec3& centre, float radius,
+                         const SupportPlane& support = {});
   size_t local_probe_count() const { return local_.size(); }
   // The mean of every valid probe's texels, weighted by solid angle (the constant baseline).
   glm::vec3 mean_radiance() const;
