@@ -5,6 +5,7 @@
 #include "commands.h"
 #include "exposure_flag.h"
 #include "flag_registry.h"
+#include "guiding_flags.h"
 #include "probe_flags.h"
 #include "sampling_flags.h"
 #include "phyir/render/render_job.h"
@@ -43,6 +44,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_flag("--quiet", flags->quiet, "no progress display");
   add_camera_flags(cmd, job);
   add_sampling_flags(cmd, job.settings, job.threads);
+  add_guiding_flags(cmd, job.settings.guiding);
   CLI::Option* exposure = add_exposure_flag(cmd, job.auto_exposure, job.exposure, "color.png", "exposure");
   exposure->description(exposure->get_description() + "; written to render.json");
   add_view_flag(cmd, job.view, "color.png", "view");

@@ -79,7 +79,8 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
   auto value = [&] {
     // A punctual light cannot be hit by the competing ray: no MIS.
     const float w = options.mis && !ls.delta ? power_heuristic(float(options.light_samples) * ls.pdf,
-                                                  options.brdf_strategy_probability * lobe_pdf(x, options.lobes, wi))
+                                                  options.brdf_strategy_probability *
+                                                      options.guide.pdf(lobe_pdf(x, options.lobes, wi), ls.wi))
                                 : 1.0f;
     return throughput * f * ls.radiance * (wi.z * w / ls.pdf);
   };
@@ -135,16 +136,16 @@ constexpr float kPortalStrategyProbability = 0.5f;
 // against other_pdf() (the other environment strategy's density for it, asked only of an
 // unoccluded sample) and the BRDF's.
 template <class OtherPdf>
-glm::vec3 environment_sample(const RenderScene& scene, const ShadingPoint& x, Lobes lobes, const glm::vec3& wi_world,
-                             const glm::vec3& Le, float pdf, const OtherPdf& other_pdf, const glm::vec3& throughput,
-                             PathCounters* counters) {
+glm::vec3 environment_sample(const RenderScene& scene, const ShadingPoint& x, Lobes lobes, const GuideMixture& guide,
+                             const glm::vec3& wi_world, const glm::vec3& Le, float pdf, const OtherPdf& other_pdf,
+                             const glm::vec3& throughput, PathCounters* counters) {
   const glm::vec3 wi = x.frame.to_local(wi_world);
   const glm::vec3 f = lobe_eval(x, lobes, wi);
   if (!(wi.z > 0.0f) || !can_arrive(x, wi_world) || !(max_component(f) > 0.0f)) return glm::vec3(0.0f);
   ++counters->rays;
   const float through = scene.accelerator().transmittance(Ray{shadow_origin(x), wi_world});
   if (!(through > 0.0f)) return glm::vec3(0.0f);
-  const float w = power_heuristic(pdf, lobe_pdf(x, lobes, wi), other_pdf());
+  const float w = power_heuristic(pdf, guide.pdf(lobe_pdf(x, lobes, wi), wi_world), other_pdf());
   return throughput * f * Le * (wi.z * w * through / pdf);
 }
 
@@ -152,7 +153,7 @@ glm::vec3 environment_sample(const RenderScene& scene, const ShadingPoint& x, Lo
 
 glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint& x, const glm::vec3& u,
                                    const glm::vec3& u_portal, const glm::vec3& throughput, PathCounters* counters,
-                                   Lobes lobes) {
+                                   Lobes lobes, const GuideMixture& guide) {
   const EnvironmentLight* environment = scene.environment();
   if (!environment) return glm::vec3(0.0f);
   const EnvironmentPortals& portals = scene.portals();
@@ -161,7 +162,7 @@ glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint&
   if (portals.empty()) {
     if (!environment->sample(u, &wi_world, &Le, &pdf) || !(pdf > 0.0f)) return glm::vec3(0.0f);
     if (environment->positional()) Le = environment->radiance_at(x.position, wi_world);
-    return environment_sample(scene, x, lobes, wi_world, Le, pdf, [] { return 0.0f; }, throughput, counters);
+    return environment_sample(scene, x, lobes, guide, wi_world, Le, pdf, [] { return 0.0f; }, throughput, counters);
   }
   // One strategy, each chosen with probability 1/2 (one shadow ray, as without portals): the
   // densities in every weight are the chosen ones', halved (environment_hit_weight too).
@@ -171,14 +172,14 @@ glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint&
     if (!portals.sample(x.position, u_through, &wi_world, &pdf)) return glm::vec3(0.0f);
     const glm::vec3 d = wi_world;
     auto environment_pdf = [&] { return (1.0f - c) * environment->pdf(d); };
-    return environment_sample(scene, x, lobes, d, environment->radiance_at(x.position, d), c * pdf, environment_pdf, throughput,
+    return environment_sample(scene, x, lobes, guide, d, environment->radiance_at(x.position, d), c * pdf, environment_pdf, throughput,
                               counters);
   }
   if (!environment->sample(u, &wi_world, &Le, &pdf) || !(pdf > 0.0f)) return glm::vec3(0.0f);
   if (environment->positional()) Le = environment->radiance_at(x.position, wi_world);
   const glm::vec3 d = wi_world;
   auto portal_pdf = [&] { return c * portals.pdf(x.position, d); };
-  return environment_sample(scene, x, lobes, d, Le, (1.0f - c) * pdf, portal_pdf, throughput, counters);
+  return environment_sample(scene, x, lobes, guide, d, Le, (1.0f - c) * pdf, portal_pdf, throughput, counters);
 }
 
 float emitter_hit_weight(const RenderScene& scene, const glm::vec3& from, float brdf_pdf, const SurfaceInteraction& hit,

@@ -7,8 +7,10 @@
 #include "phyir/render/dielectric.h"
 #include "phyir/render/direct_lighting.h"
 #include "phyir/render/frame.h"
+#include "phyir/render/guide_mixture.h"
 #include "phyir/render/ray_offset.h"
 #include "phyir/render/streams.h"
+#include "path_records.h"
 
 namespace phyir::render {
 
@@ -20,9 +22,9 @@ template <bool kEmitters, bool kEnvironment, bool kTransmission>
 class PathKernel {
  public:
   PathKernel(const RenderScene& scene, const PathSettings& settings, uint64_t key, int max_bounces,
-             PathCounters* counters)
+             PathCounters* counters, PathRecords* records)
       : scene_(scene), settings_(settings), key_(key), max_bounces_(max_bounces), counters_(counters),
-        environment_(kEnvironment ? scene.environment() : nullptr) {}
+        records_(records), environment_(kEnvironment ? scene.environment() : nullptr) {}
 
   glm::vec3 run(const PathStart& start) {
     ray_ = start.ray;
@@ -55,16 +57,30 @@ class PathKernel {
       if (environment_) {
         const float w =
             previous_delta_ ? 1.0f : environment_hit_weight(scene_, previous_position_, previous_pdf_, ray_.direction);
-        L_ += beta_ * environment_->radiance_at(previous_position_, ray_.direction) * w;
+        gather(beta_ * environment_->radiance_at(previous_position_, ray_.direction), w);
       }
       return false;
     }
     if (si->emits) {
       float w = 1.0f;
       if (kEmitters && !previous_delta_) w = emitter_hit_weight(scene_, previous_position_, previous_pdf_, *si);
-      L_ += beta_ * si->emission * w;
+      gather(beta_ * si->emission, w);
     }
     return true;
+  }
+
+  // Light found by the current ray: `light` (throughput included) times its MIS weight w; a
+  // training path also credits it to its vertices (the one whose ray this is: unweighted).
+  void gather(const glm::vec3& light, float w) {
+    L_ += light * w;
+    if (records_) records_->gather(light * w, light);
+  }
+
+  // The guide's mixture at a vertex: inactive without a guide, and at mirrors (a delta lobe
+  // has no density to mix).
+  GuideMixture guide_mixture(const SurfaceInteraction& si) const {
+    if (!settings_.guide || is_mirror(si.brdf.roughness)) return GuideMixture{};
+    return GuideMixture{&settings_.guide->guide_at(si.position), settings_.guide_bsdf_fraction};
   }
 
   // Direct light at si and the next ray; false when the path ends.
@@ -77,8 +93,9 @@ class PathKernel {
       }
     }
     const ShadingPoint x = shading_point(si, wo_world);
-    add_direct_light(x, bounce, first);
-    return reflect(si, x, bounce, first) && roulette(bounce);
+    const GuideMixture mixture = guide_mixture(si);
+    add_direct_light(x, mixture, bounce, first);
+    return reflect(si, x, mixture, bounce, first) && roulette(bounce);
   }
 
   // Glass: a delta dielectric lobe, chosen with probability `transmission`.
@@ -91,6 +108,7 @@ class PathKernel {
         sample_dielectric(frame.to_local(wo_world), eta, si.front_face, si.brdf.base_color, rng->next_float());
     const glm::vec3 wi = frame.to_world(ds.wi);
     beta_ *= ds.weight;
+    if (records_) records_->leave_last_vertex();
     previous_delta_ = true;
     previous_position_ = si.position;
     ray_ = next_ray(si, wi);
@@ -98,17 +116,23 @@ class PathKernel {
   }
 
   // Next-event estimation (the non-delta part of the BRDF only).
-  void add_direct_light(const ShadingPoint& x, int bounce, const FirstBounceSamples* first) {
+  // Its competing ray is drawn from `mixture`, whose density weighs the light samples.
+  void add_direct_light(const ShadingPoint& x, const GuideMixture& mixture, int bounce,
+                        const FirstBounceSamples* first) {
     if constexpr (kEmitters) {
       Rng rng = stream(key_, Purpose::kPathLight, uint64_t(bounce));
       LightVariates u;
       u.select = rng.next_float();
       u.point = rng.next_2d();
       if (first) u.select = first->light_select, u.point = first->light_point;
-      L_ += sample_emitter_light(scene_, x, u, DirectLightOptions{}, beta_, nullptr, counters_);
+      DirectLightOptions options;
+      options.guide = mixture;
+      gather(sample_emitter_light(scene_, x, u, options, beta_, nullptr, counters_), 1.0f);
     }
     if constexpr (kEnvironment) {
-      if (environment_) L_ += sample_environment_light(scene_, x, environment_u_, portal_u_, beta_, counters_);
+      if (environment_)
+        gather(sample_environment_light(scene_, x, environment_u_, portal_u_, beta_, counters_, Lobes::kAll, mixture),
+               1.0f);
     }
   }
 
@@ -127,14 +151,21 @@ class PathKernel {
     portal_u_ = glm::vec3(portal.next_2d(), u_choice);
   }
 
-  // The next ray, by sampling the BRDF.
-  bool reflect(const SurfaceInteraction& si, const ShadingPoint& x, int bounce, const FirstBounceSamples* first) {
+  // The next ray, by sampling the BRDF, or with a guide the mixture (whose choice has its own
+  // stream; the direction's numbers are the BRDF's, stratified at the first bounce).
+  bool reflect(const SurfaceInteraction& si, const ShadingPoint& x, const GuideMixture& mixture, int bounce,
+               const FirstBounceSamples* first) {
     Rng rng = stream(key_, Purpose::kPathBrdf, uint64_t(bounce));
     float u_lobe = rng.next_float();
     glm::vec2 u_brdf = rng.next_2d();
     if (first) u_lobe = first->lobe, u_brdf = first->brdf;
     BrdfSample bs;
-    if (!brdf_sample(si.brdf, x.wo, u_lobe, u_brdf, &bs)) return false;
+    if (mixture.active()) {
+      const float u_choice = stream(key_, Purpose::kPathGuide, uint64_t(bounce)).next_float();
+      if (!sample_guide_mixture(mixture, x.brdf, x.frame, x.wo, u_choice, u_lobe, u_brdf, &bs)) return false;
+    } else if (!brdf_sample(si.brdf, x.wo, u_lobe, u_brdf, &bs)) {
+      return false;
+    }
     const glm::vec3 wi_world = x.frame.to_world(bs.wi);
     // Light leaking through the geometric surface (shading normals) ends the path.
     if (glm::dot(wi_world, si.geometric_normal) <= 0.0f) return false;
@@ -142,6 +173,10 @@ class PathKernel {
     previous_delta_ = bs.delta;
     previous_pdf_ = bs.pdf;
     previous_position_ = si.position;
+    if (records_) {
+      if (bs.delta) records_->leave_last_vertex();
+      else records_->add_vertex(si.position, wi_world, bs.pdf, beta_);
+    }
     ray_ = next_ray(si, wi_world);
     return true;
   }
@@ -172,6 +207,7 @@ class PathKernel {
   const uint64_t key_;
   const int max_bounces_;
   PathCounters* counters_;
+  PathRecords* records_;  // training a guide only
   const EnvironmentLight* environment_;
   glm::vec3 L_{0.0f};
   glm::vec3 beta_{1.0f};
@@ -186,7 +222,12 @@ class PathKernel {
 template <bool kEmitters, bool kEnvironment, bool kTransmission>
 glm::vec3 trace_path(const RenderScene& scene, const PathSettings& settings, const PathStart& start, uint64_t key,
                      int max_bounces, PathCounters* counters) {
-  return PathKernel<kEmitters, kEnvironment, kTransmission>(scene, settings, key, max_bounces, counters).run(start);
+  using Kernel = PathKernel<kEmitters, kEnvironment, kTransmission>;
+  if (!start.records) return Kernel(scene, settings, key, max_bounces, counters, nullptr).run(start);
+  PathRecords records(start.records);
+  const glm::vec3 L = Kernel(scene, settings, key, max_bounces, counters, &records).run(start);
+  records.flush();
+  return L;
 }
 
 }  // namespace
@@ -210,6 +251,12 @@ glm::vec3 PathTracer::radiance(const Ray& ray, uint64_t path_key, PathCounters* 
 glm::vec3 PathTracer::radiance(const Ray& ray, uint64_t path_key, const FirstBounceSamples& first,
                                PathCounters* counters) const {
   return kernel_(*scene_, settings_, PathStart{ray, nullptr, &first}, path_key, settings_.max_bounces, counters);
+}
+
+glm::vec3 PathTracer::radiance(const Ray& ray, uint64_t path_key, const FirstBounceSamples& first,
+                               PathCounters* counters, guiding::RecordBuffer* records) const {
+  return kernel_(*scene_, settings_, PathStart{ray, nullptr, &first, records}, path_key, settings_.max_bounces,
+                 counters);
 }
 
 glm::vec3 PathTracer::continue_from(const SurfaceInteraction& hit, const Ray& ray, uint64_t path_key,

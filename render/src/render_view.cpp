@@ -35,21 +35,8 @@ void render_color(const RenderScene& scene, const CameraModel& camera, const Ren
         PathCounters& c = local.local();
         for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
           for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-            const uint64_t pixel = uint64_t(y) * film->width() + x;
-            // The pixel's scrambling key: from the seed and the pixel, apart from the paths' keys.
-            const uint64_t pixel_key = stream_key(sample_key(settings.seed, pixel, 0), Purpose::kPixelScramble);
-            glm::dvec3 sum(0.0);
-            for (int s = 0; s < settings.spp; ++s) {
-              const uint64_t key = sample_key(settings.seed, pixel, s);
-              const uint32_t index = uint32_t(s);
-              const glm::vec2 p = glm::vec2(x, y) + pixel_sample(index, pixel_key);
-              FirstBounceSamples first;
-              first.light_select = stratified_1d(index, stream_key(pixel_key, Purpose::kPixelLightSelect));
-              first.light_point = pixel_sample(index, stream_key(pixel_key, Purpose::kPixelLightPoint));
-              first.lobe = stratified_1d(index, stream_key(pixel_key, Purpose::kPixelLobe));
-              first.brdf = pixel_sample(index, stream_key(pixel_key, Purpose::kPixelBrdf));
-              sum += glm::dvec3(tracer.radiance(camera.generate_ray(p), key, first, &c));
-            }
+            const glm::dvec3 sum =
+                sum_pixel_samples(tracer, camera, settings.seed, x, y, film->width(), 0, settings.spp, &c);
             film->set_color(x, y, glm::vec3(sum / double(settings.spp)));
           }
         }
@@ -76,6 +63,27 @@ uint64_t render_gbuffer(const RenderScene& scene, const CameraModel& camera, Fil
 
 }  // namespace
 
+glm::dvec3 sum_pixel_samples(const PathTracer& tracer, const CameraModel& camera, uint64_t seed, int x, int y,
+                             int width, int first_sample, int count, PathCounters* counters,
+                             guiding::RecordBuffer* records) {
+  const uint64_t pixel = uint64_t(y) * width + x;
+  // The pixel's scrambling key: from the seed and the pixel, apart from the paths' keys.
+  const uint64_t pixel_key = stream_key(sample_key(seed, pixel, 0), Purpose::kPixelScramble);
+  glm::dvec3 sum(0.0);
+  for (int s = first_sample; s < first_sample + count; ++s) {
+    const uint64_t key = sample_key(seed, pixel, s);
+    const uint32_t index = uint32_t(s);
+    const glm::vec2 p = glm::vec2(x, y) + pixel_sample(index, pixel_key);
+    FirstBounceSamples first;
+    first.light_select = stratified_1d(index, stream_key(pixel_key, Purpose::kPixelLightSelect));
+    first.light_point = pixel_sample(index, stream_key(pixel_key, Purpose::kPixelLightPoint));
+    first.lobe = stratified_1d(index, stream_key(pixel_key, Purpose::kPixelLobe));
+    first.brdf = pixel_sample(index, stream_key(pixel_key, Purpose::kPixelBrdf));
+    sum += glm::dvec3(tracer.radiance(camera.generate_ray(p), key, first, counters, records));
+  }
+  return sum;
+}
+
 nlohmann::json RenderStats::to_json() const {
   return {{"color_seconds", color_seconds},
           {"aov_seconds", aov_seconds},
@@ -94,7 +102,10 @@ RenderOutput render_view(const RenderScene& scene, const CameraModel& camera, co
                    {}};
   const PathTracer tracer(scene, out.effects, settings.path);
   auto start = std::chrono::steady_clock::now();
-  render_color(scene, camera, settings, tracer, &out.film, &out.stats.counters);
+  if (settings.guiding.enabled)
+    out.stats.guiding = render_color_guided(scene, camera, settings, out.effects, &out.film, &out.stats.counters);
+  else
+    render_color(scene, camera, settings, tracer, &out.film, &out.stats.counters);
   out.stats.color_seconds = seconds_since(start);
   if (settings.aovs) {
     start = std::chrono::steady_clock::now();

@@ -112,7 +112,8 @@ void DirectionalQuadtree::refine_into(DirectionalQuadtree* out, uint32_t old_nod
     const uint32_t index = uint32_t(out->nodes_.size());
     out->nodes_.emplace_back();
     out->nodes_[new_node].child[c] = index;
-    refine_into(out, old_has_child ? old_child : UINT32_MAX, index, grandchildren, total, threshold, depth + 1, max_depth);
+    refine_into(out, old_has_child ? old_child : UINT32_MAX, index, grandchildren, total, threshold, depth + 1,
+                max_depth);
   }
 }
 

@@ -287,6 +287,7 @@ nlohmann::json RenderReport::to_json() const {
   if (job.auto_exposure) report["color_png"]["percentile_value"] = exposure.percentile_value;
   report["effects"] = effects.to_json();
   report["counters"] = stats.to_json();
+  report["guiding"] = stats.guiding.to_json(job.settings.guiding);
   report["timings"] = {{"load_seconds", timings.load_seconds},
                        {"build_seconds", timings.build_seconds},
                        {"color_seconds", stats.color_seconds},

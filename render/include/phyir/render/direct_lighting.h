@@ -16,6 +16,7 @@
 
 #include "phyir/render/brdf.h"
 #include "phyir/render/frame.h"
+#include "phyir/render/guide_mixture.h"
 #include "phyir/render/interaction.h"
 #include "phyir/render/path_counters.h"
 #include "phyir/render/render_scene.h"
@@ -68,6 +69,9 @@ struct DirectLightOptions {
   // triangles, for callers that add the punctual lights exactly themselves
   // (punctual_light); the competing ray's emitter_hit_weight must be told the same.
   bool punctual = true;
+  // Path guiding: the competing ray is drawn from this mixture of the lobes and a guide, and
+  // its density in the weight is the mixture's (inactive: the lobes' alone).
+  GuideMixture guide;
 };
 
 // One next-event estimate of the light arriving straight from the emitters through the
@@ -91,10 +95,11 @@ glm::vec3 punctual_light(const RenderScene& scene, const ShadingPoint& x, Lobes 
 // cache's fill: kCosine, irradiance): one direction by the environment's own density (u) or,
 // where the scene has light portals, through them (u_portal; unused without), each chosen
 // with probability 1/2 by u_portal.z and weighted against the other and the BRDF's density
-// by the power heuristic (environment_hit_weight is the BRDF ray's weight against both).
+// by the power heuristic (environment_hit_weight is the BRDF ray's weight against both). With an
+// active `guide`, the competing ray's density is the mixture's (DirectLightOptions::guide).
 glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint& x, const glm::vec3& u,
                                    const glm::vec3& u_portal, const glm::vec3& throughput, PathCounters* counters,
-                                   Lobes lobes = Lobes::kAll);
+                                   Lobes lobes = Lobes::kAll, const GuideMixture& guide = {});
 
 // The MIS weight of a BRDF-sampled ray from `from` with density `brdf_pdf` (solid angle,
 // the probability of tracing it included) that hits the emitter at `hit`, against

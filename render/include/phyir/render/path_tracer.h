@@ -11,11 +11,19 @@
 // key, bounce and purpose: streams.h), so enabling an effect that contributes nothing (e.g. light
 // sampling in a scene without lights) never shifts the random numbers of the rest: the
 // output is bit-identical, which the effects benchmark relies on.
+//
+// Path guiding (docs/guiding.md): with a guide, every non-mirror vertex draws its next
+// direction from the mixture of the BRDF and the guide (guide_mixture.h), and training paths
+// record the radiance they find at each vertex into a buffer the caller gives (the renderer
+// merges it into the next guide, guided_render.h). Without a guide and a buffer nothing of
+// this runs and no random number is drawn for it: the image is the unguided one, bit for bit.
 #include <cstdint>
 
 #include <glm/glm.hpp>
 
 #include "phyir/render/effects.h"
+#include "phyir/render/guiding/radiance_record.h"
+#include "phyir/render/guiding/sd_tree.h"
 #include "phyir/render/interaction.h"
 #include "phyir/render/path_counters.h"
 #include "phyir/render/ray.h"
@@ -26,6 +34,8 @@ namespace phyir::render {
 struct PathSettings {
   int max_bounces = 8;          // scattering events after the first hit
   int roulette_start = 3;       // bounce from which Russian roulette may end paths
+  const guiding::SDTree* guide = nullptr;  // path guiding where set (not owned)
+  float guide_bsdf_fraction = 0.5f;        // a: the BRDF's share of the guided mixture (the paper's)
 };
 
 // Stratified random numbers for the first scattering event of a camera path (the light
@@ -45,6 +55,7 @@ struct PathStart {
   Ray ray;
   const SurfaceInteraction* hit = nullptr;
   const FirstBounceSamples* first = nullptr;
+  guiding::RecordBuffer* records = nullptr;  // training: each vertex's radiance record goes here
 };
 
 class PathTracer {
@@ -59,6 +70,10 @@ class PathTracer {
   glm::vec3 radiance(const Ray& ray, uint64_t path_key, PathCounters* counters) const;
   // The same, with the first scattering event's random numbers given.
   glm::vec3 radiance(const Ray& ray, uint64_t path_key, const FirstBounceSamples& first, PathCounters* counters) const;
+  // The same, appending the radiance the path found at its vertices to `records` (training a
+  // guide; the estimate is the one the overload above returns).
+  glm::vec3 radiance(const Ray& ray, uint64_t path_key, const FirstBounceSamples& first, PathCounters* counters,
+                     guiding::RecordBuffer* records) const;
 
   // The light the surface at `hit` (found along `ray`) sends back along the ray, its own
   // emission excluded: the path continued from a known hit, with at most `max_bounces`

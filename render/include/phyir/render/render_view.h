@@ -11,6 +11,7 @@
 #include "phyir/render/camera.h"
 #include "phyir/render/effects.h"
 #include "phyir/render/film.h"
+#include "phyir/render/guided_render.h"
 #include "phyir/render/path_tracer.h"
 #include "phyir/render/render_scene.h"
 
@@ -23,6 +24,7 @@ struct RenderSettings {
   bool aovs = true;
   bool force_all_effects = false;  // run every kernel feature (benchmarks; same output)
   bool progress = true;
+  GuidingSettings guiding;         // path guiding of the colour (off: the unguided image)
 };
 
 struct RenderStats {
@@ -30,6 +32,7 @@ struct RenderStats {
   double aov_seconds = 0.0;
   PathCounters counters;
   uint64_t aov_rays = 0;
+  GuidingStats guiding;
   nlohmann::json to_json() const;
 };
 
@@ -38,6 +41,12 @@ struct RenderOutput {
   Effects effects;
   RenderStats stats;
 };
+
+// The sum of samples [first, first + count) of pixel (x, y) of a `width`-wide image: their
+// keys, the pixel's stratified first-bounce numbers, one path each. `records`: training a guide.
+glm::dvec3 sum_pixel_samples(const PathTracer& tracer, const CameraModel& camera, uint64_t seed, int x, int y,
+                             int width, int first, int count, PathCounters* counters,
+                             guiding::RecordBuffer* records = nullptr);
 
 RenderOutput render_view(const RenderScene& scene, const CameraModel& camera, const RenderSettings& settings);
 

@@ -25,6 +25,7 @@ enum class Purpose : uint64_t {
   kPathRoulette = 4,     // Russian roulette
   kPathGlass = 5,        // lobe choice and direction at glass
   kPathPortal = 6,       // next-event estimation on the environment through the light portals
+  kPathGuide = 7,        // path guiding: the choice between the BRDF and the guide (guide_mixture.h)
   // The radiance cache, per estimate.
   kCacheFallbackDirection = 102,  // a lookup outside every cell
   kCacheFillDirections = 103,     // permutation of a cache point's stratified cosine directions
