@@ -73,6 +73,19 @@ LightingMetrics lighting_metrics(const LitProbes& measured, const LitProbes& ref
   return out;
 }
 
+LightingMetrics scaled_metrics(const LightingMetrics& absolute, const LitProbes& measured, const LitProbes& reference,
+                               double factor) {
+  LightingMetrics out = absolute;
+  for (size_t m = 0; m < kSphereMaterials; ++m) out.mae[m] *= factor, out.rmse[m] *= factor;
+  for (auto& probe : out.probe_mae)
+    for (double& v : probe) v *= factor;
+  const view::ProbeMosaic a = measured.mosaic.scaled(factor), b = reference.mosaic.scaled(factor);
+  out.ssim = eval::probe_ssim(a, b).ssim;
+  for (size_t k = 0; k < out.probe_ssim.size(); ++k)
+    out.probe_ssim[k] = eval::probe_ssim(single_probe(a, int(k)), single_probe(b, int(k))).ssim;
+  return out;
+}
+
 nlohmann::json LightingMetrics::to_json() const {
   nlohmann::json j;
   const auto& materials = eval::sphere_materials();

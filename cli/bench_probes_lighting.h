@@ -49,4 +49,12 @@ struct LightingMetrics {
 // `measured` against `reference`; both lit with the same settings.
 LightingMetrics lighting_metrics(const LitProbes& measured, const LitProbes& reference);
 
+// `absolute` (lighting_metrics of the two) with both sides' radiance times `factor`, as
+// `phyir eval --radiance input` scores: the spheres' MAE and RMSE times `factor` (relighting
+// is linear in the probe: the same seed draws the same samples from a scaled environment),
+// the relative MAE unchanged, probe SSIM recomputed on the scaled probes (log(1 + L) is not
+// linear).
+LightingMetrics scaled_metrics(const LightingMetrics& absolute, const LitProbes& measured, const LitProbes& reference,
+                               double factor);
+
 }  // namespace phyir::cli

@@ -20,10 +20,13 @@ struct ReferenceLighting {
   // Monte-Carlo noise, which every MAE above includes (the probes differ, so the same seed
   // does not cancel it).
   LightingMetrics relight_noise;
+  double input_stops = 0.0;      // the view's input exposure (bench_probes_exposure.h)
+  LightingMetrics halves_input;  // `halves` in input units (times 2^input_stops)
   render::ProbeSpread noise;  // per-probe relative noise of the mean (probe_study.h)
   double pooled_noise = 0.0;
 };
-ReferenceLighting reference_lighting(const render::ProbeStudy& study, const eval::RelightSettings& settings);
+ReferenceLighting reference_lighting(const render::ProbeStudy& study, const eval::RelightSettings& settings,
+                                     double input_stops);
 
 struct SummaryRow {
   std::string config;
@@ -31,14 +34,17 @@ struct SummaryRow {
   double relative_rmse = 0.0;
   render::ProbeSpread per_probe;
   double bias = -1.0, noise = -1.0;  // from the breakdown's total; negative without a seed pair
-  LightingMetrics lighting;
+  LightingMetrics lighting;        // in absolute units
+  LightingMetrics lighting_input;  // in input units
 };
-SummaryRow summary_row(const render::ProbeStudyRow& row, const LightingMetrics& lighting);
+SummaryRow summary_row(const render::ProbeStudyRow& row, const LightingMetrics& lighting,
+                       const LightingMetrics& lighting_input);
 
 // The log lines of one row (or of the reference, as "reference halves").
 void log_lighting(const std::string& name, const LightingMetrics& m);
 
-// The markdown table: one line per row, then the reference halves' line.
+// The markdown tables: the probe error and the lighting metrics in absolute units, one line
+// per row, then the reference's; the lighting metrics in input units.
 std::string summary_markdown(const std::string& scene, const std::string& grid, const std::string& res,
                              const ReferenceLighting& reference, const std::vector<SummaryRow>& rows);
 

@@ -11,6 +11,7 @@
 #include <optional>
 #include <sstream>
 
+#include "bench_probes_exposure.h"
 #include "bench_probes_summary.h"
 #include "bench_suite_runner.h"
 #include "commands.h"
@@ -135,10 +136,13 @@ struct BenchTables {
   std::string markdown;  // probes_summary.md
 };
 
+// Enough for the auto exposure's 95th percentile of the view's colour.
+constexpr int kExposureSpp = 16;
+
 std::string size_text(int height, int width) { return fmt::format("{}x{}", height, width); }
 
 void add_row(const BenchProbeFlags& f, const render::ProbeStudy& study, const render::ProbeStudyRow& row,
-             const LightingMetrics& lighting, BenchTables& tables) {
+             const LightingMetrics& lighting, const LightingMetrics& lighting_input, BenchTables& tables) {
   const render::ProbeSettings& t = row.setting.settings;
   const std::string grid = size_text(t.layout.grid_height, t.layout.grid_width);
   const std::string res = size_text(t.layout.res_height, t.layout.res_width);
@@ -171,14 +175,16 @@ void add_row(const BenchProbeFlags& f, const render::ProbeStudy& study, const re
                                     {"per_probe_relative_rmse",
                                      {{"median", row.per_probe.median}, {"p90", row.per_probe.p90},
                                       {"values", row.per_probe.relative_rmse}}},
-                                    {"lighting", lighting.to_json()}});
+                                    {"lighting", lighting.to_json()},
+                                    {"lighting_input_units", lighting_input.to_json()}});
   // Keep what was measured so far, in case the run is interrupted.
   write_file_atomic(fs::path(f.out) / "probes.csv", tables.csv.str());
 }
 
 // Every configuration at one probe resolution.
 void measure_resolution(const BenchProbeFlags& f, const render::RenderScene& scene, const render::CameraModel& camera,
-                        const render::Effects& effects, const std::string& res, BenchTables& tables) {
+                        const render::Effects& effects, const std::string& res, double input_stops,
+                        BenchTables& tables) {
   render::ProbeStudyOptions options = f.study;
   options.scene = f.scene;
   options.base = f.base;
@@ -192,7 +198,7 @@ void measure_resolution(const BenchProbeFlags& f, const render::RenderScene& sce
   study.make_reference(f.out);
   // The paper's lighting metrics with eval's default spheres (docs/probes_lighting_metrics.md).
   const eval::RelightSettings spheres;
-  const ReferenceLighting reference = reference_lighting(study, spheres);
+  const ReferenceLighting reference = reference_lighting(study, spheres, input_stops);
   log_lighting("reference half 0 vs half 1", reference.halves);
   log_lighting("relighting's own noise (the reference's spheres, another seed)", reference.relight_noise);
   tables.summary["reference_lighting"][canonical] = reference_json(reference);
@@ -203,8 +209,10 @@ void measure_resolution(const BenchProbeFlags& f, const render::RenderScene& sce
     const render::ProbeLayout& l = options.base.layout;
     const LitProbes lit = light_probes(rows.back().strip, l.res_height, l.res_width, spheres);
     const LightingMetrics lighting = lighting_metrics(lit, reference.mean);
-    add_row(f, study, rows.back(), lighting, tables);
-    summary.push_back(summary_row(rows.back(), lighting));
+    const LightingMetrics input = scaled_metrics(lighting, lit, reference.mean, std::exp2(input_stops));
+    log_lighting(text + " (input units)", input);
+    add_row(f, study, rows.back(), lighting, input, tables);
+    summary.push_back(summary_row(rows.back(), lighting, input));
   }
   // Where the error is, per configuration; paired with a run of the same setting under
   // another seed where the configurations hold one.
@@ -250,7 +258,11 @@ void run_bench_probes(const BenchProbeFlags& f) {
                     {"machine", machine_description()},
                     {"grid", size_text(layout.grid_height, layout.grid_width)},
                     {"rows", nlohmann::json::array()}};
-  for (const std::string& res : f.res_list) measure_resolution(f, render_scene, camera, effects, res, tables);
+  // The unit `phyir eval --radiance input` would score this view in.
+  const double input_stops = view_input_stops(render_scene, camera, kExposureSpp);
+  tables.summary["input_exposure_stops"] = input_stops;
+  for (const std::string& res : f.res_list)
+    measure_resolution(f, render_scene, camera, effects, res, input_stops, tables);
   const fs::path csv_path = fs::path(f.out) / "probes.csv";
   write_file_atomic(csv_path, tables.csv.str());
   write_file_atomic(fs::path(f.out) / "probes.json", tables.summary.dump(2) + "\n");

@@ -1,6 +1,7 @@
 // The bench's lighting metrics (cli/bench_probes_lighting.h) are eval's: a probe equal to the
 // reference scores MAE 0 and SSIM 1; a probe k times too bright relights every sphere k times
-// too bright (same seed, same sampling) and scores eval's closed-form SSIM of two constants.
+// too bright (same seed, same sampling) and scores eval's closed-form SSIM of two constants;
+// in input units the MAE scales and the SSIM is eval's on the scaled probes.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -94,6 +95,30 @@ TEST(BenchProbesLighting, ConstantProbesScoreTheClosedFormSsim) {
     EXPECT_EQ(m.probe_mae[0][k], 0.0);
     EXPECT_NEAR(m.mae[k], m.probe_mae[1][k] / 2.0, 1e-9);
   }
+}
+
+TEST(BenchProbesLighting, InputUnitsScaleTheMaeAndRecomputeTheSsim) {
+  const Image reference = strip({1.0f, 3.0f}, false), measured = scaled(reference, 1.5f);
+  const LitProbes a = light_probes(measured, kH, kW, quick()), b = light_probes(reference, kH, kW, quick());
+  const LightingMetrics absolute = lighting_metrics(a, b);
+  const LightingMetrics input = scaled_metrics(absolute, a, b, 4.0);
+  // As eval would score probes four times as bright: relit again, the spheres are 4x.
+  const LightingMetrics relit = lighting_metrics(light_probes(scaled(measured, 4.0f), kH, kW, quick()),
+                                                 light_probes(scaled(reference, 4.0f), kH, kW, quick()));
+  for (size_t k = 0; k < kSphereMaterials; ++k) {
+    EXPECT_NEAR(input.mae[k], 4.0 * absolute.mae[k], 1e-9) << k;
+    EXPECT_NEAR(input.mae[k], relit.mae[k], 1e-4 * relit.mae[k]) << k;
+    EXPECT_DOUBLE_EQ(input.relative_mae[k], absolute.relative_mae[k]) << k;
+  }
+  double expected = 0.0;
+  for (float probe : {1.0f, 3.0f})
+    for (int c = 0; c < 3; ++c) {
+      const double channel = 4.0 * probe * (1.0 + 0.1 * c);
+      expected += constant_ssim(1.5 * channel, channel) / 6.0;
+    }
+  EXPECT_NEAR(input.ssim, expected, 1e-5);
+  EXPECT_NEAR(input.ssim, relit.ssim, 1e-9);
+  EXPECT_NE(input.ssim, absolute.ssim);
 }
 
 TEST(BenchProbesLighting, MismatchedStripsAreRefused) {
