@@ -48,7 +48,15 @@ void ProbeStudy::pick_subset() {
   std::vector<int> valid;
   for (size_t p = 0; p < sites_.size(); ++p)
     if (sites_[p].valid()) valid.push_back(int(p));
-  if (valid.empty()) fail("{}: no valid probe in the {}x{} grid", options_.scene, l.grid_height, l.grid_width);
+  // A room that is all light (every surface emits) has computed probes but no valid one.
+  if (valid.empty()) {
+    for (size_t p = 0; p < sites_.size(); ++p)
+      if (sites_[p].computed()) valid.push_back(int(p));
+    if (!valid.empty())
+      spdlog::warn("{}: no valid probe in the {}x{} grid; measuring on computed ones (on emitters or glass)",
+                   options_.scene, l.grid_height, l.grid_width);
+  }
+  if (valid.empty()) fail("{}: no probe computed in the {}x{} grid", options_.scene, l.grid_height, l.grid_width);
   Rng pick(0x5eed + options_.base.seed, 3);
   subset_ = valid;
   const size_t n = std::min(subset_.size(), size_t(std::max(options_.reference_probes, 1)));
