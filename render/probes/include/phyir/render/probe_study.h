@@ -4,11 +4,11 @@
 // writes the tables). The path tracer's studies are render/studies.h.
 //
 // The reference is the unbiased path mode at `reference_spp` on a subset of valid probes
-// (random, or given; computed ones in a room that is all light), rendered as two independent halves so that its own noise is measured
-// too: reference noise = RMSE(half 1 - half 2) / 2, relative like the errors. Each setting is
-// then timed and compared on that subset: cache mode renders the full grid (its cache depends
-// on every probe); path mode renders the subset only and its time is scaled to the grid's
-// probe count (its probes are independent; the row says `extrapolated`). Where two settings
+// (random, or given; computed ones in a room that is all light), rendered as two independent
+// halves so that its own noise is measured too: reference noise = RMSE(half 1 - half 2) / 2,
+// relative like the errors. Each setting is then timed and compared on that subset: cache mode
+// renders the full grid (its cache depends on every probe); path mode renders the subset only
+// and its time is scaled to the grid's probe count (its probes are independent; the row says `extrapolated`). Where two settings
 // differ in their seed alone, the error splits into bias and noise (probe_study_breakdown.h).
 #include <filesystem>
 #include <string>
