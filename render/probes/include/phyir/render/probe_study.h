@@ -8,8 +8,9 @@
 // halves so that its own noise is measured too: reference noise = RMSE(half 1 - half 2) / 2,
 // relative like the errors. Each setting is then timed and compared on that subset: cache mode
 // renders the full grid (its cache depends on every probe); path mode renders the subset only
-// and its time is scaled to the grid's probe count (its probes are independent; the row says `extrapolated`). Where two settings
-// differ in their seed alone, the error splits into bias and noise (probe_study_breakdown.h).
+// and its time is scaled to the grid's probe count (its probes are independent; the row says
+// `extrapolated`). Where two settings differ in their seed alone, the error splits into bias
+// and noise (probe_study_breakdown.h).
 #include <filesystem>
 #include <string>
 #include <vector>
