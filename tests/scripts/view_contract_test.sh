@@ -14,7 +14,7 @@ check() {  # description, command printing offending lines
   if [ -n "$out" ]; then echo "FAIL: $1:"; echo "$out"; fail=1; fi
 }
 check "a library names a command-line flag" \
-  "git grep -nE -- '--[a-z][a-z0-9-]+' -- core scenes render dataset eval model view ':!*.md'"
+  "git grep -nE -- '--[a-z][a-z0-9-]+' -- core scenes render dataset eval model view insert ':!*.md'"
 check "a view-folder name spelled outside the view module" \
   "git grep -lE '\"(probes|probe_mask|probe_stderr)\\.exr\"|\"exposure_stops\"' -- ':!tests' ':!docs' ':!view'"
 check "model/ or eval/ parses a record itself" \

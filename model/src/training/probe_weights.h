@@ -1,6 +1,6 @@
 #pragma once
 // Inverse-variance weights of the probe loss's texels from the ground truth's standard error
-// (`phyir train --probe-loss-weight stderr`, docs/model.md "Probe loss weighting"). Private header.
+// (TrainOptions::probe_loss_weight "stderr", docs/model.md "Probe loss weighting"). Private header.
 #include <torch/torch.h>
 
 namespace phyir::model {

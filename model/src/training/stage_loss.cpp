@@ -32,8 +32,8 @@ torch::Tensor probe_weights(const LossWeights& w, const Batch& b) {
   if (!b.probe_stderr.defined()) {
     std::string folders;
     for (const std::string& id : b.without_probe_stderr) folders += (folders.empty() ? "" : ", ") + id;
-    fail("--probe-loss-weight stderr: view folder(s) {} have no {} (render the probes again, or train with "
-         "--probe-loss-weight none)", folders, view::kProbeStderrFile);
+    fail("probe loss weighted by standard error: view folder(s) {} have no {} (render the probes again, or "
+         "train unweighted)", folders, view::kProbeStderrFile);
   }
   return probe_stderr_weights(b.probes, b.probe_stderr, b.probe_mask);
 }

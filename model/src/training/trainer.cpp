@@ -188,10 +188,11 @@ void Trainer::load_data() {
       ManifestDataset::for_training(o_.data_dir, o_.split, o_.max_views, config_, units, stage_.lnet);
   // One view read now: a stage that needs probes fails before the first step, not in a worker.
   if (stage_.lnet && !views.get(0).probes.defined())
-    fail("stage {}: {} has no probes.exr (render the dataset with probes)", stage_name_, views.folder(0).string());
+    fail("stage {}: {} has no {} (render the dataset with probes)", stage_name_, views.folder(0).string(),
+         view::kProbesFile);
   if (stage_.lnet && weights_.probe_stderr && !views.get(0).probe_stderr.defined())
-    fail("stage {}: --probe-loss-weight stderr: {} has no {} (render the probes again, or train with "
-         "--probe-loss-weight none)", stage_name_, views.folder(0).string(), view::kProbeStderrFile);
+    fail("stage {}: probe loss weighted by standard error: {} has no {} (render the probes again, or train "
+         "unweighted)", stage_name_, views.folder(0).string(), view::kProbeStderrFile);
   views_ = static_cast<int64_t>(views.size().value());
   batch_ = std::min<int64_t>(batch_size_, views_);
   batches_per_epoch_ = global_batches(views_, batch_, ranks_);

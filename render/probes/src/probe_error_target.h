@@ -1,5 +1,5 @@
 #pragma once
-// Rendering a view's probes until their estimated error reaches a target (--probe-error;
+// Rendering a view's probes until their estimated error reaches a target (ProbeSettings::target_error;
 // docs/probes.md, "Accuracy as a target").
 //
 // The estimate: each texel's standard error sigma (probe_stderr.exr), pooled over the valid
