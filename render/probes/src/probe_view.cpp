@@ -29,12 +29,6 @@ double seconds_since(Clock::time_point start) {
 // (the last bounce) from each one's own (foot_correction.h).
 constexpr size_t kMinFootCorrections = 64;
 
-// A texel's spread is judged against its mean plus a floor, so that the noise of nearly
-// black texels does not flag them: this fraction of the mean radiance a diffuse white
-// surface would reflect under the cache's mean irradiance (a scale of the view's brightness
-// that exists before any probe is shaded).
-constexpr float kDarkFloorFraction = 0.1f;
-
 // Probes are shaded in tiles of kTileRows x kTileCols neighbours on the grid, texel by texel
 // across the tile: neighbouring probes see the same scene in the same direction from points
 // a few centimetres apart, so one probe's texel finds the cache cells, BVH nodes and texture
@@ -45,7 +39,7 @@ constexpr int kTileCols = 8;
 
 // The indices into `todo` of each tile's probes, tiles in grid order, each tile's probes in
 // todo's order.
-std::vector<std::vector<size_t>> probe_tiles(const std::vector<int>& todo, int grid_width) {
+ProbeTiles probe_tiles(const std::vector<int>& todo, int grid_width) {
   const int tiles_across = (grid_width + kTileCols - 1) / kTileCols;
   auto tile_of = [&](int p) { return (p / grid_width / kTileRows) * tiles_across + (p % grid_width) / kTileCols; };
   std::vector<size_t> order(todo.size());
@@ -72,8 +66,7 @@ ProbeView::ProbeView(const RenderScene& scene, const Effects& effects, const Pro
       adaptive_(settings.mode == ProbeMode::kCache && settings.hard_spp_factor > 1),
       share_(settings.mode == ProbeMode::kCache && settings.sharing.radius > 0),
       correct_foot_(settings.mode == ProbeMode::kCache && settings.correct_foot),
-      footprints_(scene.scene()),
-      coverage_(scene.scene()),
+      transport_(scene, effects, settings),
       cones_(settings.layout.res_height, settings.layout.res_width) {
   if (sites.size() != size_t(layout_.probe_count()))
     fail("{} probe sites given for a {}x{} grid", sites.size(), layout_.grid_height, layout_.grid_width);
@@ -98,23 +91,9 @@ ProbeView::ProbeView(const RenderScene& scene, const Effects& effects, const Pro
 ProbeOutput ProbeView::run() {
   const auto start = Clock::now();
   tiles_ = probe_tiles(todo_, layout_.grid_width);
-  if (settings_.mode == ProbeMode::kCache) build_cache();
+  if (settings_.mode == ProbeMode::kCache) transport_.build_cache(out_.sites, todo_, tiles_, &out_.stats);
   const auto shade_start = Clock::now();
-  if (settings_.mode == ProbeMode::kCache && effects_.punctual_lights && settings_.path.max_bounces >= 1) {
-    uint64_t rays = 0;
-    scenes::Bounds surroundings;  // where the sun's photons matter: round the view's probes
-    for (const ProbeSite& site : out_.sites) {
-      if (!site.computed()) continue;
-      surroundings.extend(site.surface);
-      surroundings.extend(site.origin);
-    }
-    photons_ = PunctualPhotons(scene_, settings_.photons_per_light, settings_.spp, surroundings,
-                               stream_key(settings_.seed, Purpose::kProbePhoton), &rays);
-    out_.stats.photons = photons_.size();
-    out_.stats.photon_rays += rays;
-    out_.stats.counters.rays += rays;
-  }
-  estimator_ = std::make_unique<TexelEstimator>(scene_, effects_, settings_, cache_.get(), &photons_);
+  transport_.build_estimator(out_.sites, &out_.stats);
   if (share_) {
     records_.distance.assign(size_t(layout_.probe_count()) * size_t(texels_), std::numeric_limits<float>::infinity());
     records_.samples.assign(size_t(layout_.probe_count()) * size_t(texels_), 0.0f);
@@ -132,7 +111,7 @@ ProbeOutput ProbeView::run() {
   progress.finish();
   ProbeStats& stats = out_.stats;
   for (const Worker& w : workers_) stats += w.stats;
-  if (cache_) stats.cache_fallbacks = cache_->fallbacks();
+  if (transport_.cache()) stats.cache_fallbacks = transport_.cache()->fallbacks();
   stats.shade_seconds = seconds_since(shade_start);
   if (share_) share_between_neighbours();
   add_after_sharing(&Worker::photon_light);
@@ -166,50 +145,6 @@ void ProbeView::select_probes() {
   stats.computed_probes = todo_.size();
 }
 
-void ProbeView::build_cache() {
-  const auto start = Clock::now();
-  RadianceCacheSettings cs = settings_.cache;
-  cs.seed = stream_key(settings_.seed, Purpose::kCacheSeed);
-  cs.progress = settings_.progress;
-  cache_ = std::make_unique<RadianceCache>(scene_, effects_, settings_.path, cs);
-  // Discovery: one direction per texel, tile by tile, texel by texel across a tile (as the
-  // shading): neighbouring probes' rays offer points to the same cells one after the other.
-  tbb::enumerable_thread_specific<RadianceCache::Collector> collectors;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles_.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
-    RadianceCache::Collector& collector = collectors.local();
-    PathCounters& c = workers_.local().stats.counters;
-    for (size_t n = r.begin(); n < r.end(); ++n) {
-      for (int t = 0; t < texels_; ++t) {
-        for (size_t k : tiles_[n]) {
-          const int p = todo_[k];
-          const uint64_t key = item_stream_key(probe_seed_, texel_id(p, t), Purpose::kProbeDiscovery);
-          Rng rng = generator(key, Purpose::kProbeDiscovery);
-          const Ray ray{out_.sites[size_t(p)].origin,
-                        probe_texel_direction(t / layout_.res_width, t % layout_.res_width, layout_.res_height,
-                                              layout_.res_width, rng.next_2d())};
-          SurfaceInteraction si;
-          ++c.rays;
-          if (scene_.trace(ray, &si) && !(si.transmission > 0.0f))
-            collector.offer(*cache_, cache_point(si, si.shading_normal), stream_key(key, Purpose::kProbeCacheTieBreak));
-        }
-      }
-    }
-  });
-  std::vector<const RadianceCache::Collector*> list;
-  for (const auto& collector : collectors) list.push_back(&collector);
-  ProbeStats& stats = out_.stats;
-  cache_->build(list, &stats.counters);
-  stats.cache_rays = stats.counters.rays;  // the fill's; the discovery's are the workers' so far
-  for (const Worker& w : workers_) stats.cache_rays += w.stats.counters.rays;
-  stats.cache_cells = cache_->cell_count();
-  stats.cache_direct_cells = cache_->direct_cell_count();
-  stats.cache_edge_cells = cache_->edge_cell_count();
-  stats.cache_edge_profiles = cache_->edge_profile_count();
-  stats.cache_fill_samples = cache_->fill_samples();
-  stats.cache_seconds = seconds_since(start);
-  dark_floor_ = kDarkFloorFraction * cache_->mean_irradiance_luminance() * kInvPi;
-}
-
 void ProbeView::shade_pass(int pass) {
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, tiles_.size(), 1),
@@ -226,7 +161,7 @@ void ProbeView::shade_tile(const std::vector<size_t>& tile, int pass, Worker* w)
     w->tile[m].k = tile[m];
     w->tile[m].p = todo_[tile[m]];
     prepare_probe(&w->tile[m], pass);
-    if (pass == 0 && !photons_.empty()) gather_photons(w->tile[m], w);
+    if (pass == 0 && !transport_.photons().empty()) gather_photons(w->tile[m], w);
   }
   for (TileProbe& probe : w->tile) probe.texels.assign(size_t(texels_), TexelState());
   for (int t = 0; t < texels_; ++t)
@@ -237,7 +172,7 @@ void ProbeView::shade_tile(const std::vector<size_t>& tile, int pass, Worker* w)
       if (in_pass(probe, t, pass)) finish_texel(probe, t, w);
   if (pass == 0 && correct_foot_)
     for (const TileProbe& probe : w->tile)
-      feet_[probe.k] = FootCorrection::measure(*cache_, out_.sites[size_t(probe.p)], probe.measured);
+      feet_[probe.k] = FootCorrection::measure(*transport_.cache(), out_.sites[size_t(probe.p)], probe.measured);
   progress_->advance(tile.size());
 }
 
@@ -256,15 +191,15 @@ void ProbeView::prepare_probe(TileProbe* probe, int pass) const {
     probe->interleave.count = settings_.sharing.window();
   }
   probe->lit.assign(size_t(texels_), uint8_t(0));
-  if (adaptive_) footprints_.mark(site.origin, layout_.res_height, layout_.res_width, &probe->lit);
+  if (adaptive_) transport_.footprints().mark(site.origin, layout_.res_height, layout_.res_width, &probe->lit);
   // The lights' exact coverage of each texel, where the emission a texel sees is the
   // lights' alone (no environment).
   probe->lights = EmitterCoverage::View();
   probe->analytic = false;
   bool any_lit = false;
   for (int t = 0; t < texels_ && !any_lit; ++t) any_lit = probe->lit[size_t(t)] != 0 && in_pass(*probe, t, pass);
-  if (adaptive_ && coverage_.usable() && !effects_.environment && any_lit) {
-    probe->lights = coverage_.view(site.origin);
+  if (adaptive_ && transport_.coverage().usable() && !effects_.environment && any_lit) {
+    probe->lights = transport_.coverage().view(site.origin);
     probe->analytic = probe->lights.valid();
   }
   probe->measured = FootIrradiance(site.normal);
@@ -274,7 +209,7 @@ void ProbeView::prepare_probe(TileProbe* probe, int pass) const {
 void ProbeView::gather_photons(TileProbe& probe, Worker* w) {
   const ProbeSite& site = out_.sites[size_t(probe.p)];
   uint64_t rays = 0;
-  photons_.gather(site.origin, site.normal, layout_.res_height, layout_.res_width,
+  transport_.photons().gather(site.origin, site.normal, layout_.res_height, layout_.res_width,
                   item_stream_key(probe_seed_, uint64_t(probe.p), Purpose::kProbePhotonRoulette), &w->photon_radiance,
                   &w->photon_radiance_cos, &rays);
   w->stats.counters.rays += rays;

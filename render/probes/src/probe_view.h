@@ -1,10 +1,13 @@
 #pragma once
 // One view's probes being rendered: the steps of ProbeRenderer::render_at (docs/probes.md,
-// "The two modes"). Internal to the probe renderer. The view's passes, cache, photons and
+// "The two modes"). Internal to the probe renderer. The light transport the probes share
+// (cache, photons, lights' coverage, estimator) is its ViewTransport's
+// (probe_view_transport.h); the view keeps its passes' bookkeeping: which probes, in which
+// tiles, the foot corrections, the records sharing needs and the outputs. Its passes and
 // sharing are in probe_view.cpp, its texels (first_look and after) in probe_view_texels.cpp.
 //
 //   select_probes         which probes are computed; their position, normal and mask images
-//   build_cache           discovery rays from every texel, then the radiance cache's fill
+//   transport_            the shared transport, built before the first pass
 //   shade_pass            every tile in parallel (twice with the foot correction: the texels
 //                         that may look to the front, then those facing the probe's surface)
 //     shade_tile          a tile's probes texel by texel across the tile, twice:
@@ -19,14 +22,10 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include "phyir/core/progress.h"
-#include "emitter_coverage.h"
-#include "emitter_footprints.h"
 #include "foot_correction.h"
 #include "phyir/render/probe_renderer.h"
 #include "probe_sharing.h"
-#include "probe_texel_estimator.h"
-#include "punctual_photons.h"
-#include "radiance_cache.h"
+#include "probe_view_transport.h"
 
 namespace phyir::render {
 
@@ -87,7 +86,6 @@ class ProbeView {
   };
 
   void select_probes();
-  void build_cache();
   void shade_pass(int pass);
   void shade_tile(const std::vector<size_t>& tile, int pass, Worker* w);
   void prepare_probe(TileProbe* probe, int pass) const;
@@ -126,14 +124,9 @@ class ProbeView {
   const bool adaptive_, share_, correct_foot_;
   ProbeOutput out_;
   std::vector<int> todo_;
-  std::vector<std::vector<size_t>> tiles_;
-  std::unique_ptr<RadianceCache> cache_;
-  std::unique_ptr<TexelEstimator> estimator_;
-  PunctualPhotons photons_;
-  EmitterFootprints footprints_;
-  EmitterCoverage coverage_;
+  ProbeTiles tiles_;
+  ViewTransport transport_;
   TexelCones cones_;
-  float dark_floor_ = 0.0f;
   TexelRecords records_;
   std::vector<FootCorrection> feet_;
   glm::vec3 common_difference_{0.0f};

@@ -87,7 +87,7 @@ glm::vec3 ProbeView::settle(TileProbe& probe, int t, Worker* w) {
   const int spp = settings_.spp;
   // The spread is judged against the texel's whole value: light it has exactly (the
   // emission seen directly, estimated apart) makes the same spread matter less.
-  const float limit = settings_.spread_threshold * (luminance(s.first) + luminance(s.exact) + dark_floor_);
+  const float limit = settings_.spread_threshold * (luminance(s.first) + luminance(s.exact) + transport_.dark_floor());
   const float step = s.part == Part::kAll ? neighbour_step(probe, t) : 0.0f;
   const bool hard = s.hard || (spp > 1 && s.spread > limit) || step > limit;
   if (!hard || !adaptive_) return s.first;
@@ -101,7 +101,7 @@ glm::vec3 ProbeView::hard_estimate(TexelState& s, Worker* w) {
   s.x.samples = hard_spp;
   float hard_spread = 0.0f;
   const glm::vec3 value = estimate(s.x, spp, hard_spp, s.part, &unused, &hard_spread, w);
-  if (!(hard_spread > kDeepSpreadRatio * (luminance(value) + luminance(s.exact) + dark_floor_)))
+  if (!(hard_spread > kDeepSpreadRatio * (luminance(value) + luminance(s.exact) + transport_.dark_floor())))
     return value;
   // A rare bright part (a sun patch's rim, a lamp's halo on the ceiling) that few of the
   // hard samples found: its share of the texel is still a guess. Fresh samples again, more,
@@ -185,7 +185,7 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* s
     const uint64_t key = sample_key(probe_seed_, id, uint64_t(first + s));
     const Ray ray{origin, x.cone.direction(w->strata[size_t(s)])};
     glm::vec3 emitted;
-    glm::vec3 L = estimator_->sample(ray, key, part, probe.foot, solid_angle, saw_hard, &x.distance, &emitted,
+    glm::vec3 L = transport_.estimator().sample(ray, key, part, probe.foot, solid_angle, saw_hard, &x.distance, &emitted,
                                      &w->stats.counters);
     if (!is_finite(L) || !is_finite(emitted)) {
       ++w->stats.counters.nonfinite_samples;
