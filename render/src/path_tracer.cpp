@@ -70,10 +70,10 @@ class PathKernel {
   }
 
   // Light found by the current ray: `light` (throughput included) times its MIS weight w; a
-  // training path also credits it to its vertices (the one whose ray this is: unweighted).
+  // training path also credits it to its vertices.
   void gather(const glm::vec3& light, float w) {
     L_ += light * w;
-    if (records_) records_->gather(light * w, light);
+    if (records_) records_->gather(light * w);
   }
 
   // The guide's mixture at a vertex: inactive without a guide, and at mirrors (a delta lobe
@@ -108,7 +108,6 @@ class PathKernel {
         sample_dielectric(frame.to_local(wo_world), eta, si.front_face, si.brdf.base_color, rng->next_float());
     const glm::vec3 wi = frame.to_world(ds.wi);
     beta_ *= ds.weight;
-    if (records_) records_->leave_last_vertex();
     previous_delta_ = true;
     previous_position_ = si.position;
     ray_ = next_ray(si, wi);
@@ -173,10 +172,7 @@ class PathKernel {
     previous_delta_ = bs.delta;
     previous_pdf_ = bs.pdf;
     previous_position_ = si.position;
-    if (records_) {
-      if (bs.delta) records_->leave_last_vertex();
-      else records_->add_vertex(si.position, wi_world, bs.pdf, beta_);
-    }
+    if (records_ && !bs.delta) records_->add_vertex(si.position, wi_world, bs.pdf, beta_);
     ray_ = next_ray(si, wi_world);
     return true;
   }

@@ -34,6 +34,7 @@ DirectionalQuadtree trained_on_cone(int records_per_pass = 20000) {
       building.record(direction_to_square(d), radiance * 4.0 * kPi);
     }
     tree = building;
+    tree.finalize();
   }
   return tree;
 }
@@ -48,6 +49,19 @@ TEST(DirectionalQuadtree, EmptyTreeIsUniform) {
   EXPECT_FLOAT_EQ(p.y, 0.75f);
   // Refining an empty tree gives an empty tree, not a crash or NaN.
   EXPECT_EQ(tree.refined().node_count(), 1u);
+}
+
+TEST(DirectionalQuadtree, SamplesItsLastFinalize) {
+  DirectionalQuadtree tree;
+  tree.record(glm::vec2(0.1f, 0.1f), 5.0);
+  // Recorded, not finalized: still uniform.
+  EXPECT_FLOAT_EQ(tree.pdf_square(glm::vec2(0.9f, 0.9f)), 1.0f);
+  tree.finalize();
+  EXPECT_FLOAT_EQ(tree.pdf_square(glm::vec2(0.1f, 0.1f)), 4.0f);
+  EXPECT_FLOAT_EQ(tree.pdf_square(glm::vec2(0.9f, 0.9f)), 0.0f);
+  const glm::vec2 p = tree.sample_square(glm::vec2(0.7f, 0.3f));
+  EXPECT_LT(p.x, 0.5f);
+  EXPECT_LT(p.y, 0.5f);
 }
 
 TEST(DirectionalQuadtree, MapIsInverse) {

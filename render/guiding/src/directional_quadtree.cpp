@@ -45,34 +45,39 @@ void DirectionalQuadtree::record(const glm::vec2& p_float, double value) {
 
 double DirectionalQuadtree::total() const { return nodes_[0].sum(); }
 
+void DirectionalQuadtree::finalize() {
+  for (Node& n : nodes_) {
+    const double sum = n.sum();
+    for (int c = 0; c < 4; ++c) n.share[c] = sum > 0.0 ? float(n.energy[c] / sum) : 0.25f;
+  }
+}
+
 float DirectionalQuadtree::pdf_square(const glm::vec2& p_float) const {
-  if (!(total() > 0.0)) return 1.0f;
-  glm::dvec2 p(std::clamp(p_float.x, 0.0f, 1.0f), std::clamp(p_float.y, 0.0f, 1.0f));
-  double pdf = 1.0;
+  glm::vec2 p(std::clamp(p_float.x, 0.0f, 1.0f), std::clamp(p_float.y, 0.0f, 1.0f));
+  float pdf = 1.0f;
   uint32_t node = 0;
   for (;;) {
     const Node& n = nodes_[node];
-    const int c = child_of(p);
-    if (!(n.energy[c] > 0.0)) return 0.0f;
-    pdf *= 4.0 * n.energy[c] / n.sum();
-    if (n.child[c] == 0) return float(pdf);
+    const int c = (p.x >= 0.5f ? 1 : 0) | (p.y >= 0.5f ? 2 : 0);
+    pdf *= 4.0f * n.share[c];
+    if (n.child[c] == 0 || !(pdf > 0.0f)) return pdf;
     node = n.child[c];
-    p = into_child(p, c);
+    // Doubling is exact in float: the cell found is the one the double-precision map finds.
+    p = glm::vec2(2.0f * p.x - float(c & 1), 2.0f * p.y - float((c >> 1) & 1));
   }
 }
 
 glm::vec2 DirectionalQuadtree::sample_square(const glm::vec2& u_float) const {
   glm::dvec2 u = glm::clamp(glm::dvec2(u_float), 0.0, 1.0 - 1e-12);
-  if (!(total() > 0.0)) return glm::vec2(u);
   glm::dvec2 origin(0.0);
   double size = 1.0;
   uint32_t node = 0;
   for (;;) {
     const Node& n = nodes_[node];
-    // The column (x half) by its energy, then the row within it.
-    const double left = n.energy[0] + n.energy[2], right = n.energy[1] + n.energy[3];
+    // The column (x half) by its share, then the row within it.
+    const double left = double(n.share[0]) + n.share[2], right = double(n.share[1]) + n.share[3];
     const int x = pick_upper(&u.x, left, right) ? 1 : 0;
-    const double bottom = n.energy[x], top = n.energy[x + 2];
+    const double bottom = n.share[x], top = n.share[x + 2];
     const int y = pick_upper(&u.y, bottom, top) ? 1 : 0;
     const int c = x | (y << 1);
     size *= 0.5;

@@ -76,6 +76,7 @@ void SDTree::finish_pass(int pass) {
     // A leaf that saw nothing this pass keeps what it knew.
     if (leaf.building.total() > 0.0) {
       leaf.sampling = leaf.building;
+      leaf.sampling.finalize();
       learned = true;
     }
     leaf.building = leaf.sampling.refined(settings_.energy_threshold, settings_.max_quadtree_depth);

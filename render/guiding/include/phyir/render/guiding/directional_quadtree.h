@@ -5,8 +5,11 @@
 // children. Sampling descends by energy and ends uniform in a leaf; the density is the
 // product of 4 E_child / E_node along the way, so sample() and pdf() agree exactly.
 //
-// A tree with no energy is the uniform distribution. Between passes the structure is rebuilt
-// from the energies (refined()): a cell holding more than a fraction rho of the total is split.
+// Recording changes the energies only; finalize() turns them into the distribution that
+// pdf() and sample() read (each node's four shares, so a lookup multiplies, never divides). A
+// tree samples the distribution of its last finalize(), uniform before one or without energy.
+// Between passes the structure is rebuilt from the energies (refined()): a cell holding more
+// than a fraction rho of the total is split.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -28,6 +31,8 @@ class DirectionalQuadtree {
   // Adds `value` (>= 0, finite: the caller checks) to every cell containing square point p.
   void record(const glm::vec2& p, double value);
   double total() const;
+  // Makes the recorded energies the distribution pdf() and sample() follow.
+  void finalize();
 
   // Density over the unit square (1 everywhere for an empty tree).
   float pdf_square(const glm::vec2& p) const;
@@ -50,6 +55,7 @@ class DirectionalQuadtree {
   // the quarter x >= 1/2 when (c & 1), y >= 1/2 when (c & 2).
   struct Node {
     std::array<double, 4> energy{};
+    std::array<float, 4> share{0.25f, 0.25f, 0.25f, 0.25f};  // energy[c] / sum, as of finalize()
     std::array<uint32_t, 4> child{};
     double sum() const { return energy[0] + energy[1] + energy[2] + energy[3]; }
   };
