@@ -12,12 +12,13 @@
 #include <string>
 #include <vector>
 
-#include "bench_insert.h"
 #include "commands.h"
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
 #include "phyir/core/machine.h"
 #include "phyir/eval/relight.h"
+#include "phyir/insert/insert_bench.h"
+#include "phyir/render/render_job.h"
 #include "phyir/scenes/asset_gltf.h"
 #include "phyir/scenes/asset_library.h"
 #include "phyir/scenes/gltf_loader.h"
@@ -27,6 +28,20 @@ namespace phyir::cli {
 namespace fs = std::filesystem;
 
 namespace {
+
+using insert::BenchObject;
+using insert::BenchPlacement;
+
+struct BenchInsertOptions {
+  std::string view, scene, out = "bench-insert";
+  std::vector<std::string> objects;   // extra glTF objects besides the spheres
+  std::vector<std::string> assets;    // furniture library ids, converted to glTF
+  std::string assets_dir;             // the library (empty: the toolkit's default)
+  float asset_height = 0.3f;          // metres: library pieces are scaled to this height
+  std::vector<std::string> only_placements, only_objects;  // empty: all
+  float sphere_radius = 0.15f;
+  insert::BenchSettings bench;
+};
 
 // The relighting sphere of `material` (eval's), `radius`, standing on y = 0.
 scenes::Scene sphere_object(const eval::SphereMaterial& material, float radius) {
@@ -80,9 +95,11 @@ std::vector<BenchObject> bench_objects(const BenchInsertOptions& o) {
 }
 
 void run(const BenchInsertOptions& o) {
-  if (o.seeds < 1) fail("--seeds {}: at least 1", o.seeds);
+  if (o.bench.seeds < 1) fail("--seeds {}: at least 1", o.bench.seeds);
   const insert::InsertView v = insert::read_insert_view(o.view);
-  const scenes::Scene scene = scenes::load_gltf(o.scene);
+  insert::BenchRoom room{scenes::load_gltf(o.scene), nullptr};
+  room.environment = render::scene_environment(room.scene);
+  const scenes::Scene& scene = room.scene;
   const std::vector<BenchObject> objects = bench_objects(o);
   float half_width = 0.0f, height = 0.0f;
   for (const BenchObject& b : objects) {
@@ -91,35 +108,40 @@ void run(const BenchInsertOptions& o) {
     height = std::max(height, box.max.y - box.min.y);
   }
   std::vector<std::string> skipped;
-  std::vector<NamedPlacement> placements = find_placements(v, scene, half_width, height, skipped);
+  std::vector<BenchPlacement> placements = insert::find_placements(v, scene, half_width, height, skipped);
   if (!o.only_placements.empty())
     placements.erase(std::remove_if(placements.begin(), placements.end(),
-                                    [&](const NamedPlacement& p) { return !listed(o.only_placements, p.name); }),
+                                    [&](const BenchPlacement& p) { return !listed(o.only_placements, p.name); }),
                      placements.end());
   for (const std::string& s : skipped) spdlog::info("bench insert: no placement {}", s);
-  nlohmann::json record = {{"view", o.view}, {"scene", o.scene}, {"spp", o.spp}, {"truth_spp", o.truth_spp},
-                           {"seeds", o.seeds}, {"lightings", o.lightings}, {"skipped_placements", skipped},
+  const insert::BenchSettings& b = o.bench;
+  nlohmann::json record = {{"view", o.view}, {"scene", o.scene}, {"spp", b.spp}, {"truth_spp", b.truth_spp},
+                           {"seeds", b.seeds}, {"lightings", b.lightings}, {"skipped_placements", skipped},
                            {"machine", machine_description()}};
-  std::vector<CaseScores> cases;
-  for (const NamedPlacement& p : placements)
+  std::vector<insert::CaseScores> cases;
+  for (const BenchPlacement& p : placements)
     for (const BenchObject& object : objects) {
       spdlog::info("bench insert: {} on the {} (pixel {}, {}; {})", object.name, p.name, p.x, p.y, p.note);
-      cases.push_back(run_case(v, scene, p, object, o, fs::path(o.out) / p.name / object.name));
-      record["cases"].push_back(case_record(cases.back(), p));
+      cases.push_back(insert::run_case(v, room, p, object, b, fs::path(o.out) / p.name / object.name));
+      record["cases"].push_back(insert::case_record(cases.back(), p));
     }
-  std::string md = cases_table(cases, o.lightings);
+  std::string md = insert::cases_table(cases, b.lightings);
   for (const std::string& s : skipped) md += fmt::format("\nNo placement {}.\n", s);
-  const auto floor = std::find_if(placements.begin(), placements.end(), [](const NamedPlacement& p) { return p.name == "floor"; });
-  if (o.path_steps > 1 && floor != placements.end()) {
-    std::vector<PathScores> paths;
+  const auto write = [&] {  // after the cases and again after the path: a failed path keeps the cases
+    write_file_atomic(fs::path(o.out) / "insert_bench.md", md);
+    write_file_atomic(fs::path(o.out) / "insert_bench.json", record.dump(2) + "\n");
+  };
+  write();
+  const auto floor = std::find_if(placements.begin(), placements.end(), [](const BenchPlacement& p) { return p.name == "floor"; });
+  if (b.path_steps > 1 && floor != placements.end()) {
+    std::vector<insert::PathScores> paths;
     for (const BenchObject& object : objects) {
-      paths.push_back(run_path(v, scene, *floor, object, o, fs::path(o.out) / "path" / object.name));
-      record["paths"].push_back(path_record(paths.back()));
+      paths.push_back(insert::run_path(v, room, *floor, object, b, fs::path(o.out) / "path" / object.name));
+      record["paths"].push_back(insert::path_record(paths.back()));
     }
-    md += "\n" + path_table(paths, o.lightings);
+    md += "\n" + insert::path_table(paths, b.lightings);
+    write();
   }
-  write_file_atomic(fs::path(o.out) / "insert_bench.md", md);
-  write_file_atomic(fs::path(o.out) / "insert_bench.json", record.dump(2) + "\n");
   fmt::print("{}", md);
 }
 
@@ -140,14 +162,14 @@ void add_bench_insert_command(CLI::App& bench) {
       ->capture_default_str();
   cmd->add_option("--placements", o->only_placements, "only these placements (floor table lamp window)");
   cmd->add_option("--objects", o->only_objects, "only these objects (diffuse matte_silver mirror_silver, file stems, asset ids)");
-  cmd->add_option("--lightings", o->lightings, "lighting sources to composite with (gt global constant, an HDR file)")
+  cmd->add_option("--lightings", o->bench.lightings, "lighting sources to composite with: gt, gt_plane (only the support plane's probes), gt_projected, global, constant, an HDR file")
       ->capture_default_str();
   cmd->add_option("--out", o->out, "output folder")->capture_default_str();
-  cmd->add_option("--spp", o->spp, "paths per pixel of the composites' local renders")->capture_default_str();
-  cmd->add_option("--truth-spp", o->truth_spp, "paths per pixel of the true render")->capture_default_str();
-  cmd->add_option("--seeds", o->seeds, "seeds per case (1..N): scores are mean ± sd over them")->capture_default_str();
-  cmd->add_option("--path-steps", o->path_steps, "frames of the floor path case (0: none)")->capture_default_str();
-  cmd->add_option("--path-stride", o->path_stride, "pixels between path frames")->capture_default_str();
+  cmd->add_option("--spp", o->bench.spp, "paths per pixel of the composites' local renders")->capture_default_str();
+  cmd->add_option("--truth-spp", o->bench.truth_spp, "paths per pixel of the true render")->capture_default_str();
+  cmd->add_option("--seeds", o->bench.seeds, "seeds per case (1..N): scores are mean ± sd over them")->capture_default_str();
+  cmd->add_option("--path-steps", o->bench.path_steps, "frames of the floor path case (0: none)")->capture_default_str();
+  cmd->add_option("--path-stride", o->bench.path_stride, "pixels between path frames")->capture_default_str();
   cmd->add_option("--radius", o->sphere_radius, "sphere radius, metres")->capture_default_str();
   cmd->callback([o] { run(*o); });
 }

@@ -34,6 +34,7 @@ glm::ivec2 pixel_cell(const view::ProbeLayout& l, const InsertView& view, int x,
 Lighting from_probes(const view::ProbeMosaic& probes, const InsertView& view, int x, int y, bool varying,
                      const fs::path& dir, const LightingRequest& request) {
   auto field = std::make_shared<ProbeField>(probes, view.camera);
+  field->set_blend_power(request.blend_power);
   const fs::path positions = dir / view::kProbePositionFile, normals_file = dir / view::kProbeNormalFile;
   bool local = false;
   const float radius = request.neighbourhood_radius;
@@ -59,7 +60,8 @@ Lighting from_probes(const view::ProbeMosaic& probes, const InsertView& view, in
                      {"resolution", {probes.layout.res_height, probes.layout.res_width}},
                      {"spatially_varying", varying},
                      {"blend", !varying ? "none" : !local ? "projected" : request.support_plane_only ? "local_support_plane" : "local"},
-                     {"local_probes", field->local_probe_count()}};
+                     {"local_probes", field->local_probe_count()},
+                     {"blend_power", request.blend_power}};
   return lighting;
 }
 

@@ -4,6 +4,7 @@
 
 #include "phyir/render/camera.h"
 #include "phyir/render/render_view.h"
+#include "phyir/insert/pixel_render.h"
 #include "phyir/view/input_exposure.h"
 
 namespace phyir::insert {
@@ -19,19 +20,25 @@ double seconds_since(Clock::time_point start) {
 nlohmann::json vec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 
 // The local scene as the view's camera sees it: same panorama, same centre. Both renders use
-// the same seed, so the noise of the surface mostly cancels in their difference.
+// the same seed, so the noise of the surface mostly cancels in their difference. The geometry
+// (one ray per pixel centre) comes from a one-path render; the colour is then summed at full
+// spp only where the geometry is, the only pixels the composite reads (pixel_render.h: each
+// bit-identical to a full render's). Elsewhere the colour is 0.
 LocalRender render_local(const scenes::Scene& scene, const Lighting& lighting, const InsertView& view,
                          const InsertRequest& request) {
   const render::RenderScene rs(scene, std::make_unique<render::EnvironmentLight>(*lighting.environment));
   const render::CameraModel camera = panorama_camera(view);
   render::RenderSettings settings;
-  settings.spp = request.spp;
+  settings.spp = 1;
   settings.seed = request.seed;
   settings.path.max_bounces = request.max_bounces;
   settings.aovs = true;
-  settings.progress = request.progress;
-  const render::RenderOutput out = render::render_view(rs, camera, settings);
-  return {out.film.color(), out.film.aov("depth"), out.film.aov("mask_geometry")};
+  settings.progress = false;
+  const render::RenderOutput geometry = render::render_view(rs, camera, settings);
+  LocalRender out{Image(camera.width, camera.height, 3), geometry.film.aov("depth"), geometry.film.aov("mask_geometry")};
+  settings.spp = request.spp;
+  render_pixels(rs, camera, settings, dilated_pixels(out.mask, 0), out.color);
+  return out;
 }
 
 }  // namespace

@@ -107,13 +107,19 @@ bool ProbeField::use_neighbourhood(const Image& positions, const glm::vec3& cent
   return !local_.empty();
 }
 
+void ProbeField::set_blend_power(float power) {
+  if (!(power > 0.0f)) fail("probe blend power {}: must be positive", power);
+  blend_power_ = power;
+}
+
 glm::vec3 ProbeField::radiance(const glm::vec3& position, const glm::vec3& direction) const {
   if (local_.empty()) return projected_radiance(position, direction);
   glm::vec3 sum(0.0f);
   float weight = 0.0f;
   for (const LocalProbe& p : local_) {
     const glm::vec3 d = position - p.position;
-    const float w = 1.0f / (glm::dot(d, d) + kLocalSmoothing * kLocalSmoothing);
+    const float r2 = glm::dot(d, d) + kLocalSmoothing * kLocalSmoothing;
+    const float w = blend_power_ == 2.0f ? 1.0f / r2 : std::pow(r2, -0.5f * blend_power_);
     sum += w * probe_radiance(p.cell.x, p.cell.y, direction);
     weight += w;
   }

@@ -147,5 +147,25 @@ TEST(ProbeField, SupportPlaneModeBlendsOnlyTheProbesOnTheSupportPlane) {
   }
 }
 
+// A higher blend power makes the nearest probe dominate; equidistant probes still share alike.
+TEST(ProbeField, HigherBlendPowerFavoursTheNearestProbe) {
+  view::ProbeMosaic probes = make_probes(2, 4, bright_left);
+  Image positions(4, 2, 3, 0.0f);
+  for (float& m : probes.mask.pixels) m = 0.0f;
+  probes.mask.at(1, 1) = 1.0f, probes.mask.at(2, 1) = 1.0f;
+  positions.at(1, 1, 0) = -0.5f, positions.at(2, 1, 0) = 0.5f;
+  ProbeField two(probes, kCamera), four(probes, kCamera);
+  ASSERT_TRUE(two.use_neighbourhood(positions, glm::vec3(0.0f), 1.0f));
+  ASSERT_TRUE(four.use_neighbourhood(positions, glm::vec3(0.0f), 1.0f));
+  four.set_blend_power(4.0f);
+  const glm::vec3 up(0.0f, 1.0f, 0.0f), near_bright(-0.2f, 0.1f, 0.0f);
+  // Squared distances 0.1025 and 0.5025 (with the 5 cm smoothing): weights 4.9 : 1 and 24 : 1.
+  const float w2 = 0.5025f / 0.1025f, w4 = w2 * w2;
+  EXPECT_NEAR(two.radiance(near_bright, up).x, (w2 * 10.0f + 0.1f) / (w2 + 1.0f), 1e-3f);
+  EXPECT_NEAR(four.radiance(near_bright, up).x, (w4 * 10.0f + 0.1f) / (w4 + 1.0f), 1e-3f);
+  EXPECT_NEAR(four.radiance(glm::vec3(0.0f, 0.2f, 0.0f), up).x, 0.5f * (10.0f + 0.1f), 1e-3f);
+  EXPECT_THROW(four.set_blend_power(0.0f), Error);
+}
+
 }  // namespace
 }  // namespace phyir::insert

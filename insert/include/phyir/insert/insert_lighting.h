@@ -28,6 +28,7 @@ struct LightingRequest {
   // Blend only the probes on the support surface's plane (ProbeField::SupportPlane; needs
   // probe_normal.exr): docs/insert.md says what the blend then estimates.
   bool support_plane_only = false;
+  float blend_power = 2.0f;  // ProbeField::set_blend_power
 };
 
 struct Lighting {

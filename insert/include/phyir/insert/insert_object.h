@@ -21,7 +21,6 @@ struct InsertRequest {
   int spp = 64;
   int max_bounces = 4;
   uint64_t seed = 1;
-  bool progress = false;
 };
 
 struct InsertResult {

@@ -51,6 +51,11 @@ class ProbeField : public render::PositionalRadiance {
   bool use_neighbourhood(const Image& positions, const glm::vec3& centre, float radius,
                          const SupportPlane& support = {});
   size_t local_probe_count() const { return local_.size(); }
+  // The local blend's weights are 1 / (|vertex - origin|^2 + kLocalSmoothing^2)^(power / 2).
+  // Probes spread over a surface: with power 2 every ring of distance carries about the same
+  // total weight (ring area ~ r dr against 1 / r^2), so the blend is a wide average over the
+  // whole radius; above 2 the nearest probes dominate (docs/insert.md). Must be positive.
+  void set_blend_power(float power);
   // The mean of every valid probe's texels, weighted by solid angle (the constant baseline).
   glm::vec3 mean_radiance() const;
 
@@ -63,6 +68,7 @@ class ProbeField : public render::PositionalRadiance {
     glm::vec3 position;
   };
   std::vector<LocalProbe> local_;  // local mode's probes (empty: projection mode)
+  float blend_power_ = 2.0f;
   glm::vec3 projected_radiance(const glm::vec3& position, const glm::vec3& direction) const;
 };
 

@@ -5,14 +5,14 @@
 
 #include <numeric>
 
-#include "bench_insert.h"
+#include "phyir/insert/insert_bench.h"
 
-namespace phyir::cli {
+namespace phyir::insert {
 
 namespace {
 
 std::string mean_sd(const std::vector<double>& v, int digits) {
-  const insert::ScoreSummary s = insert::summarize(v);
+  const ScoreSummary s = summarize(v);
   return fmt::format("{:.{}f} ± {:.{}f}", s.mean, digits, s.sd, digits);
 }
 
@@ -28,7 +28,7 @@ std::string wins(const CaseScores& c, const std::string& a, const std::string& b
 double total(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0); }
 
 nlohmann::json summary_json(const std::vector<double>& v) {
-  const insert::ScoreSummary s = insert::summarize(v);
+  const ScoreSummary s = summarize(v);
   return {{"mean", s.mean}, {"sd", s.sd}, {"per_seed", v}};
 }
 
@@ -63,7 +63,7 @@ std::string path_table(const std::vector<PathScores>& paths, const std::vector<s
   return t;
 }
 
-nlohmann::json case_record(const CaseScores& c, const NamedPlacement& p) {
+nlohmann::json case_record(const CaseScores& c, const BenchPlacement& p) {
   nlohmann::json j = {{"placement", p.name}, {"pixel", {p.x, p.y}}, {"note", p.note}, {"object", c.object},
                       {"truth_seconds", c.truth_seconds}, {"composite_seconds", c.composite_seconds}};
   for (const auto& [lighting, v] : c.rmse) j["rmse"][lighting] = summary_json(v);
@@ -79,4 +79,4 @@ nlohmann::json path_record(const PathScores& p) {
   return j;
 }
 
-}  // namespace phyir::cli
+}  // namespace phyir::insert

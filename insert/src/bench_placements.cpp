@@ -12,20 +12,20 @@
 #include <functional>
 #include <limits>
 
-#include "bench_insert.h"
+#include "phyir/insert/insert_bench.h"
 #include "phyir/core/error.h"
 
-namespace phyir::cli {
+namespace phyir::insert {
 
 namespace {
 
 // Whether the 7x7 pixels around (x, y) are all one horizontal surface at one height (not an edge).
-bool flat_around(const insert::InsertView& v, int x, int y, float height) {
+bool flat_around(const InsertView& v, int x, int y, float height) {
   for (int dy = -3; dy <= 3; ++dy)
     for (int dx = -3; dx <= 3; ++dx) {
       const int px = (x + dx + v.width()) % v.width(), py = y + dy;
       if (py < 0 || py >= v.height() || !(v.depth.at(px, py) > 0.0f) || v.normal.at(px, py, 1) < 0.95f) return false;
-      if (std::abs(insert::surface_at(v, px, py).position.y - height) > 0.01f) return false;
+      if (std::abs(surface_at(v, px, py).position.y - height) > 0.01f) return false;
     }
   return true;
 }
@@ -36,11 +36,11 @@ struct Candidate {
 };
 
 // Every horizontal pixel below the horizon, with its world point.
-std::vector<Candidate> horizontal_pixels(const insert::InsertView& v) {
+std::vector<Candidate> horizontal_pixels(const InsertView& v) {
   std::vector<Candidate> out;
   for (int y = v.height() / 2; y < v.height(); ++y)
     for (int x = 0; x < v.width(); ++x)
-      if (v.depth.at(x, y) > 0.0f && v.normal.at(x, y, 1) > 0.95f) out.push_back({x, y, insert::surface_at(v, x, y).position});
+      if (v.depth.at(x, y) > 0.0f && v.normal.at(x, y, 1) > 0.95f) out.push_back({x, y, surface_at(v, x, y).position});
   return out;
 }
 
@@ -72,7 +72,7 @@ std::vector<Lamp> windows(const scenes::Scene& scene) {
 }
 
 // The candidate of least `score` that is flat and has room for the object; x = -1 for none.
-NamedPlacement best(const insert::InsertView& v, const scenes::Scene& scene, std::vector<Candidate> candidates,
+BenchPlacement best(const InsertView& v, const scenes::Scene& scene, std::vector<Candidate> candidates,
                     const std::function<float(const Candidate&)>& score, float half_width, float height) {
   std::vector<std::pair<float, size_t>> order;
   for (size_t k = 0; k < candidates.size(); ++k) {
@@ -114,7 +114,7 @@ bool clear_of_scene(const scenes::Scene& scene, const glm::vec3& p, float half_w
   return true;
 }
 
-std::vector<NamedPlacement> find_placements(const insert::InsertView& v, const scenes::Scene& scene, float half_width,
+std::vector<BenchPlacement> find_placements(const InsertView& v, const scenes::Scene& scene, float half_width,
                                             float height, std::vector<std::string>& skipped) {
   const std::vector<Candidate> all = horizontal_pixels(v);
   if (all.empty()) fail("{}: no horizontal surface to place an object on", v.dir.string());
@@ -124,10 +124,10 @@ std::vector<NamedPlacement> find_placements(const insert::InsertView& v, const s
   const auto raised = [&](const Candidate& c) { return c.p.y > floor_y + 0.3f && c.p.y < v.camera.y - 0.2f; };
   const auto depth = [&](const Candidate& c) { return v.depth.at(c.x, c.y); };
   const float inf = std::numeric_limits<float>::infinity();
-  std::vector<NamedPlacement> out;
-  auto add = [&](const std::string& name, NamedPlacement p, const std::string& note, const std::string& why_missing) {
+  std::vector<BenchPlacement> out;
+  auto add = [&](const std::string& name, BenchPlacement p, const std::string& note, const std::string& why_missing) {
     if (p.x < 0) return skipped.push_back(fmt::format("{}: {}", name, why_missing));
-    for (const NamedPlacement& q : out)
+    for (const BenchPlacement& q : out)
       if (q.x == p.x && q.y == p.y) return skipped.push_back(fmt::format("{}: the same pixel as the {}", name, q.name));
     p.name = name, p.note = note;
     out.push_back(p);
@@ -142,10 +142,10 @@ std::vector<NamedPlacement> find_placements(const insert::InsertView& v, const s
       skipped.push_back(fmt::format("{}: the scene has no {}", name, what));
       continue;
     }
-    const NamedPlacement p = best(v, scene, all, [&](const Candidate& c) { return nearest(sources, c.p).second; }, half_width, height);
+    const BenchPlacement p = best(v, scene, all, [&](const Candidate& c) { return nearest(sources, c.p).second; }, half_width, height);
     std::string note;
     if (p.x >= 0) {
-      const auto [source, d] = nearest(sources, insert::surface_at(v, p.x, p.y).position);
+      const auto [source, d] = nearest(sources, surface_at(v, p.x, p.y).position);
       note = fmt::format("{:.2f} m from {} {}", d, what, source->name);
     }
     add(name, p, note, fmt::format("no clear flat surface in view near a {}", what));
@@ -153,4 +153,4 @@ std::vector<NamedPlacement> find_placements(const insert::InsertView& v, const s
   return out;
 }
 
-}  // namespace phyir::cli
+}  // namespace phyir::insert
