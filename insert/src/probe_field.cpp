@@ -112,12 +112,18 @@ void ProbeField::set_blend_power(float power) {
   blend_power_ = power;
 }
 
+void ProbeField::set_blend_plane(const glm::vec3& normal) {
+  if (!(std::abs(glm::length(normal) - 1.0f) < 1e-3f)) fail("probe blend plane: the normal must be a unit vector");
+  blend_plane_ = normal;
+}
+
 glm::vec3 ProbeField::radiance(const glm::vec3& position, const glm::vec3& direction) const {
   if (local_.empty()) return projected_radiance(position, direction);
   glm::vec3 sum(0.0f);
   float weight = 0.0f;
   for (const LocalProbe& p : local_) {
-    const glm::vec3 d = position - p.position;
+    glm::vec3 d = position - p.position;
+    d -= glm::dot(d, blend_plane_) * blend_plane_;  // the foot point's offset, with a blend plane
     const float r2 = glm::dot(d, d) + kLocalSmoothing * kLocalSmoothing;
     const float w = blend_power_ == 2.0f ? 1.0f / r2 : std::pow(r2, -0.5f * blend_power_);
     sum += w * probe_radiance(p.cell.x, p.cell.y, direction);

@@ -167,5 +167,25 @@ TEST(ProbeField, HigherBlendPowerFavoursTheNearestProbe) {
   EXPECT_THROW(four.set_blend_power(0.0f), Error);
 }
 
+// With a blend plane, a vertex high above a probe takes that probe as if it stood on it.
+TEST(ProbeField, BlendPlaneMeasuresDistancesBetweenFootPoints) {
+  view::ProbeMosaic probes = make_probes(2, 4, bright_left);
+  Image positions(4, 2, 3, 0.0f);
+  for (float& m : probes.mask.pixels) m = 0.0f;
+  probes.mask.at(1, 1) = 1.0f, probes.mask.at(2, 1) = 1.0f;
+  positions.at(1, 1, 0) = 0.0f, positions.at(2, 1, 0) = 0.4f;  // bright under the vertex, dark 0.4 m off
+  ProbeField in3d(probes, kCamera), foot(probes, kCamera);
+  ASSERT_TRUE(in3d.use_neighbourhood(positions, glm::vec3(0.0f), 1.0f));
+  ASSERT_TRUE(foot.use_neighbourhood(positions, glm::vec3(0.0f), 1.0f));
+  foot.set_blend_plane(glm::vec3(0.0f, 1.0f, 0.0f));
+  const glm::vec3 up(0.0f, 1.0f, 0.0f), high(0.0f, 0.3f, 0.0f);
+  // In 3D: squared distances 0.09 and 0.25 (+ 0.0025): the dark probe takes over a quarter.
+  EXPECT_LT(in3d.radiance(high, up).x, 7.5f);
+  // Foot points: 0 and 0.16 (+ 0.0025): weights 65 : 1.
+  const float w = 0.1625f / 0.0025f;
+  EXPECT_NEAR(foot.radiance(high, up).x, (w * 10.0f + 0.1f) / (w + 1.0f), 1e-3f);
+  EXPECT_THROW(foot.set_blend_plane(glm::vec3(0.0f, 2.0f, 0.0f)), Error);
+}
+
 }  // namespace
 }  // namespace phyir::insert

@@ -29,6 +29,7 @@ struct LightingRequest {
   // probe_normal.exr): docs/insert.md says what the blend then estimates.
   bool support_plane_only = false;
   float blend_power = 2.0f;  // ProbeField::set_blend_power
+  bool foot_point_blend = false;  // ProbeField::set_blend_plane with the support surface's normal
 };
 
 struct Lighting {

@@ -56,6 +56,11 @@ class ProbeField : public render::PositionalRadiance {
   // total weight (ring area ~ r dr against 1 / r^2), so the blend is a wide average over the
   // whole radius; above 2 the nearest probes dominate (docs/insert.md). Must be positive.
   void set_blend_power(float power);
+  // Measure the blend's distances in the plane with this unit normal (the support surface's):
+  // the vertex's foot point against the probes' (docs/insert.md: every probe sits 1 cm above
+  // the surface, so a vertex's height above it is a parallax all of them share, and must not
+  // make the nearest probe under the vertex count no more than one 0.5 m away).
+  void set_blend_plane(const glm::vec3& normal);
   // The mean of every valid probe's texels, weighted by solid angle (the constant baseline).
   glm::vec3 mean_radiance() const;
 
@@ -69,6 +74,7 @@ class ProbeField : public render::PositionalRadiance {
   };
   std::vector<LocalProbe> local_;  // local mode's probes (empty: projection mode)
   float blend_power_ = 2.0f;
+  glm::vec3 blend_plane_{0.0f};  // zero: distances in 3D
   glm::vec3 projected_radiance(const glm::vec3& position, const glm::vec3& direction) const;
 };
 
