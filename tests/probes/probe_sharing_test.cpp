@@ -141,6 +141,22 @@ TEST(ProbeSharing, ValuesFurtherApartThanTheirNoiseAreNotShared) {
   EXPECT_FLOAT_EQ(grid.centre(0, grid.share()), (16.0f + 25.0f + 36.0f) / 3.0f);
 }
 
+// A shared texel's standard error is that of the sample-weighted mean of independent
+// estimates, sqrt(sum n^2 var) / sum n; texels that took in no neighbour keep theirs.
+TEST(ProbeSharing, TheSharedTexelsStandardErrorIsTheWeightedMeans) {
+  Grid grid(3.0f);
+  grid.records.samples[2 * 1 + 0] = 32.0f;  // probe 1 (the centre's neighbour) has 8x the samples
+  Image error(3, 6, 1, -1.0f);
+  uint64_t shared = 0;
+  share_between_neighbours(grid.mosaic, grid.layout, grid.sites, grid.computed, grid.records, ProbeSharing{}, &shared,
+                           &error);
+  // The centre's up texel: 8 probes of n = 4 and one of 32, each of variance 1e4.
+  const double expected = std::sqrt(8.0 * 16.0 * 1e4 + 32.0 * 32.0 * 1e4) / (8.0 * 4.0 + 32.0);
+  EXPECT_NEAR(error.at(1, 2, 0), expected, 1e-3 * expected);
+  EXPECT_LT(error.at(1, 2, 0), 100.0f);  // below one texel's own sqrt(1e4)
+  EXPECT_FLOAT_EQ(error.at(1, 3, 0), -1.0f);  // the down texel was not shared: left as it was
+}
+
 TEST(ProbeSharing, RadiusZeroChangesNothing) {
   const Grid grid(3.0f);
   ProbeSharing off;

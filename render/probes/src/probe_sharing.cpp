@@ -97,13 +97,15 @@ class WindowAverage {
         texels_(in.layout.texels_per_probe()),
         sum_(static_cast<size_t>(texels_)),
         weight_(static_cast<size_t>(texels_)),
+        weighted_variance_(static_cast<size_t>(texels_)),
         took_(static_cast<size_t>(texels_)) {}
 
-  // Writes probe p's shared texels into `out`; returns how many took in a neighbour.
-  uint64_t share(int p, Image& out) {
+  // Writes probe p's shared texels into `out` and their standard errors into `error`
+  // (if not null); returns how many took in a neighbour.
+  uint64_t share(int p, Image& out, Image* error) {
     start_from_own(p);
     take_in_window(p);
-    return write_shared(p, out);
+    return write_shared(p, out, error);
   }
 
  private:
@@ -113,6 +115,7 @@ class WindowAverage {
       const double n = in_.records.samples[base_p + size_t(t)];
       sum_[size_t(t)] = n * in_.texel(p, t);
       weight_[size_t(t)] = n;
+      weighted_variance_[size_t(t)] = n * n * double(in_.records.variance[base_p + size_t(t)]);
       took_[size_t(t)] = 0;
     }
   }
@@ -152,18 +155,24 @@ class WindowAverage {
       const double n = records.samples[base_q + size_t(t)];
       sum_[size_t(t)] += n * value;
       weight_[size_t(t)] += n;
+      weighted_variance_[size_t(t)] += n * n * double(records.variance[base_q + size_t(t)]);
       took_[size_t(t)] = 1;
     }
   }
 
-  uint64_t write_shared(int p, Image& out) const {
+  // The weighted mean of independent estimates has variance sum n^2 var / (sum n)^2: each
+  // texel's own directions are independent of its neighbours' (interleaved strata, streams
+  // of their own); what they share through the cache is in neither term.
+  uint64_t write_shared(int p, Image& out, Image* error) const {
     uint64_t shared = 0;
     for (int t = 0; t < texels_; ++t) {
       if (!took_[size_t(t)]) continue;
       ++shared;
-      const glm::dvec3 v = sum_[size_t(t)] / weight_[size_t(t)];
+      const double weight = weight_[size_t(t)];
+      const glm::dvec3 v = sum_[size_t(t)] / weight;
       const glm::ivec2 at = in_.layout.mosaic_pixel(p, t);
       for (int ch = 0; ch < 3; ++ch) out.at(at.x, at.y, ch) = float(v[ch]);
+      if (error) error->at(at.x, at.y, 0) = float(std::sqrt(std::max(weighted_variance_[size_t(t)], 0.0)) / weight);
     }
     return shared;
   }
@@ -172,6 +181,7 @@ class WindowAverage {
   int texels_;
   std::vector<glm::dvec3> sum_;
   std::vector<double> weight_;
+  std::vector<double> weighted_variance_;  // sum of n^2 x variance
   std::vector<uint8_t> took_;
 };
 
@@ -184,7 +194,7 @@ glm::ivec2 sub_stratum(int i, int j, const ProbeSharing& sharing) {
 
 Image share_between_neighbours(const Image& mosaic, const ProbeLayout& layout, const std::vector<ProbeSite>& sites,
                                const std::vector<uint8_t>& computed, const TexelRecords& records,
-                               const ProbeSharing& sharing, uint64_t* shared_texels) {
+                               const ProbeSharing& sharing, uint64_t* shared_texels, Image* standard_error) {
   Image out = mosaic;
   if (sharing.radius <= 0) return out;
   check_records(layout, records);
@@ -195,7 +205,7 @@ Image share_between_neighbours(const Image& mosaic, const ProbeLayout& layout, c
     WindowAverage average(in);
     uint64_t local_shared = 0;
     for (int p = range.begin(); p < range.end(); ++p)
-      if (in.usable(p)) local_shared += average.share(p, out);
+      if (in.usable(p)) local_shared += average.share(p, out, standard_error);
     shared += local_shared;
   });
   if (shared_texels) *shared_texels = shared.load();

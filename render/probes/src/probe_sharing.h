@@ -50,9 +50,12 @@ struct TexelRecords {
 
 // The mosaic with each valid computed probe's texels averaged over its neighbours as above.
 // `computed` flags the probes whose texels and records are filled. Returns the number of
-// texels that took in at least one neighbour in *shared_texels.
+// texels that took in at least one neighbour in *shared_texels, and, if `standard_error`
+// (one channel, the mosaic's size) is given, writes each shared texel's standard error there:
+// sqrt(sum n^2 variance) / sum n over the texels averaged.
 Image share_between_neighbours(const Image& mosaic, const ProbeLayout& layout, const std::vector<ProbeSite>& sites,
                                const std::vector<uint8_t>& computed, const TexelRecords& records,
-                               const ProbeSharing& sharing, uint64_t* shared_texels);
+                               const ProbeSharing& sharing, uint64_t* shared_texels,
+                               Image* standard_error = nullptr);
 
 }  // namespace phyir::render

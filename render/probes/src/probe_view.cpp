@@ -250,7 +250,7 @@ void ProbeView::share_between_neighbours() {
   std::vector<uint8_t> computed(size_t(layout_.probe_count()), 0);
   for (int p : todo_) computed[size_t(p)] = 1;
   out_.mosaic = render::share_between_neighbours(out_.mosaic, layout_, out_.sites, computed, records_,
-                                                 settings_.sharing, &out_.stats.shared_texels);
+                                                 settings_.sharing, &out_.stats.shared_texels, &out_.standard_error);
   add_after_sharing(&Worker::emission_seen);
   out_.stats.share_seconds = seconds_since(start);
 }
