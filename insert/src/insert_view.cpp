@@ -1,9 +1,12 @@
 #include "phyir/insert/insert_view.h"
 
+#include <cctype>
+#include <cmath>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
 
+#include "phyir/core/colour.h"
 #include "phyir/core/equirect.h"
 #include "phyir/core/error.h"
 #include "phyir/core/image_io.h"
@@ -23,7 +26,7 @@ Image read_map(const fs::path& dir, const char* name, int channels, const Image*
   Image image = read_image(path);
   if (image.channels < channels) fail("{}: {} channels, expected {}", path.string(), image.channels, channels);
   if (size_of && (image.width != size_of->width || image.height != size_of->height))
-    fail("{}: {}x{}, but the view's color.exr is {}x{}", path.string(), image.width, image.height, size_of->width,
+    fail("{}: {}x{}, but the view's colour image is {}x{}", path.string(), image.width, image.height, size_of->width,
          size_of->height);
   return image;
 }
@@ -55,6 +58,41 @@ void read_records(InsertView* v) {
   }
 }
 
+bool is_display_referred(const fs::path& file) {
+  std::string ext = file.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".png" || ext == ".jpg" || ext == ".jpeg";
+}
+
+// A `phyir infer` folder: the user's own panorama, the one its record names, is the
+// background, in the unit of the predicted probes; the camera is the origin (the predicted
+// depth is measured from the panorama's centre, world-aligned). An 8-bit panorama was the
+// network's input at 2^stops: decoded, it is radiance x 2^stops.
+void read_prediction_background(InsertView* v) {
+  const fs::path record_path = v->dir / view::kInferRecordFile;
+  std::ifstream in(record_path);
+  const nlohmann::json record = nlohmann::json::parse(in, nullptr, false);
+  if (!record.is_object() || !record.contains("input") || !record["input"].is_string())
+    fail("{}: not a prediction record (no \"input\" panorama)", record_path.string());
+  fs::path input = record["input"].get<std::string>();
+  if (input.is_relative() && !fs::exists(input)) input = v->dir / input;
+  if (!fs::is_regular_file(input))
+    fail("{}: the panorama it was predicted from, {}, is missing", record_path.string(), input.string());
+  const nlohmann::json radiance = record.value("radiance", nlohmann::json::object());
+  const bool absolute = radiance.value("unit", std::string("input")) == "absolute";
+  const nlohmann::json& stops_value = radiance.value(view::kExposureStopsKey, nlohmann::json(0.0));
+  const double stops = stops_value.is_number() ? stops_value.get<double>() : 0.0;
+  v->color = read_image(input);
+  if (v->color.channels < 3) fail("{}: {} channels, expected RGB", input.string(), v->color.channels);
+  const bool ldr = is_display_referred(input);
+  if (ldr) srgb_to_linear(v->color);
+  // To the predicted probes' unit: absolute is radiance, input is radiance x 2^stops.
+  const double scale = ldr ? (absolute ? std::exp2(-stops) : 1.0) : (absolute ? 1.0 : std::exp2(stops));
+  for (float& value : v->color.pixels) value = float(value * scale);
+  v->camera = glm::vec3(0.0f);
+  v->exposure_stops = absolute ? stops : 0.0;
+}
+
 }  // namespace
 
 InsertView read_insert_view(const fs::path& dir, const fs::path& maps_dir) {
@@ -62,13 +100,17 @@ InsertView read_insert_view(const fs::path& dir, const fs::path& maps_dir) {
   const fs::path maps = maps_dir.empty() ? dir : maps_dir;
   InsertView v;
   v.dir = dir;
-  v.color = read_map(dir, view::kColorFile, 3, nullptr);
+  const bool prediction = !fs::exists(dir / view::kColorFile) && fs::is_regular_file(dir / view::kInferRecordFile);
+  if (prediction)
+    read_prediction_background(&v);
+  else
+    v.color = read_map(dir, view::kColorFile, 3, nullptr);
   v.depth = read_map(maps, view::kDepthFile, 1, &v.color);
   v.normal = read_map(maps, view::kNormalFile, 3, &v.color);
   v.basecolor = read_map(maps, view::kBaseColorFile, 3, &v.color);
   v.roughness = read_map(maps, view::kRoughnessFile, 1, &v.color);
   v.metalness = read_map(maps, view::kMetalnessFile, 1, &v.color);
-  read_records(&v);
+  if (!prediction) read_records(&v);
   return v;
 }
 

@@ -140,7 +140,7 @@ void infer(const InferOptions& o) {
                                 {"depth", "Euclidean distance, metres"}, {"normal", "world space, unit"},
                                 {"probes", "mosaic: probe (i,j) is the h x w world-oriented equirect block at row i*h, col j*w"}}},
                {"timings_ms", {{"gmnet", p.gmnet_ms}, {"gsnet", p.gsnet_ms}, {"lnet_and_render", p.light_ms}}}};
-  write_file_atomic(out / "infer.json", info.dump(2) + "\n");
+  write_file_atomic(out / view::kInferRecordFile, info.dump(2) + "\n");
   for (const char* m : {"gmnet", "lnet", "gsnet"})
     if (!meta.at("trained").value(m, false)) spdlog::warn("{}: {} was never trained (random weights)", o.checkpoint, m);
   spdlog::info("infer: wrote {}; probes and re-render in {} (GMNet {:.0f} ms, GSNet {:.0f} ms, LNet + rendering "

@@ -15,7 +15,7 @@ namespace phyir::insert {
 
 struct InsertView {
   std::filesystem::path dir;
-  Image color;                  // linear HDR background (color.exr)
+  Image color;                  // linear HDR background (color.exr, or a prediction's panorama)
   Image depth, normal;          // Euclidean distance from the camera; world normal
   Image basecolor, roughness, metalness;
   glm::vec3 camera{0.0f};       // panorama centre, metres
@@ -28,8 +28,11 @@ struct InsertView {
 // The view's own camera: an equirectangular panorama at its centre, at its size.
 render::CameraModel panorama_camera(const InsertView& view);
 
-// Reads `dir`; `maps_dir` (empty: `dir`) holds depth, normal and the material maps. Missing or
-// mismatched files: phyir::Error naming the file and the problem.
+// Reads `dir`: a view folder (color.exr, the camera from view.json or render.json), or a
+// `phyir infer` folder (no color.exr, an infer.json: the panorama it names is the background,
+// in the predicted probes' unit, the camera at the origin). `maps_dir` (empty: `dir`) holds
+// depth, normal and the material maps. Missing or mismatched files: phyir::Error naming the
+// file and the problem.
 InsertView read_insert_view(const std::filesystem::path& dir, const std::filesystem::path& maps_dir = {});
 
 // What a pixel of the view shows: its world point, normal and material.

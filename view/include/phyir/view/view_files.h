@@ -33,8 +33,9 @@ inline constexpr const char* kViewRecordFile = "view.json";      // the view's m
 inline constexpr const char* kTimingFile = "timing.json";        // wall-clock times: not checksummed
 // A folder being written: rendered under this prefix and renamed into place when whole.
 inline constexpr const char* kTemporaryPrefix = ".tmp-";
-// A prediction's re-rendered colour (`phyir infer`).
+// A prediction's re-rendered colour and its record (`phyir infer`).
 inline constexpr const char* kRerenderFile = "rerender.exr";
+inline constexpr const char* kInferRecordFile = "infer.json";
 
 // The five material and geometry maps a prediction folder must hold, in this order.
 const std::vector<std::string>& prediction_map_files();
