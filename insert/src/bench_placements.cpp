@@ -142,7 +142,9 @@ std::vector<BenchPlacement> find_placements(const InsertView& v, const scenes::S
       skipped.push_back(fmt::format("{}: the scene has no {}", name, what));
       continue;
     }
-    const BenchPlacement p = best(v, scene, all, [&](const Candidate& c) { return nearest(sources, c.p).second; }, half_width, height);
+    const auto& near = sources;  // a structured binding cannot be captured (C++17)
+    const BenchPlacement p =
+        best(v, scene, all, [&near](const Candidate& c) { return nearest(near, c.p).second; }, half_width, height);
     std::string note;
     if (p.x >= 0) {
       const auto [source, d] = nearest(sources, surface_at(v, p.x, p.y).position);
