@@ -1,6 +1,7 @@
 #include "phyir/eval/ssim.h"
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "phyir/core/error.h"
@@ -51,6 +52,8 @@ double ssim(const Image& x, const Image& y, const SsimOptions& o) {
   if (o.radius < 0 || o.sigma <= 0.0) fail("ssim: bad window (radius {}, sigma {})", o.radius, o.sigma);
   const int w = x.width, h = x.height, r = o.radius;
   if (2 * o.crop >= w || 2 * o.crop >= h) fail("ssim: crop {} leaves nothing of {}x{}", o.crop, w, h);
+  if (o.region && (o.region->width != w || o.region->height != h))
+    fail("ssim: a {}x{} region for {}x{} images", o.region->width, o.region->height, w, h);
   std::vector<double> g(2 * r + 1);
   double total = 0.0;
   for (int k = -r; k <= r; ++k) total += g[k + r] = std::exp(-double(k * k) / (2.0 * o.sigma * o.sigma));
@@ -75,6 +78,7 @@ double ssim(const Image& x, const Image& y, const SsimOptions& o) {
     const auto mab = blur(ab, w, h, g, r, o.rows, o.columns);
     for (int yy = o.crop; yy < h - o.crop; ++yy)
       for (int xx = o.crop; xx < w - o.crop; ++xx) {
+        if (o.region && !(o.region->at(xx, yy, 0) > 0.5f)) continue;
         const size_t i = size_t(yy) * w + xx;
         const double sxx = maa[i] - ma[i] * ma[i], syy = mbb[i] - mb[i] * mb[i], sxy = mab[i] - ma[i] * mb[i];
         sum += ((2.0 * ma[i] * mb[i] + o.c1) * (2.0 * sxy + o.c2)) /
@@ -82,7 +86,7 @@ double ssim(const Image& x, const Image& y, const SsimOptions& o) {
         ++n;
       }
   }
-  return sum / n;
+  return n ? sum / n : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace phyir::eval

@@ -4,6 +4,8 @@
 #include <limits>
 
 #include "phyir/core/error.h"
+#include "phyir/eval/pixel_metrics.h"
+#include "phyir/eval/ssim.h"
 
 namespace phyir::insert {
 
@@ -18,59 +20,20 @@ void check_sizes(const Image& a, const Image& b, const Image& region, const char
          a.height, a.channels, b.width, b.height, b.channels, region.width, region.height);
 }
 
-bool inside(const Image& region, int x, int y) { return region.at(x, y, 0) >= 0.5f; }
-
-// eval's SSIM padding: columns wrap round the panorama, rows are replicated at the poles.
-int wrap_column(int x, int w) { return ((x % w) + w) % w; }
-int clamp_row(int y, int h) { return y < 0 ? 0 : (y >= h ? h - 1 : y); }
-
-// SSIM at pixel (x, y), channel c: the Gaussian-weighted local statistics, computed directly
-// (the region is a few hundred pixels; a full-image separable blur would cost more).
-double ssim_at(const Image& a, const Image& b, int x, int y, int c, const std::vector<double>& g,
-               const SsimWindow& w) {
-  double ma = 0, mb = 0, aa = 0, bb = 0, ab = 0;
-  for (int dy = -w.radius; dy <= w.radius; ++dy)
-    for (int dx = -w.radius; dx <= w.radius; ++dx) {
-      const int px = wrap_column(x + dx, a.width), py = clamp_row(y + dy, a.height);
-      const double k = g[size_t(dx + w.radius)] * g[size_t(dy + w.radius)];
-      const double u = a.at(px, py, c), v = b.at(px, py, c);
-      ma += k * u, mb += k * v, aa += k * u * u, bb += k * v * v, ab += k * u * v;
-    }
-  const double sa = aa - ma * ma, sb = bb - mb * mb, sab = ab - ma * mb;
-  return ((2 * ma * mb + w.c1) * (2 * sab + w.c2)) / ((ma * ma + mb * mb + w.c1) * (sa + sb + w.c2));
-}
+bool inside(const Image& region, int x, int y) { return region.at(x, y, 0) > 0.5f; }
 
 }  // namespace
 
 double masked_rmse(const Image& a, const Image& b, const Image& region) {
   check_sizes(a, b, region, "masked RMSE");
-  double sum = 0.0;
-  size_t n = 0;
-  for (int y = 0; y < a.height; ++y)
-    for (int x = 0; x < a.width; ++x) {
-      if (!inside(region, x, y)) continue;
-      for (int c = 0; c < 3; ++c) sum += std::pow(double(a.at(x, y, c)) - double(b.at(x, y, c)), 2.0);
-      n += 3;
-    }
-  return n ? std::sqrt(sum / double(n)) : kNaN;
+  return std::sqrt(eval::masked_mse(a, b, region));
 }
 
-double masked_ssim(const Image& a, const Image& b, const Image& region, const SsimWindow& w) {
+double masked_ssim(const Image& a, const Image& b, const Image& region) {
   check_sizes(a, b, region, "masked SSIM");
-  if (w.radius < 0 || !(w.sigma > 0.0)) fail("masked SSIM: bad window (radius {}, sigma {})", w.radius, w.sigma);
-  std::vector<double> g(size_t(2 * w.radius + 1));
-  double total = 0.0;
-  for (int k = -w.radius; k <= w.radius; ++k) total += g[size_t(k + w.radius)] = std::exp(-k * k / (2 * w.sigma * w.sigma));
-  for (double& v : g) v /= total;
-  double sum = 0.0;
-  size_t n = 0;
-  for (int y = 0; y < a.height; ++y)
-    for (int x = 0; x < a.width; ++x) {
-      if (!inside(region, x, y)) continue;
-      for (int c = 0; c < 3; ++c) sum += ssim_at(a, b, x, y, c, g, w);
-      n += 3;
-    }
-  return n ? sum / double(n) : kNaN;
+  eval::SsimOptions options;
+  options.region = &region;
+  return eval::ssim(a, b, options);
 }
 
 glm::dvec3 masked_mean(const Image& image, const Image& region) {

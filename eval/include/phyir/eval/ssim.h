@@ -18,6 +18,9 @@ struct SsimOptions {
   Padding rows = Padding::kReplicate;
   Padding columns = Padding::kWrap;
   int crop = 0;  // border pixels left out of the mean (skimage crops (win_size - 1) / 2)
+  // If set (one channel, the images' size), the mean is over the pixels where it is above 0.5
+  // (the windows still read their neighbours outside it); NaN where it has none.
+  const Image* region = nullptr;
 };
 
 // Mean SSIM over channels and (cropped) pixels of two images of the same size.

@@ -9,20 +9,12 @@
 
 namespace phyir::insert {
 
-// Root mean square difference over the pixels where `region` (channel 0) is at least 0.5, all
-// three colour channels. Sizes differ: phyir::Error. An empty region: NaN.
+// eval's masked MSE (pixel_metrics.h) and SSIM (ssim.h: Gaussian window of radius 2, sigma
+// 1.5, C1 = 0.01^2, C2 = 0.03^2 for data in [0, 1], rows replicated, columns wrapped round the
+// panorama) over the pixels where `region` (channel 0) is above 0.5; SSIM is meant for
+// display-encoded images. Sizes differ or not RGB: phyir::Error; an empty region: NaN.
 double masked_rmse(const Image& a, const Image& b, const Image& region);
-
-// SSIM (Wang et al. 2004) with eval's window (ssim.h: Gaussian, radius 2, sigma 1.5, C1 =
-// 0.01^2, C2 = 0.03^2 for data in [0, 1], rows replicated, columns wrapped round the panorama),
-// its map averaged over the region's pixels and the three channels. Meant for display-encoded
-// images (values in [0, 1], what C1 and C2 assume). Sizes differ: phyir::Error; empty region: NaN.
-struct SsimWindow {
-  int radius = 2;
-  double sigma = 1.5;
-  double c1 = 1e-4, c2 = 9e-4;
-};
-double masked_ssim(const Image& a, const Image& b, const Image& region, const SsimWindow& window = {});
+double masked_ssim(const Image& a, const Image& b, const Image& region);
 
 // The mean colour over the region (zero for an empty region).
 glm::dvec3 masked_mean(const Image& image, const Image& region);
