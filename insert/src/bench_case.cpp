@@ -4,9 +4,8 @@
 // render's geometry mask): RMSE in linear HDR, SSIM of the display-encoded images.
 #include <spdlog/spdlog.h>
 
-#include <chrono>
-
 #include "phyir/insert/insert_bench.h"
+#include "phyir/core/stopwatch.h"
 #include "phyir/core/colour.h"
 #include "phyir/core/image_io.h"
 #include "phyir/render/render_view.h"
@@ -15,14 +14,6 @@
 namespace phyir::insert {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 LightingRequest bench_lighting(const std::string& label) {
   LightingRequest r;
@@ -64,17 +55,17 @@ CaseScores run_case(const InsertView& v, const BenchRoom& room, const BenchPlace
     Image region;
     for (const std::string& lighting : o.lightings) {
       request.lighting = bench_lighting(lighting);
-      const auto start = std::chrono::steady_clock::now();
+      const Stopwatch composite_watch;
       const InsertResult result = insert_object(v, object.scene, request);
-      r.composite_seconds.push_back(seconds_since(start));
+      r.composite_seconds.push_back(composite_watch.seconds());
       if (region.empty()) region = result.with_object.mask;  // the object and its support disc
       write_insert_outputs(seed_dir / lighting, v, result);
       composites[lighting] = result.composite.color;
     }
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch truth_watch;
     const Image truth =
         true_render(room, placed, v, o.truth_spp, request.seed, dilated_pixels(region, kTruthMarginPixels));
-    r.truth_seconds.push_back(seconds_since(start));
+    r.truth_seconds.push_back(truth_watch.seconds());
     fs::create_directories(seed_dir);
     write_image(seed_dir / "truth.exr", truth);
     const Image truth_display = display(truth);

@@ -5,8 +5,8 @@
 #include <tbb/task_arena.h>
 
 #include <atomic>
-#include <chrono>
 
+#include "phyir/core/stopwatch.h"
 #include "phyir/core/progress.h"
 #include "phyir/core/setting_error.h"
 #include "phyir/render/guiding/ordered_record_merge.h"
@@ -18,10 +18,6 @@ namespace phyir::render {
 namespace {
 
 constexpr int kTileSize = 16;
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // One pass over the image: tile t covers pixels [16 tx, 16 tx + 16) x [16 ty, ...), tiles
 // numbered row by row and handed out in that order, so their records reach `merge` (when
@@ -136,9 +132,9 @@ GuidingStats render_color_guided(const RenderScene& scene, const CameraModel& ca
     guiding::OrderedRecordMerge merge(&tree, pass.tiles());
     pass.run(&sums, train ? &merge : nullptr, counters, &progress);
     if (train) {
-      const auto start = std::chrono::steady_clock::now();
+      const Stopwatch watch;
       tree.finish_pass(int(k));
-      stats.training_seconds += seconds_since(start);
+      stats.training_seconds += watch.seconds();
     }
     first_sample += stats.pass_spp[k];
   }

@@ -3,8 +3,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
-#include <chrono>
-
+#include "phyir/core/stopwatch.h"
 #include "phyir/core/safe_math.h"
 #include "phyir/render/streams.h"
 
@@ -18,10 +17,6 @@ namespace {
 // that exists before any probe is shaded).
 constexpr float kDarkFloorFraction = 0.1f;
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 }  // namespace
 
 ViewTransport::ViewTransport(const RenderScene& scene, const Effects& effects, const ProbeSettings& settings)
@@ -29,7 +24,7 @@ ViewTransport::ViewTransport(const RenderScene& scene, const Effects& effects, c
 
 void ViewTransport::build_cache(const std::vector<ProbeSite>& sites, const std::vector<int>& todo,
                                 const ProbeTiles& tiles, ProbeStats* stats) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch watch;
   RadianceCacheSettings cs = settings_.cache;
   cs.seed = stream_key(settings_.seed, Purpose::kCacheSeed);
   cs.progress = settings_.progress;
@@ -70,7 +65,7 @@ void ViewTransport::build_cache(const std::vector<ProbeSite>& sites, const std::
   stats->cache_edge_cells = cache_->edge_cell_count();
   stats->cache_edge_profiles = cache_->edge_profile_count();
   stats->cache_fill_samples = cache_->fill_samples();
-  stats->cache_seconds = seconds_since(start);
+  stats->cache_seconds = watch.seconds();
   dark_floor_ = kDarkFloorFraction * cache_->mean_irradiance_luminance() * kInvPi;
 }
 
