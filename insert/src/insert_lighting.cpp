@@ -49,6 +49,7 @@ Lighting from_probes(const view::ProbeMosaic& probes, const InsertView& view, in
       support = {&normals, ground.normal};
     }
     local = field->use_neighbourhood(read_image(positions), ground.position, radius, support);
+    field->set_ray_distance(request.ray_distance_blend);
     if (request.foot_point_blend) field->set_blend_plane(glm::normalize(ground.normal));
   }
   const glm::ivec2 cell = pixel_cell(probes.layout, view, x, y);
@@ -63,7 +64,8 @@ Lighting from_probes(const view::ProbeMosaic& probes, const InsertView& view, in
                      {"blend", !varying ? "none" : !local ? "projected" : request.support_plane_only ? "local_support_plane" : "local"},
                      {"local_probes", field->local_probe_count()},
                      {"blend_power", request.blend_power},
-                     {"foot_point_blend", request.foot_point_blend}};
+                     {"foot_point_blend", request.foot_point_blend},
+                     {"ray_distance_blend", request.ray_distance_blend}};
   return lighting;
 }
 

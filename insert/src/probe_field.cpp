@@ -78,6 +78,12 @@ void check_grid_image(const Image& image, const view::ProbeLayout& l, const char
 
 glm::vec3 texel3(const Image& image, int i, int j) { return {image.at(j, i, 0), image.at(j, i, 1), image.at(j, i, 2)}; }
 
+float local_taper(float distance, float reach) {
+  if (!(reach > 0.0f)) return 1.0f;
+  const float x = distance / reach;
+  return x < 1.0f ? (1.0f - x * x) * (1.0f - x * x) : 0.0f;
+}
+
 }  // namespace
 
 bool ProbeField::use_neighbourhood(const Image& positions, const glm::vec3& centre, float radius,
@@ -103,7 +109,17 @@ bool ProbeField::use_neighbourhood(const Image& positions, const glm::vec3& cent
                                                             b.second.cell.x * 100000 + b.second.cell.y);
   });
   local_.clear();
-  for (size_t k = 0; k < near.size() && k < kMaxLocalProbes; ++k) local_.push_back(near[k].second);
+  // The taper reaches zero where the set ends: at `radius`, or, when more probes are in reach
+  // than kMaxLocalProbes, at the first probe left out, so that a probe entering or leaving the
+  // set as the centre moves does so with zero weight (the blend is continuous along a path).
+  const float reach = near.size() > kMaxLocalProbes ? near[kMaxLocalProbes].first : radius;
+  for (size_t k = 0; k < near.size() && k < kMaxLocalProbes; ++k) {
+    LocalProbe p = near[k].second;
+    p.taper = local_taper(near[k].first, reach);
+    if (p.taper > 0.0f) local_.push_back(p);
+  }
+  // Every probe on the edge itself (ties at `reach`): keep the nearest, untapered.
+  if (local_.empty() && !near.empty()) local_.push_back(near[0].second);
   return !local_.empty();
 }
 
@@ -113,6 +129,7 @@ void ProbeField::set_blend_power(float power) {
 }
 
 void ProbeField::set_blend_plane(const glm::vec3& normal) {
+  if (ray_distance_) fail("probe blend: a blend plane and ray distances exclude each other");
   if (!(std::abs(glm::length(normal) - 1.0f) < 1e-3f)) fail("probe blend plane: the normal must be a unit vector");
   blend_plane_ = normal;
 }
@@ -124,8 +141,9 @@ glm::vec3 ProbeField::radiance(const glm::vec3& position, const glm::vec3& direc
   for (const LocalProbe& p : local_) {
     glm::vec3 d = position - p.position;
     d -= glm::dot(d, blend_plane_) * blend_plane_;  // the foot point's offset, with a blend plane
+    if (ray_distance_) d -= glm::dot(d, direction) * direction;  // the offset across the ray
     const float r2 = glm::dot(d, d) + kLocalSmoothing * kLocalSmoothing;
-    const float w = blend_power_ == 2.0f ? 1.0f / r2 : std::pow(r2, -0.5f * blend_power_);
+    const float w = p.taper * (blend_power_ == 2.0f ? 1.0f / r2 : std::pow(r2, -0.5f * blend_power_));
     sum += w * probe_radiance(p.cell.x, p.cell.y, direction);
     weight += w;
   }

@@ -179,12 +179,66 @@ TEST(ProbeField, BlendPlaneMeasuresDistancesBetweenFootPoints) {
   ASSERT_TRUE(foot.use_neighbourhood(positions, glm::vec3(0.0f), 1.0f));
   foot.set_blend_plane(glm::vec3(0.0f, 1.0f, 0.0f));
   const glm::vec3 up(0.0f, 1.0f, 0.0f), high(0.0f, 0.3f, 0.0f);
-  // In 3D: squared distances 0.09 and 0.25 (+ 0.0025): the dark probe takes over a quarter.
-  EXPECT_LT(in3d.radiance(high, up).x, 7.5f);
-  // Foot points: 0 and 0.16 (+ 0.0025): weights 65 : 1.
-  const float w = 0.1625f / 0.0025f;
+  // In 3D: squared distances 0.09 and 0.25 (+ 0.0025), tapers 1 and 0.7056: the dark probe
+  // takes a fifth.
+  const float bright3d = 1.0f / 0.0925f, dark3d = 0.7056f / 0.2525f;
+  EXPECT_NEAR(in3d.radiance(high, up).x, (bright3d * 10.0f + dark3d * 0.1f) / (bright3d + dark3d), 1e-3f);
+  // Foot points: 0 and 0.16 (+ 0.0025): weights 65 : 1, times the tapers of the probes'
+  // distances to the centre, 1 and (1 - 0.4^2)^2.
+  const float w = 0.1625f / 0.0025f / ((1.0f - 0.16f) * (1.0f - 0.16f));
   EXPECT_NEAR(foot.radiance(high, up).x, (w * 10.0f + 0.1f) / (w + 1.0f), 1e-3f);
   EXPECT_THROW(foot.set_blend_plane(glm::vec3(0.0f, 2.0f, 0.0f)), Error);
+}
+
+// Bright and dark probes alternating every 2 cm along a line: more than the cap within reach.
+glm::vec3 striped(int, int j) { return j % 2 ? glm::vec3(10.0f) : glm::vec3(0.1f); }
+
+// Moving the centre in 1 mm steps along the line (the vertex still), probes enter and leave the
+// set at its edge (the radius, and the cap of kMaxLocalProbes) with zero weight: no step jumps.
+TEST(ProbeField, BlendChangesContinuouslyAsTheCentreMoves) {
+  const int n = 200;
+  view::ProbeMosaic probes = make_probes(1, n, striped);
+  Image positions(n, 1, 3, 0.0f);
+  for (int j = 0; j < n; ++j) positions.at(j, 0, 0) = 0.02f * float(j);
+  const glm::vec3 up(0.0f, 1.0f, 0.0f);
+  float previous = -1.0f, largest_step = 0.0f;
+  for (int step = 0; step <= 400; ++step) {
+    const glm::vec3 centre(1.0f + 0.001f * float(step), 0.0f, 0.0f);
+    ProbeField field(probes, kCamera);
+    ASSERT_TRUE(field.use_neighbourhood(positions, centre, 0.8f));
+    ASSERT_LE(field.local_probe_count(), kMaxLocalProbes);
+    const float r = field.radiance(glm::vec3(1.2f, 0.3f, 0.0f), up).x;
+    if (previous >= 0.0f) largest_step = std::max(largest_step, std::abs(r - previous));
+    previous = r;
+  }
+  // Untapered, a probe entering or leaving at the edge makes the blend jump by 0.05 here.
+  EXPECT_LT(largest_step, 0.005f) << largest_step;
+}
+
+// With ray distances a probe on the line through the vertex along the direction looked up
+// takes the weight, whatever its distance to the vertex: the probe under the vertex looking
+// up, the one level with it looking sideways.
+TEST(ProbeField, RayDistanceFavoursTheProbeOnTheRayThroughTheVertex) {
+  view::ProbeMosaic probes = make_probes(2, 4, bright_left);
+  Image positions(4, 2, 3, 0.0f);
+  for (float& m : probes.mask.pixels) m = 0.0f;
+  probes.mask.at(1, 1) = 1.0f, probes.mask.at(2, 1) = 1.0f;
+  // Bright at the origin, 0.3 m under the vertex; dark 0.2 m beside the vertex, level with it.
+  positions.at(2, 1, 0) = 0.2f, positions.at(2, 1, 1) = 0.3f;
+  ProbeField field(probes, kCamera);
+  ASSERT_TRUE(field.use_neighbourhood(positions, glm::vec3(0.0f), 1.0f));
+  field.set_ray_distance(true);
+  const glm::vec3 vertex(0.0f, 0.3f, 0.0f);
+  const float s2 = kLocalSmoothing * kLocalSmoothing, dark_taper = (1.0f - 0.13f) * (1.0f - 0.13f);
+  // Up: across-ray offsets 0 (bright) and 0.2 m (dark).
+  const float bright_up = 1.0f / s2, dark_up = dark_taper / (0.04f + s2);
+  EXPECT_NEAR(field.radiance(vertex, glm::vec3(0, 1, 0)).x, (bright_up * 10.0f + dark_up * 0.1f) / (bright_up + dark_up),
+              1e-3f);
+  // Sideways (+X): 0.3 m (bright) and 0 (dark).
+  const float bright_side = 1.0f / (0.09f + s2), dark_side = dark_taper / s2;
+  EXPECT_NEAR(field.radiance(vertex, glm::vec3(1, 0, 0)).x,
+              (bright_side * 10.0f + dark_side * 0.1f) / (bright_side + dark_side), 1e-3f);
+  EXPECT_THROW(field.set_blend_plane(glm::vec3(0, 1, 0)), Error);
 }
 
 }  // namespace

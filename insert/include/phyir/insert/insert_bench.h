@@ -56,7 +56,8 @@ bool clear_of_scene(const scenes::Scene& scene, const glm::vec3& p, float half_w
 
 // A bench lighting label as a request: gt, global, constant, an HDR file, or the GT probes'
 // variants gt_plane (only the support plane's probes blended), gt_p4 (blend power 4), gt_foot
-// (distances between foot points on the support plane) and gt_projected (no local blend).
+// (distances between foot points on the support plane), gt_ray (distances across each
+// direction's ray) and gt_projected (no local blend).
 LightingRequest bench_lighting(const std::string& label);
 
 // The scene rendered with `placed` really in it, from the view's camera, at `pixels` (each as a

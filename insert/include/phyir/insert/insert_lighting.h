@@ -30,6 +30,7 @@ struct LightingRequest {
   bool support_plane_only = false;
   float blend_power = 2.0f;  // ProbeField::set_blend_power
   bool foot_point_blend = false;  // ProbeField::set_blend_plane with the support surface's normal
+  bool ray_distance_blend = false;  // ProbeField::set_ray_distance
 };
 
 struct Lighting {

@@ -44,7 +44,10 @@ class ProbeField : public render::PositionalRadiance {
   // Local mode: only the valid probes whose origins (`positions`: probe_position.exr) lie within
   // `radius` of `centre` (at most kMaxLocalProbes, the nearest), blended by inverse squared
   // distance to the path vertex (Shepard): probes near the object light it, not those of the
-  // surfaces behind it along the camera ray. False (projection mode kept) when none is in reach.
+  // surfaces behind it along the camera ray. Each weight is also tapered by the probe's distance
+  // to `centre`, (1 - (d / reach)^2)^2, zero where the set ends (`radius`, or the nearest probe
+  // left out by the cap), so that the blend changes continuously as the centre moves (dynamic
+  // insertion). False (projection mode kept) when none is in reach.
   // `support`, when given, keeps only the probes on the support surface's own plane (their
   // normals, probe_normal.exr, within kSupportNormalDegrees of its normal, their origins within
   // kSupportPlaneMetres of its plane).
@@ -61,6 +64,13 @@ class ProbeField : public render::PositionalRadiance {
   // the surface, so a vertex's height above it is a parallax all of them share, and must not
   // make the nearest probe under the vertex count no more than one 0.5 m away).
   void set_blend_plane(const glm::vec3& normal);
+  // Measure the blend's distance, for direction d, from each probe's origin to the line through
+  // the vertex along d (docs/insert.md "ray distance"): radiance is constant along a ray in free
+  // space, so a probe on that line sees what the vertex sees in d, and one off it sees a source
+  // at distance D shifted by about (its distance to the line) / D radians. The weights then
+  // depend on the direction: a small bright source (a lamp's panel, the sun) keeps its size
+  // instead of being smeared over the shifted copies of every probe.
+  void set_ray_distance(bool on) { ray_distance_ = on; }
   // The mean of every valid probe's texels, weighted by solid angle (the constant baseline).
   glm::vec3 mean_radiance() const;
 
@@ -71,10 +81,12 @@ class ProbeField : public render::PositionalRadiance {
   struct LocalProbe {
     glm::ivec2 cell;
     glm::vec3 position;
+    float taper = 1.0f;  // (1 - (d / reach)^2)^2 of its distance d to the centre (use_neighbourhood)
   };
   std::vector<LocalProbe> local_;  // local mode's probes (empty: projection mode)
   float blend_power_ = 2.0f;
   glm::vec3 blend_plane_{0.0f};  // zero: distances in 3D
+  bool ray_distance_ = false;
   glm::vec3 projected_radiance(const glm::vec3& position, const glm::vec3& direction) const;
 };
 
