@@ -16,7 +16,6 @@
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/error.h"
 #include "phyir/core/machine.h"
-#include "phyir/eval/relight.h"
 #include "phyir/insert/insert_bench.h"
 #include "phyir/render/render_job.h"
 #include "phyir/scenes/asset_gltf.h"
@@ -42,14 +41,6 @@ struct BenchInsertOptions {
   float sphere_radius = 0.15f;
   insert::BenchSettings bench;
 };
-
-// The relighting sphere of `material` (eval's), `radius`, standing on y = 0.
-scenes::Scene sphere_object(const eval::SphereMaterial& material, float radius) {
-  scenes::Scene s = eval::material_sphere(material, radius, 64, 32);
-  for (glm::vec3& p : s.meshes[0].positions) p.y += radius;
-  s.bounds = s.compute_bounds();
-  return s;
-}
 
 bool listed(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -79,8 +70,7 @@ BenchObject asset_object(const scenes::AssetLibrary& library, const std::string&
 }
 
 std::vector<BenchObject> bench_objects(const BenchInsertOptions& o) {
-  std::vector<BenchObject> objects;
-  for (const eval::SphereMaterial& m : eval::sphere_materials()) objects.push_back({m.key, sphere_object(m, o.sphere_radius)});
+  std::vector<BenchObject> objects = insert::table10_spheres(o.sphere_radius);
   for (const std::string& f : o.objects) objects.push_back({fs::path(f).stem().string(), scenes::load_gltf(f)});
   if (!o.assets.empty()) {
     const scenes::AssetLibrary library =

@@ -7,6 +7,7 @@
 #include <tbb/global_control.h>
 
 #include "commands.h"
+#include "eval_insertion.h"
 #include "phyir/core/error.h"
 #include "phyir/core/progress.h"
 #include "phyir/eval/report.h"
@@ -28,6 +29,7 @@ struct EvalFlags {
   int model_threads = 1;
   uint64_t model_seed = 1;
   bool no_relight = false, no_baselines = false, quiet = false;
+  EvalInsertionOptions insertion;
 };
 
 // --model: `phyir infer` on each view's input.png into OUT/pred/<view id>/.
@@ -99,6 +101,19 @@ void add_eval_command(CLI::App& app) {
   cmd->add_option("--model-threads", f->model_threads, "torch threads for --model")->capture_default_str();
   cmd->add_option("--model-seed", f->model_seed, "seed of the rendering layer's samples for --model")
       ->capture_default_str();
+  cmd->add_option("--insertion-views", f->insertion.views,
+                  "also score object insertion (docs/insert.md) on the first N views of the split: Table 10's spheres "
+                  "composited under the predicted probes, the GT probes, one global probe and a constant "
+                  "environment, against the scene path traced with the sphere in it (0: off)")
+      ->capture_default_str();
+  cmd->add_option("--insertion-scenes", f->insertion.scenes,
+                  "the dataset's scenes folder, where the manifest's scenes_dir is not reachable from here");
+  cmd->add_option("--insertion-spp", f->insertion.spp, "samples per pixel of the insertion composites")
+      ->capture_default_str();
+  cmd->add_option("--insertion-truth-spp", f->insertion.truth_spp, "samples per pixel of the insertion truth")
+      ->capture_default_str();
+  cmd->add_option("--insertion-seeds", f->insertion.seeds, "seeds per insertion case (mean over them)")
+      ->capture_default_str();
   cmd->add_flag("--quiet", f->quiet, "no progress line");
   cmd->callback([f] {
     if (f->pred.empty() == f->model.empty()) fail("phyir eval: give exactly one of --pred DIR and --model CKPT");
@@ -129,6 +144,15 @@ void add_eval_command(CLI::App& app) {
       o.model = f->model;
     } else {
       o.pred_dir = f->pred;
+    }
+    if (f->insertion.views < 0 || f->insertion.spp < 1 || f->insertion.truth_spp < 1 || f->insertion.seeds < 1)
+      fail("phyir eval: --insertion-views must be >= 0, --insertion-spp, --insertion-truth-spp and "
+           "--insertion-seeds >= 1");
+    if (f->insertion.views > 0) {
+      EvalInsertionOptions& in = f->insertion;
+      in.gt_dir = o.gt_dir, in.pred_dir = o.pred_dir, in.out_dir = o.out_dir, in.split = o.split;
+      in.progress = o.progress;
+      o.extra_sections.push_back(evaluate_insertion(in));
     }
     const nlohmann::json metrics = eval::run_eval(o);
     std::printf("%s\nwrote %s/report.md and %s/metrics.json\n", eval::main_table_markdown(metrics).c_str(),

@@ -241,9 +241,15 @@ nlohmann::json run_eval(const EvalOptions& o) {
   fs::create_directories(o.out_dir);
   const BaselineStats stats = o.baselines ? baseline_stats(o, records) : BaselineStats{};
   const ViewResults results = ViewEvaluation(o, stats).run(views);
-  const nlohmann::json j = eval_json(o, results, stats);
+  nlohmann::json j = eval_json(o, results, stats);
+  std::string report = report_markdown(j);
+  for (const ReportSection& section : o.extra_sections) {
+    if (j.contains(section.key)) fail("eval: report section {} would overwrite metrics.json's own", section.key);
+    j[section.key] = section.data;
+    report += "\n" + section.markdown;
+  }
   write_file_atomic(o.out_dir / "metrics.json", j.dump(2) + "\n");
-  write_file_atomic(o.out_dir / "report.md", report_markdown(j));
+  write_file_atomic(o.out_dir / "report.md", report);
   return j;
 }
 

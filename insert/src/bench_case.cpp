@@ -56,6 +56,7 @@ CaseScores run_case(const InsertView& v, const BenchRoom& room, const BenchPlace
     Image region;
     for (const std::string& lighting : o.lightings) {
       request.lighting = bench_lighting(lighting);
+      request.lighting.predicted_dir = o.predicted_dir;
       const Stopwatch composite_watch;
       const InsertResult result = insert_object(v, object.scene, request);
       r.composite_seconds.push_back(composite_watch.seconds());

@@ -69,6 +69,18 @@ Lighting from_probes(const view::ProbeMosaic& probes, const InsertView& view, in
   return lighting;
 }
 
+// Where predicted probes stand: the prediction folder's probe_position.exr when it has one;
+// else the view's, when the view's probe grid is the prediction's (a dataset view: the network
+// predicts the probes at the grid the dataset renders), so that predicted and GT probes are
+// blended alike; else nowhere (the prediction folder: projection mode).
+fs::path predicted_probe_geometry(const fs::path& predicted_dir, const InsertView& view, const view::ProbeLayout& layout) {
+  if (fs::is_regular_file(predicted_dir / view::kProbePositionFile)) return predicted_dir;
+  const fs::path positions = view.dir / view::kProbePositionFile;
+  if (!fs::is_regular_file(positions)) return predicted_dir;
+  const Image p = read_image(positions);
+  return p.width == layout.grid_width && p.height == layout.grid_height ? view.dir : predicted_dir;
+}
+
 Lighting constant(const view::ProbeMosaic& probes, const InsertView& view) {
   const glm::vec3 mean = ProbeField(probes, view.camera).mean_radiance();
   Image one(1, 1, 3);
@@ -89,9 +101,11 @@ Lighting make_lighting(const LightingRequest& request, const InsertView& view, i
     lighting.record["probes"] = view.dir.string();
   } else if (s == "predicted") {
     if (request.predicted_dir.empty()) fail("predicted lighting needs the prediction folder (a `phyir infer` result)");
-    lighting = from_probes(read_view_probes(request.predicted_dir, view), view, x, y, true, request.predicted_dir,
-                           request);
+    const view::ProbeMosaic predicted = read_view_probes(request.predicted_dir, view);
+    const fs::path geometry = predicted_probe_geometry(request.predicted_dir, view, predicted.layout);
+    lighting = from_probes(predicted, view, x, y, true, geometry, request);
     lighting.record["probes"] = request.predicted_dir.string();
+    lighting.record["probe_positions"] = (geometry / view::kProbePositionFile).string();
   } else if (s == "constant") {
     lighting = constant(read_view_probes(view.dir, view), view);
     lighting.record["probes"] = view.dir.string();

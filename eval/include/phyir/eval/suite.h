@@ -13,6 +13,14 @@
 
 namespace phyir::eval {
 
+// A part of the report computed outside eval (the insertion scores, which need the
+// renderer's insertion layer above eval): metrics.json[key] = data, markdown at report.md's end.
+struct ReportSection {
+  std::string key;
+  nlohmann::json data;
+  std::string markdown;
+};
+
 struct EvalOptions {
   std::filesystem::path gt_dir;     // a `phyir dataset` folder (manifest.json)
   std::string split = "test";
@@ -25,6 +33,7 @@ struct EvalOptions {
   bool baselines = true;
   int max_views = 0;                // evaluate only the first N views of the split (0: all)
   bool progress = true;
+  std::vector<ReportSection> extra_sections;
 };
 
 // The manifest entries of `split` ("" = all) of the dataset, in manifest order; errors when

@@ -25,6 +25,7 @@ struct BenchSettings {
   int seeds = 3;          // seeds 1..N per case
   int path_steps = 0;     // > 1: the floor path case with this many frames
   int path_stride = 2;    // pixels between path frames
+  std::filesystem::path predicted_dir;  // the `predicted` label's prediction folder (`phyir infer`)
 };
 
 struct BenchPlacement {
@@ -44,6 +45,12 @@ struct BenchObject {
   std::string name;
   scenes::Scene scene;
 };
+
+// A sphere of `radius` metres in one of Table 10's materials (eval::sphere_materials()), named
+// by the material's key, standing on y = 0.
+BenchObject sphere_object(const std::string& material_key, float radius);
+// The three of Table 10: diffuse, matte silver, mirror silver.
+std::vector<BenchObject> table10_spheres(float radius);
 
 // The placements of the view (floor, table, lamp, window) for an object `half_width` metres
 // across (half) and `height` tall; `skipped` gets one line per placement the room lacks.

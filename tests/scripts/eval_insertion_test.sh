@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# `phyir eval --insertion-views`: insertion scores in eval's report, end to end. A tiny dataset,
+# a network trained for a step (its predictions only have to be the toolkit's `phyir infer`
+# folders), eval with --model and one view's insertion: metrics.json's "insertion" section has
+# every Table 10 sphere under every lighting, finite and non-negative, and report.md its table.
+# A scene file that is not the one the view was rendered from is refused, naming it, with no
+# report written.
+#   $1 = phyir binary, $2 = scratch folder (emptied).
+source "$(dirname "${BASH_SOURCE[0]}")/lib/prologue.sh"
+export OMP_WAIT_POLICY=passive
+if "$phyir" train --help 2>&1 | grep -q "not built"; then
+  echo "SKIP: phyir built without the model (-DPHYIR_BUILD_MODEL=OFF)"; exit 0
+fi
+
+"$phyir" --log-level warn scenes generate --out rooms --count 1 --seed 7 --preset mini
+"$phyir" --log-level warn dataset generate --scenes rooms --out data --preset tiny --views-per-scene 1 \
+  --split 1,0,0 --seed 1 --threads 2 --quiet
+net=(--seed 1 --threads 1 --quiet --input-height 32 --input-width 64 --render-height 16 --render-width 32
+     --probe-height 4 --probe-width 8 --diffuse-samples 8 --specular-samples 4 --width-divisor 4)
+"$phyir" --log-level warn train --data data --out lnet --stage lnet --epochs 1 --batch 1 "${net[@]}"
+insertion=(--insertion-views 1 --insertion-spp 4 --insertion-truth-spp 8)
+common=(--gt data --split train --model lnet/checkpoint.pt --no-relight --no-baselines --quiet --threads 2)
+"$phyir" --log-level warn eval "${common[@]}" "${insertion[@]}" --out report > eval.log
+/usr/bin/python3 - <<'PY' || die "the insertion section of the report is wrong"
+import json, math
+m = json.load(open("report/metrics.json"))
+ins = m["insertion"]
+assert ins["views"] == 1, ins["views"]
+assert ins["cases"], "no insertion case (no placement found?)"
+for sphere in ("diffuse", "matte_silver", "mirror_silver"):
+    for lighting in ("predicted", "gt", "global", "constant"):
+        s = ins["mean"][sphere][lighting]
+        assert math.isfinite(s["rmse"]) and s["rmse"] >= 0, (sphere, lighting, s)
+        assert math.isfinite(s["ssim"]) and -1 <= s["ssim"] <= 1, (sphere, lighting, s)
+report = open("report/report.md").read()
+assert "## Object insertion" in report and "RMSE predicted" in report, "no insertion table in report.md"
+PY
+# The scene changed since the dataset was made: refused, naming the file, no report.
+echo " " >> rooms/room_0.gltf
+rc=0
+"$phyir" --log-level warn eval "${common[@]}" "${insertion[@]}" --out report2 > changed.log 2>&1 || rc=$?
+[ "$rc" -ne 0 ] && [ "$rc" -lt 128 ] && grep -q "room_0.gltf" changed.log && grep -q "SHA-256" changed.log \
+  && [ ! -e report2/metrics.json ] || die "a changed scene: exit $rc, $(cat changed.log)"
+echo "eval insertion: OK"
