@@ -152,7 +152,7 @@ void add_bench_insert_command(CLI::App& bench) {
       ->capture_default_str();
   cmd->add_option("--placements", o->only_placements, "only these placements (floor table lamp window)");
   cmd->add_option("--objects", o->only_objects, "only these objects (diffuse matte_silver mirror_silver, file stems, asset ids)");
-  cmd->add_option("--lightings", o->bench.lightings, "lighting sources to composite with: gt, gt_plane (only the support plane's probes), gt_p4 (weights 1/r^4), gt_foot (distances between foot points), gt_ray (distances across each direction's ray), gt_projected, global, constant, an HDR file")
+  cmd->add_option("--lightings", o->bench.lightings, "lighting sources to composite with: gt, gt_plane (only the support plane's probes), gt_p4 (weights 1/r^4), gt_point (distances to the vertex, not the ray), gt_foot (distances between foot points), gt_projected, global, constant, an HDR file")
       ->capture_default_str();
   cmd->add_option("--out", o->out, "output folder")->capture_default_str();
   cmd->add_option("--spp", o->bench.spp, "paths per pixel of the composites' local renders")->capture_default_str();

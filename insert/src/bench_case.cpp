@@ -21,8 +21,8 @@ LightingRequest bench_lighting(const std::string& label) {
   if (label == "gt_plane") r.source = "gt", r.support_plane_only = true;
   if (label == "gt_projected") r.source = "gt", r.neighbourhood_radius = 0.0f;
   if (label == "gt_p4") r.source = "gt", r.blend_power = 4.0f;
-  if (label == "gt_foot") r.source = "gt", r.foot_point_blend = true;
-  if (label == "gt_ray") r.source = "gt", r.ray_distance_blend = true;
+  if (label == "gt_foot") r.source = "gt", r.blend_distance = BlendDistance::kFoot;
+  if (label == "gt_point") r.source = "gt", r.blend_distance = BlendDistance::kPoint;
   return r;
 }
 

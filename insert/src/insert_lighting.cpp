@@ -49,8 +49,9 @@ Lighting from_probes(const view::ProbeMosaic& probes, const InsertView& view, in
       support = {&normals, ground.normal};
     }
     local = field->use_neighbourhood(read_image(positions), ground.position, radius, support);
-    field->set_ray_distance(request.ray_distance_blend);
-    if (request.foot_point_blend) field->set_blend_plane(glm::normalize(ground.normal));
+    const glm::vec3 normal = glm::normalize(ground.normal);
+    if (request.blend_distance == BlendDistance::kRay) field->set_ray_distance(true), field->set_support_plane(ground.position, normal);
+    if (request.blend_distance == BlendDistance::kFoot) field->set_blend_plane(normal);
   }
   const glm::ivec2 cell = pixel_cell(probes.layout, view, x, y);
   const glm::ivec2 nearest = field->nearest_valid(cell.x, cell.y);
@@ -64,8 +65,7 @@ Lighting from_probes(const view::ProbeMosaic& probes, const InsertView& view, in
                      {"blend", !varying ? "none" : !local ? "projected" : request.support_plane_only ? "local_support_plane" : "local"},
                      {"local_probes", field->local_probe_count()},
                      {"blend_power", request.blend_power},
-                     {"foot_point_blend", request.foot_point_blend},
-                     {"ray_distance_blend", request.ray_distance_blend}};
+                     {"blend_distance", blend_distance_name(request.blend_distance)}};
   return lighting;
 }
 
@@ -92,6 +92,15 @@ Lighting constant(const view::ProbeMosaic& probes, const InsertView& view) {
 }
 
 }  // namespace
+
+const char* blend_distance_name(BlendDistance d) {
+  switch (d) {
+    case BlendDistance::kRay: return "ray";
+    case BlendDistance::kPoint: return "point";
+    case BlendDistance::kFoot: return "foot_point";
+  }
+  return "?";
+}
 
 Lighting make_lighting(const LightingRequest& request, const InsertView& view, int x, int y) {
   Lighting lighting;

@@ -134,11 +134,22 @@ void ProbeField::set_blend_plane(const glm::vec3& normal) {
   blend_plane_ = normal;
 }
 
+void ProbeField::set_support_plane(const glm::vec3& point, const glm::vec3& normal) {
+  if (!(std::abs(glm::length(normal) - 1.0f) < 1e-3f)) fail("probe blend support plane: the normal must be a unit vector");
+  support_point_ = point, support_normal_ = normal;
+}
+
+bool ProbeField::sees_through_support(const glm::vec3& probe, const glm::vec3& vertex, const glm::vec3& direction) const {
+  return glm::dot(probe - support_point_, support_normal_) < -kSupportPlaneMetres &&
+         glm::dot(probe - vertex, direction) <= 0.0f;
+}
+
 glm::vec3 ProbeField::radiance(const glm::vec3& position, const glm::vec3& direction) const {
   if (local_.empty()) return projected_radiance(position, direction);
   glm::vec3 sum(0.0f);
   float weight = 0.0f;
   for (const LocalProbe& p : local_) {
+    if (ray_distance_ && sees_through_support(p.position, position, direction)) continue;
     glm::vec3 d = position - p.position;
     d -= glm::dot(d, blend_plane_) * blend_plane_;  // the foot point's offset, with a blend plane
     if (ray_distance_) d -= glm::dot(d, direction) * direction;  // the offset across the ray
@@ -147,6 +158,8 @@ glm::vec3 ProbeField::radiance(const glm::vec3& position, const glm::vec3& direc
     sum += w * probe_radiance(p.cell.x, p.cell.y, direction);
     weight += w;
   }
+  // Every probe behind the support surface (a vertex under the plane's tolerance): the nearest.
+  if (!(weight > 0.0f)) return probe_radiance(local_[0].cell.x, local_[0].cell.y, direction);
   return sum / weight;
 }
 

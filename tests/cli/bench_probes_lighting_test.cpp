@@ -1,4 +1,4 @@
-// The bench's lighting metrics (cli/bench_probes_lighting.h) are eval's: a probe equal to the
+// The bench's lighting metrics (cli/bench/bench_probes_lighting.h) are eval's: a probe equal to the
 // reference scores MAE 0 and SSIM 1; a probe k times too bright relights every sphere k times
 // too bright (same seed, same sampling) and scores eval's closed-form SSIM of two constants;
 // in input units the MAE scales and the SSIM is eval's on the scaled probes.

@@ -241,5 +241,26 @@ TEST(ProbeField, RayDistanceFavoursTheProbeOnTheRayThroughTheVertex) {
   EXPECT_THROW(field.set_blend_plane(glm::vec3(0, 1, 0)), Error);
 }
 
+// A table top at y = 0.7 and the floor under it: the floor's probe, on the line through the
+// vertex, lights the vertex's downward rays (it is where they go) but not its upward ones (it
+// would see them through the table top).
+TEST(ProbeField, RayDistanceKeepsProbesBehindTheSupportSurfaceOutOfItsRays) {
+  view::ProbeMosaic probes = make_probes(2, 4, bright_left);
+  Image positions(4, 2, 3, 0.0f);
+  for (float& m : probes.mask.pixels) m = 0.0f;
+  probes.mask.at(1, 1) = 1.0f, probes.mask.at(2, 1) = 1.0f;
+  positions.at(1, 1, 1) = 0.01f;                           // bright: the floor, under the vertex
+  positions.at(2, 1, 0) = 0.3f, positions.at(2, 1, 1) = 0.71f;  // dark: the table top, 0.3 m aside
+  const glm::vec3 centre(0.0f, 0.7f, 0.0f), up(0.0f, 1.0f, 0.0f), vertex(0.0f, 0.85f, 0.0f);
+  ProbeField field(probes, kCamera);
+  ASSERT_TRUE(field.use_neighbourhood(positions, centre, 1.0f));
+  field.set_ray_distance(true);
+  EXPECT_GT(field.radiance(vertex, up).x, 5.0f);  // no plane: the floor's probe is on the upward ray
+  field.set_support_plane(centre, up);
+  EXPECT_NEAR(field.radiance(vertex, up).x, 0.1f, 1e-5f);      // only the table top's
+  EXPECT_GT(field.radiance(vertex, -up).x, 5.0f);              // down: the floor's again
+  EXPECT_THROW(field.set_support_plane(centre, 2.0f * up), Error);
+}
+
 }  // namespace
 }  // namespace phyir::insert

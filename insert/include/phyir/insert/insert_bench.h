@@ -62,9 +62,9 @@ std::vector<BenchPlacement> find_placements(const InsertView& view, const scenes
 bool clear_of_scene(const scenes::Scene& scene, const glm::vec3& p, float half_width, float height);
 
 // A bench lighting label as a request: gt, global, constant, an HDR file, or the GT probes'
-// variants gt_plane (only the support plane's probes blended), gt_p4 (blend power 4), gt_foot
-// (distances between foot points on the support plane), gt_ray (distances across each
-// direction's ray) and gt_projected (no local blend).
+// variants gt_plane (only the support plane's probes blended), gt_p4 (blend power 4), gt_point
+// (distances to the vertex instead of the ray), gt_foot (between foot points on the support
+// plane) and gt_projected (no local blend).
 LightingRequest bench_lighting(const std::string& label);
 
 // The scene rendered with `placed` really in it, from the view's camera, at `pixels` (each as a

@@ -19,6 +19,12 @@
 
 namespace phyir::insert {
 
+// What the local blend's weights measure (docs/insert.md "Lighting"): each probe's distance to
+// the ray looked up (ProbeField::set_ray_distance, with the support plane), to the vertex, or
+// between foot points on the support plane (ProbeField::set_blend_plane).
+enum class BlendDistance { kRay, kPoint, kFoot };
+const char* blend_distance_name(BlendDistance d);
+
 struct LightingRequest {
   std::string source = "gt";            // gt | predicted | global | constant | an HDR file
   std::filesystem::path predicted_dir;  // the prediction folder (predicted)
@@ -29,8 +35,7 @@ struct LightingRequest {
   // probe_normal.exr): docs/insert.md says what the blend then estimates.
   bool support_plane_only = false;
   float blend_power = 2.0f;  // ProbeField::set_blend_power
-  bool foot_point_blend = false;  // ProbeField::set_blend_plane with the support surface's normal
-  bool ray_distance_blend = false;  // ProbeField::set_ray_distance
+  BlendDistance blend_distance = BlendDistance::kRay;
 };
 
 struct Lighting {

@@ -71,6 +71,12 @@ class ProbeField : public render::PositionalRadiance {
   // depend on the direction: a small bright source (a lamp's panel, the sun) keeps its size
   // instead of being smeared over the shifted copies of every probe.
   void set_ray_distance(bool on) { ray_distance_ = on; }
+  // With ray distances: the support surface's plane (a point and the unit normal on the object's
+  // side). A probe below it by more than kSupportPlaneMetres is used only for the directions
+  // whose ray from the vertex goes towards it ((origin - vertex) . d > 0): one behind the vertex
+  // would see the vertex's direction through the support surface (the floor under a table, for
+  // the table-top object's upward rays). Without it every probe is used in every direction.
+  void set_support_plane(const glm::vec3& point, const glm::vec3& normal);
   // The mean of every valid probe's texels, weighted by solid angle (the constant baseline).
   glm::vec3 mean_radiance() const;
 
@@ -87,7 +93,10 @@ class ProbeField : public render::PositionalRadiance {
   float blend_power_ = 2.0f;
   glm::vec3 blend_plane_{0.0f};  // zero: distances in 3D
   bool ray_distance_ = false;
+  glm::vec3 support_point_{0.0f}, support_normal_{0.0f};  // zero normal: no support plane
   glm::vec3 projected_radiance(const glm::vec3& position, const glm::vec3& direction) const;
+  // Whether a probe below the support plane lies behind the vertex along `direction`.
+  bool sees_through_support(const glm::vec3& probe, const glm::vec3& vertex, const glm::vec3& direction) const;
 };
 
 }  // namespace phyir::insert
