@@ -86,6 +86,9 @@ std::vector<BenchObject> bench_objects(const BenchInsertOptions& o) {
 
 void run(const BenchInsertOptions& o) {
   if (o.bench.seeds < 1) fail("--seeds {}: at least 1", o.bench.seeds);
+  const auto& l = o.bench.lightings;
+  if (std::find(l.begin(), l.end(), "predicted") != l.end() && o.bench.predicted_dir.empty())
+    fail("bench insert: the predicted lighting needs --predicted DIR (a phyir infer folder for the view)");
   const insert::InsertView v = insert::read_insert_view(o.view);
   insert::BenchRoom room{scenes::load_gltf(o.scene), nullptr};
   room.environment = render::scene_environment(room.scene);
@@ -152,8 +155,11 @@ void add_bench_insert_command(CLI::App& bench) {
       ->capture_default_str();
   cmd->add_option("--placements", o->only_placements, "only these placements (floor table lamp window)");
   cmd->add_option("--objects", o->only_objects, "only these objects (diffuse matte_silver mirror_silver, file stems, asset ids)");
-  cmd->add_option("--lightings", o->bench.lightings, "lighting sources to composite with: gt, gt_plane (only the support plane's probes), gt_p4 (weights 1/r^4), gt_point (distances to the vertex, not the ray), gt_foot (distances between foot points), gt_projected, global, constant, an HDR file")
+  cmd->add_option("--lightings", o->bench.lightings, "lighting sources to composite with: gt, gt_plane (only the support plane's probes), gt_p4 (weights 1/r^4), gt_point (distances to the vertex, not the ray), gt_foot (distances between foot points), gt_projected, predicted (with --predicted), global, constant, an HDR file")
       ->capture_default_str();
+  cmd->add_option("--predicted", o->bench.predicted_dir,
+                  "the prediction folder (`phyir infer` on the view's input.png) the `predicted` lighting reads")
+      ->check(CLI::ExistingDirectory);
   cmd->add_option("--out", o->out, "output folder")->capture_default_str();
   cmd->add_option("--spp", o->bench.spp, "paths per pixel of the composites' local renders")->capture_default_str();
   cmd->add_option("--truth-spp", o->bench.truth_spp, "paths per pixel of the true render")->capture_default_str();
