@@ -19,14 +19,26 @@ bool in_front(float local, float view) { return !(view > 0.0f) || local <= view 
 // change would darken whatever lies behind.
 bool on_surface(float local, float view) { return view > 0.0f && std::abs(local - view) <= tolerance(view); }
 
+// The background changed by what the object does to the support surface there.
+float calibrated_difference(float background, float with, float without) {
+  if (without > 0.0f) return background * (with / without);
+  return std::max(0.0f, background + (with - without));
+}
+
 }  // namespace
 
-Composite differential_composite(const Image& background, const Image& view_depth, const LocalRender& with_object,
+Composite differential_composite(const Image& background, const Image& view_depth, const Image& view_normal,
+                                 const glm::vec3& support_normal, const LocalRender& with_object,
                                  const LocalRender& without_object) {
   const int w = background.width, h = background.height;
-  for (const Image* i : {&view_depth, &with_object.color, &with_object.depth, &without_object.color,
+  for (const Image* i : {&view_depth, &view_normal, &with_object.color, &with_object.depth, &without_object.color,
                          &without_object.depth})
     if (i->width != w || i->height != h) fail("differential composite: images of different sizes");
+  const float min_cos = std::cos(glm::radians(kSupportNormalToleranceDegrees));
+  const auto facing = [&](int x, int y) {
+    const glm::vec3 n(view_normal.at(x, y, 0), view_normal.at(x, y, 1), view_normal.at(x, y, 2));
+    return glm::dot(n, support_normal) >= min_cos;
+  };
   Composite out;
   out.color = Image(w, h, 3);
   out.mask = Image(w, h, 1);
@@ -43,8 +55,8 @@ Composite differential_composite(const Image& background, const Image& view_dept
         float v = bg;
         if (object) {
           v = with_object.color.at(x, y, c);
-        } else if (surface && on_surface(without_object.depth.at(x, y, 0), vd)) {
-          v = std::max(0.0f, bg + (with_object.color.at(x, y, c) - without_object.color.at(x, y, c)));
+        } else if (surface && on_surface(without_object.depth.at(x, y, 0), vd) && facing(x, y)) {
+          v = calibrated_difference(bg, with_object.color.at(x, y, c), without_object.color.at(x, y, c));
         }
         out.color.at(x, y, c) = v;
       }

@@ -57,7 +57,8 @@ InsertResult insert_object(const InsertView& view, const scenes::Scene& object, 
   result.with_object = render_local(local, lighting, view, request);
   result.without_object = render_local(disc, lighting, view, request);
   const double render_seconds = seconds_since(render_start);
-  result.composite = differential_composite(view.color, view.depth, result.with_object, result.without_object);
+  result.composite = differential_composite(view.color, view.depth, view.normal, glm::normalize(result.ground.normal),
+                                            result.with_object, result.without_object);
   const scenes::Bounds b = placed.compute_bounds();
   result.record = {
       {"view", view.dir.string()},

@@ -127,15 +127,45 @@ namespace phyir::insert {
 namespace {
 
 // A disc overhanging the view's surface (a table's edge, the floor 2 m farther) changes nothing.
+// Normals all +Y (a floor or a table top), `n` pixels wide.
+Image up_normals(int n) {
+  Image normals(n, 1, 3, 0.0f);
+  for (int x = 0; x < n; ++x) normals.at(x, 0, 1) = 1.0f;
+  return normals;
+}
+
 TEST(InsertComposite, OverhangingSupportSurfaceLeavesTheBackground) {
   Image background(2, 1, 3, 0.5f), view_depth(2, 1, 1, 1.0f);
   view_depth.at(1, 0) = 3.0f;  // pixel 1: the floor below the table's edge
   LocalRender with{Image(2, 1, 3, 0.1f), Image(2, 1, 1, 1.0f), Image(2, 1, 1, 1.0f)};
   LocalRender without{Image(2, 1, 3, 0.3f), Image(2, 1, 1, 1.0f), Image(2, 1, 1, 1.0f)};
-  const Composite c = differential_composite(background, view_depth, with, without);
-  EXPECT_NEAR(c.color.at(0, 0, 0), 0.5f + 0.1f - 0.3f, 1e-6f);  // on the table: the shadow
-  EXPECT_EQ(c.color.at(1, 0, 0), 0.5f);                        // past its edge: untouched
+  const glm::vec3 up(0.0f, 1.0f, 0.0f);
+  const Composite c = differential_composite(background, view_depth, up_normals(2), up, with, without);
+  EXPECT_NEAR(c.color.at(0, 0, 0), 0.5f * 0.1f / 0.3f, 1e-6f);  // on the table: the shadow
+  EXPECT_EQ(c.color.at(1, 0, 0), 0.5f);                         // past its edge: untouched
   EXPECT_EQ(c.mask.at(0, 0), 0.0f);
+}
+
+// A table's front face at the disc's depth (its top edge) is not the support surface.
+TEST(InsertComposite, SurfaceFacingAnotherWayLeavesTheBackground) {
+  Image background(1, 1, 3, 0.5f), view_depth(1, 1, 1, 1.0f), normals(1, 1, 3, 0.0f);
+  normals.at(0, 0, 2) = -1.0f;
+  LocalRender with{Image(1, 1, 3, 0.1f), Image(1, 1, 1, 1.0f), Image(1, 1, 1, 1.0f)};
+  LocalRender without{Image(1, 1, 3, 0.3f), Image(1, 1, 1, 1.0f), Image(1, 1, 1, 1.0f)};
+  const Composite c = differential_composite(background, view_depth, normals, glm::vec3(0, 1, 0), with, without);
+  EXPECT_EQ(c.color.at(0, 0, 0), 0.5f);
+}
+
+// The shadow keeps its fraction on a pixel darker than the disc alone (the difference would
+// take it below zero), and where the disc alone is black the object's light is added.
+TEST(InsertComposite, ShadowIsTheSurfacesCalibratedFraction) {
+  Image background(2, 1, 3, 0.05f), view_depth(2, 1, 1, 1.0f);
+  LocalRender with{Image(2, 1, 3, 0.1f), Image(2, 1, 1, 1.0f), Image(2, 1, 1, 1.0f)};
+  LocalRender without{Image(2, 1, 3, 0.3f), Image(2, 1, 1, 1.0f), Image(2, 1, 1, 1.0f)};
+  for (int c = 0; c < 3; ++c) without.color.at(1, 0, c) = 0.0f;
+  const Composite c = differential_composite(background, view_depth, up_normals(2), glm::vec3(0, 1, 0), with, without);
+  EXPECT_NEAR(c.color.at(0, 0, 0), 0.05f / 3.0f, 1e-6f);
+  EXPECT_NEAR(c.color.at(1, 0, 0), 0.05f + 0.1f, 1e-6f);
 }
 
 }  // namespace

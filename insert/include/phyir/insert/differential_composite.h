@@ -4,8 +4,16 @@
 //   object visible (in the with-object render, nearer than the surface-only render and than
 //   the view's own surface there):        the with-object render itself;
 //   support surface visible where it coincides with the view's surface (same depth within the
-//   tolerance): background + (with - without);
+//   tolerance, normal within kSupportNormalToleranceDegrees): background x with / without,
+//   per channel (background + (with - without) where without is 0);
 //   anything else:                        the background, untouched.
+// The ratio is Debevec's differential with the local surface's reflectance calibrated per pixel
+// so that its surface-only render equals the background (his local scene's albedo is fitted to
+// the photograph the same way): one base colour for the whole disc cannot match a textured or
+// unevenly lit floor, and the plain difference then darkens a dim pixel past black wherever the
+// disc alone is brighter than the image (docs/insert.md "Compositing").
+#include <glm/glm.hpp>
+
 #include "phyir/core/image.h"
 
 namespace phyir::insert {
@@ -25,8 +33,14 @@ struct Composite {
 inline constexpr float kDepthToleranceMetres = 0.01f;
 inline constexpr float kDepthToleranceRelative = 0.01f;
 
-// `view_depth`: the view's depth.exr (0 = nothing).
-Composite differential_composite(const Image& background, const Image& view_depth, const LocalRender& with_object,
+// The view's surface is the support surface's only where their normals agree this well: at a
+// table's edge the front face lies at the disc's depth too.
+inline constexpr float kSupportNormalToleranceDegrees = 25.0f;
+
+// `view_depth`, `view_normal`: the view's depth.exr (0 = nothing) and normal.exr;
+// `support_normal`: the support surface's unit normal.
+Composite differential_composite(const Image& background, const Image& view_depth, const Image& view_normal,
+                                 const glm::vec3& support_normal, const LocalRender& with_object,
                                  const LocalRender& without_object);
 
 }  // namespace phyir::insert
