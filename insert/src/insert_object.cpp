@@ -1,7 +1,6 @@
 #include "phyir/insert/insert_object.h"
 
-#include <chrono>
-
+#include "phyir/core/stopwatch.h"
 #include "phyir/render/camera.h"
 #include "phyir/render/render_view.h"
 #include "phyir/insert/pixel_render.h"
@@ -10,12 +9,6 @@
 namespace phyir::insert {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 nlohmann::json vec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 
@@ -44,7 +37,7 @@ LocalRender render_local(const scenes::Scene& scene, const Lighting& lighting, c
 }  // namespace
 
 InsertResult insert_object(const InsertView& view, const scenes::Scene& object, const InsertRequest& request) {
-  const auto start = Clock::now();
+  const Stopwatch total;
   InsertResult result;
   result.ground = surface_at(view, request.x, request.y);
   const Lighting lighting = make_lighting(request.lighting, view, request.x, request.y);
@@ -52,11 +45,11 @@ InsertResult insert_object(const InsertView& view, const scenes::Scene& object, 
   const float radius = disc_radius_for(placed, result.ground);
   const scenes::Scene disc = support_disc(result.ground, radius);
   const scenes::Scene local = merge_scenes(disc, placed);
-  const double setup_seconds = seconds_since(start);
-  const auto render_start = Clock::now();
+  const double setup_seconds = total.seconds();
+  const Stopwatch render_watch;
   result.with_object = render_local(local, lighting, view, request);
   result.without_object = render_local(disc, lighting, view, request);
-  const double render_seconds = seconds_since(render_start);
+  const double render_seconds = render_watch.seconds();
   result.composite = differential_composite(view.color, view.depth, view.normal, glm::normalize(result.ground.normal),
                                             result.with_object, result.without_object);
   const scenes::Bounds b = placed.compute_bounds();
@@ -73,7 +66,7 @@ InsertResult insert_object(const InsertView& view, const scenes::Scene& object, 
       {"settings", {{"spp", request.spp}, {"max_bounces", request.max_bounces}, {"seed", request.seed}}},
       {"display", {{view::kExposureStopsKey, view.exposure_stops}, {"view", view.display_view}}},
       {"timings", {{"setup_seconds", setup_seconds}, {"render_seconds", render_seconds},
-                   {"total_seconds", seconds_since(start)}}}};
+                   {"total_seconds", total.seconds()}}}};
   return result;
 }
 
