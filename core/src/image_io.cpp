@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <memory>
 
@@ -131,6 +132,40 @@ void write_image(const fs::path& path, const Image& image,
     std::transform(image.pixels.begin(), image.pixels.end(), clamped.begin(),
                    [](float v) { return std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f; });
     ok = out->write_image(TypeDesc::FLOAT, clamped.data());
+  }
+  if (!ok || !out->close()) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    fail("{}: write failed: {}", path.string(), out->geterror());
+  }
+  commit_file(tmp, path);
+}
+
+void write_animation(const fs::path& path, const std::vector<Image>& frames, float fps) {
+  if (frames.empty()) fail("{}: an animation needs at least one frame", path.string());
+  for (const Image& f : frames)
+    if (f.width != frames[0].width || f.height != frames[0].height || f.channels < 3)
+      fail("{}: animation frames must be RGB and of one size", path.string());
+  if (!path.parent_path().empty()) fs::create_directories(path.parent_path());
+  const fs::path tmp = temporary_sibling(path);
+  auto out = ImageOutput::create(tmp.string());
+  if (!out || !out->supports("multiimage") || !out->supports("appendsubimage"))
+    fail("{}: this format cannot hold an animation", path.string());
+  ImageSpec spec(frames[0].width, frames[0].height, 3, TypeDesc::UINT8);
+  spec.attribute("FramesPerSecond", TypeDesc::TypeRational, std::vector<int>{int(std::lround(fps * 100)), 100}.data());
+  spec.attribute("gif:LoopCount", 0);
+  const std::vector<ImageSpec> specs(frames.size(), spec);
+  bool ok = out->open(tmp.string(), int(specs.size()), specs.data());
+  std::vector<float> rgb(size_t(spec.width) * size_t(spec.height) * 3);
+  for (size_t k = 0; ok && k < frames.size(); ++k) {
+    const Image& f = frames[k];
+    for (size_t i = 0; i < rgb.size() / 3; ++i)
+      for (int c = 0; c < 3; ++c) {
+        const float v = f.pixels[i * size_t(f.channels) + size_t(c)];
+        rgb[i * 3 + size_t(c)] = std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f;
+      }
+    ok = (k == 0 || out->open(tmp.string(), spec, ImageOutput::AppendSubimage)) &&
+         out->write_image(TypeDesc::FLOAT, rgb.data());
   }
   if (!ok || !out->close()) {
     std::error_code ec;

@@ -10,6 +10,8 @@
 #include "phyir/core/image_io.h"
 #include "phyir/core/png_structure.h"
 
+#include <OpenImageIO/imageio.h>
+
 namespace fs = std::filesystem;
 using phyir::Image;
 
@@ -67,6 +69,30 @@ TEST(ImageIo, WriteLeavesNoTemporaryFiles) {
     EXPECT_EQ(entry.path().filename(), "x.exr");
   }
   EXPECT_EQ(files, 1);
+}
+
+// Three frames, red, green, blue: a GIF of three images in that order, and no temporary file.
+TEST(ImageIo, AnimationHoldsEveryFrameInOrder) {
+  const fs::path dir = scratch_dir("gif");
+  std::vector<Image> frames;
+  for (int k = 0; k < 3; ++k) {
+    Image f(8, 4, 3, 0.0f);
+    for (size_t i = 0; i < f.pixels.size(); i += 3) f.pixels[i + size_t(k)] = 1.0f;
+    frames.push_back(f);
+  }
+  phyir::write_animation(dir / "path.gif", frames, 4.0f);
+  auto in = OIIO::ImageInput::open((dir / "path.gif").string());
+  ASSERT_TRUE(in);
+  int subimages = 0;
+  while (in->seek_subimage(subimages, 0)) {
+    std::vector<float> rgb(size_t(in->spec().width) * size_t(in->spec().height) * size_t(in->spec().nchannels));
+    ASSERT_TRUE(in->read_image(subimages, 0, 0, in->spec().nchannels, OIIO::TypeDesc::FLOAT, rgb.data()));
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(rgb[size_t(c)], c == subimages ? 1.0f : 0.0f, 0.01f) << subimages;
+    ++subimages;
+  }
+  EXPECT_EQ(subimages, 3);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+  EXPECT_THROW(phyir::write_animation(dir / "bad.gif", {frames[0], Image(4, 4, 3)}, 4.0f), phyir::Error);
 }
 
 TEST(ImageIo, MissingFileNamesThePath) {

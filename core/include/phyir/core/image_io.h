@@ -30,4 +30,8 @@ std::variant<ByteImage, Image> read_image_from_memory_at_file_depth(const std::v
 void write_image(const std::filesystem::path& path, const Image& image,
                  const std::vector<std::string>& channel_names = {});
 
+// Writes display-encoded RGB frames in [0, 1] of one size as an animation (the extension's
+// format must hold several images: .gif loops forever at `fps`). Atomic like write_image.
+void write_animation(const std::filesystem::path& path, const std::vector<Image>& frames, float fps);
+
 }  // namespace phyir
