@@ -8,7 +8,6 @@
 #include <unistd.h>
 
 #include <atomic>
-#include <chrono>
 #include <map>
 #include <mutex>
 #include <set>
@@ -21,6 +20,7 @@
 #include "phyir/core/log.h"
 #include "phyir/core/progress.h"
 #include "phyir/core/setting_error.h"
+#include "phyir/core/stopwatch.h"
 #include "phyir/dataset/checksum.h"
 #include "phyir/dataset/input_image.h"
 #include "phyir/dataset/layout.h"
@@ -37,11 +37,8 @@ namespace phyir::dataset {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-using Clock = std::chrono::steady_clock;
 
 namespace {
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -234,7 +231,7 @@ void commit_view_folder(const fs::path& tmp, const fs::path& final_folder) {
 
 // Renders, checks and commits one view folder; returns its record.
 json render_view_folder(const Context& ctx, const ViewTask& task, const SceneWork& scene) {
-  const auto start = Clock::now();
+  const Stopwatch watch;
   const fs::path final_folder = ctx.options->out_dir / task.folder;
   const fs::path tmp = final_folder.parent_path() / (kTemporaryPrefix + final_folder.filename().string());
   std::error_code ec;
@@ -253,7 +250,7 @@ json render_view_folder(const Context& ctx, const ViewTask& task, const SceneWor
   write_render_record(report, scene, tmp, timing);
   json files = check_view_files(tmp, report.files);
   const json record = view_record(ctx, task, scene, exposure, render_statistics(report), std::move(files));
-  timing["view_seconds"] = seconds_since(start);
+  timing["view_seconds"] = watch.seconds();
   write_file_atomic(tmp / kTimingFile, timing.dump(2) + "\n");
   view::write_view_record(tmp, record);
   sync_folder(tmp);
@@ -397,7 +394,7 @@ class PendingRenders {
     Progress progress("dataset", pending_.size(), "views", live_);
     progress.set_rate(ProgressRate::PerHour);
     progress_ = &progress;
-    start_ = Clock::now();
+    watch_ = Stopwatch();
     const int views_in_flight = ctx_.options->views_in_flight;
     const size_t in_flight = size_t(views_in_flight > 0 ? views_in_flight : ctx_.threads);
     size_t next = 0;
@@ -413,7 +410,7 @@ class PendingRenders {
                                tbb::make_filter<size_t, void>(tbb::filter_mode::parallel,
                                                               [&](size_t t) { render_one(t); }));
     progress_ = nullptr;
-    seconds_ = seconds_since(start_);
+    seconds_ = watch_.seconds();
     report_failures();
     return done_;
   }
@@ -424,7 +421,7 @@ class PendingRenders {
   void render_one(size_t t) {
     const ViewTask& task = work_.tasks[t];
     const SceneWork& scene = work_.scenes[task.scene];
-    const auto view_start = Clock::now();
+    const Stopwatch view_watch;
     try {
       if (!scene.plan_error.empty()) fail("{}", scene.plan_error);
       // Isolated: a thread waiting inside this render must not pick up another view.
@@ -437,11 +434,11 @@ class PendingRenders {
     }
     const size_t n = ++done_;
     progress_->advance();
-    const double elapsed = seconds_since(start_);
+    const double elapsed = watch_.seconds();
     const double per_hour = elapsed > 0 ? 3600.0 * double(n) / elapsed : 0.0;
     spdlog::log(live_ ? spdlog::level::debug : spdlog::level::info,
                 "dataset: {} done in {:.1f} s; {}/{} views, {:.0f} views/hour, {} left", task.id,
-                seconds_since(view_start), n, pending_.size(), per_hour,
+                view_watch.seconds(), n, pending_.size(), per_hour,
                 format_duration(per_hour > 0 ? 3600.0 * double(pending_.size() - n) / per_hour : -1.0));
   }
 
@@ -463,7 +460,7 @@ class PendingRenders {
   std::mutex mutex_;
   std::vector<std::string> failures_;
   std::atomic<size_t> done_{0};
-  Clock::time_point start_;
+  Stopwatch watch_;
   double seconds_ = 0.0;
   bool live_ = false;
   Progress* progress_ = nullptr;
@@ -503,7 +500,7 @@ void write_run_manifest(const Context& ctx, const std::vector<SceneFile>& scene_
 }  // namespace
 
 GenerateSummary generate_dataset(const GenerateOptions& o) {
-  const auto run_start = Clock::now();
+  const Stopwatch run_watch;
   o.settings.validate();
   if (o.threads < 0) fail_setting("threads", "{} must be >= 0 (0 = all cores)", o.threads);
   if (o.views_in_flight < 0) fail_setting("views_in_flight", "{} must be >= 0", o.views_in_flight);
@@ -533,7 +530,7 @@ GenerateSummary generate_dataset(const GenerateOptions& o) {
   summary.rendered = renders.run();
   summary.views_per_hour = renders.seconds() > 0 ? 3600.0 * double(summary.rendered) / renders.seconds() : 0.0;
   write_run_manifest(ctx, scene_files, work, std::move(records));
-  summary.seconds = seconds_since(run_start);
+  summary.seconds = run_watch.seconds();
   spdlog::info("dataset {}: {} views of shard {} ({} rendered, {} kept) in {}{}; wrote {}", o.out_dir.string(),
                summary.views, shard_name(o.shard), summary.rendered, summary.kept, format_duration(summary.seconds),
                summary.rendered > 0 ? fmt::format(", {:.0f} views/hour", summary.views_per_hour) : std::string(),

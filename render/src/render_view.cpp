@@ -4,9 +4,8 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
-#include <chrono>
-
 #include "phyir/core/progress.h"
+#include "phyir/core/stopwatch.h"
 #include "phyir/render/gbuffer.h"
 #include "phyir/render/pixel_sampler.h"
 #include "phyir/render/streams.h"
@@ -16,10 +15,6 @@ namespace phyir::render {
 namespace {
 
 constexpr int kTileSize = 16;
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 size_t tile_count(int width, int height) {
   return size_t((width + kTileSize - 1) / kTileSize) * size_t((height + kTileSize - 1) / kTileSize);
@@ -101,16 +96,16 @@ RenderOutput render_view(const RenderScene& scene, const CameraModel& camera, co
                                               : analyse_effects(scene.scene(), scene.environment() != nullptr),
                    {}};
   const PathTracer tracer(scene, out.effects, settings.path);
-  auto start = std::chrono::steady_clock::now();
+  const Stopwatch color_watch;
   if (settings.guiding.enabled)
     out.stats.guiding = render_color_guided(scene, camera, settings, out.effects, &out.film, &out.stats.counters);
   else
     render_color(scene, camera, settings, tracer, &out.film, &out.stats.counters);
-  out.stats.color_seconds = seconds_since(start);
+  out.stats.color_seconds = color_watch.seconds();
   if (settings.aovs) {
-    start = std::chrono::steady_clock::now();
+    const Stopwatch aov_watch;
     out.stats.aov_rays = render_gbuffer(scene, camera, &out.film);
-    out.stats.aov_seconds = seconds_since(start);
+    out.stats.aov_seconds = aov_watch.seconds();
   }
   return out;
 }

@@ -2,9 +2,8 @@
 
 #include <tbb/parallel_for.h>
 
-#include <chrono>
-
 #include "phyir/core/image_error.h"
+#include "phyir/core/stopwatch.h"
 #include "phyir/render/frame.h"
 #include "phyir/render/ray_offset.h"
 #include "phyir/render/rng.h"
@@ -13,12 +12,6 @@
 namespace phyir::render {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // Camera rays through random pixel positions plus up to 4 cosine bounces from each hit.
 std::vector<Ray> replay_rays(const RenderScene& scene, const CameraModel& camera, size_t paths) {
@@ -99,19 +92,19 @@ ThroughputReport measure_throughput(const RenderScene& scene, const CameraModel&
   report.replayed_rays = rays.size();
   const Accelerator& accel = scene.accelerator();
   std::vector<float> t(rays.size());
-  auto start = Clock::now();
+  const Stopwatch single_watch;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i < r.end(); ++i) {
       Hit hit;
       t[i] = accel.intersect(rays[i], &hit) ? hit.t : -1.0f;
     }
   });
-  report.embree_single_rays_per_second = rays.size() / std::max(seconds_since(start), 1e-9);
-  start = Clock::now();
+  report.embree_single_rays_per_second = rays.size() / std::max(single_watch.seconds(), 1e-9);
+  const Stopwatch packet_watch;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
     accel.intersect_batch(rays.data() + r.begin(), r.size(), t.data() + r.begin());
   });
-  report.embree_packet_rays_per_second = rays.size() / std::max(seconds_since(start), 1e-9);
+  report.embree_packet_rays_per_second = rays.size() / std::max(packet_watch.seconds(), 1e-9);
   return report;
 }
 

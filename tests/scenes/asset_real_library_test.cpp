@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cctype>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -17,16 +16,11 @@
 #include <vector>
 
 #include "phyir/core/error.h"
+#include "phyir/core/stopwatch.h"
 #include "phyir/scenes/asset_library.h"
 
 namespace phyir::scenes {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 bool has_real_library() {
   std::error_code ec;
@@ -72,10 +66,10 @@ std::string warning_kind(const std::string& warning) {
 
 TEST(AssetRealLibrary, OpensEveryCatalog) {
   if (!has_real_library()) GTEST_SKIP() << kDefaultAssetDir << " absent (Debian package sweethome3d-furniture)";
-  const auto start = Clock::now();
+  const Stopwatch watch;
   const AssetLibrary library = AssetLibrary::open(kDefaultAssetDir);
   std::printf("opened %zu archives, %zu entries in %.3f s\n", library.archives().size(), library.entries().size(),
-              seconds_since(start));
+              watch.seconds());
   EXPECT_EQ(library.archives().size(), 5u);
   EXPECT_EQ(library.entries().size(), 820u);  // sweethome3d-furniture 1.8
   EXPECT_TRUE(library.duplicate_ids().empty());
@@ -167,7 +161,7 @@ TEST(AssetRealLibrary, LoadsEveryModel) {
   std::mutex mutex;
   std::vector<std::string> failures;
   std::map<std::string, size_t> warnings_by_kind;
-  const auto start = Clock::now();
+  const Stopwatch watch;
   const auto work = [&] {
     for (size_t i = next++; i < entries.size(); i = next++) {
       std::string problem;
@@ -192,7 +186,7 @@ TEST(AssetRealLibrary, LoadsEveryModel) {
   work();
   other.join();
   std::printf("loaded %zu models on 2 threads in %.1f s: %zu triangles, %zu textures, %zu with warnings, %zu failed\n",
-              entries.size(), seconds_since(start), triangles.load(), textures.load(), with_warnings.load(),
+              entries.size(), watch.seconds(), triangles.load(), textures.load(), with_warnings.load(),
               failures.size());
   for (const auto& [kind, count] : warnings_by_kind) std::printf("  %5zu x warning: %s\n", count, kind.c_str());
   for (const std::string& f : failures) std::printf("  FAILED %s\n", f.c_str());

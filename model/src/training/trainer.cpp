@@ -13,6 +13,7 @@
 #include "phyir/view/view_files.h"
 #include "phyir/core/setting_error.h"
 #include "phyir/core/log.h"
+#include "phyir/core/stopwatch.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -266,7 +267,7 @@ bool Trainer::run_epoch(int epoch) {
 }
 
 double Trainer::run_step(int epoch, int64_t bi, const Batch& b) {
-  const auto t0 = Clock::now();
+  const Stopwatch watch;
   const double lr = schedule_.at(global_step_);
   for (auto& group : opt_->param_groups()) static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
   // With ranks, the loss is the global batch's (batch_share.h): the same value on every rank.
@@ -287,7 +288,7 @@ double Trainer::run_step(int epoch, int64_t bi, const Batch& b) {
   ++global_step_;
   epoch_loss_sum_ += loss;
   ++epoch_steps_;
-  log_step(epoch, bi, loss, L, lr, seconds_since(t0));
+  log_step(epoch, bi, loss, L, lr, watch.seconds());
   return loss;
 }
 
@@ -317,7 +318,7 @@ void Trainer::set_modes(bool training) {
 // --- Validation, checkpoints, summary -----------------------------------------------------------
 
 void Trainer::validate(int epoch_done) {
-  const auto t0 = Clock::now();
+  const Stopwatch watch;
   StageNetworks trained = stage_;
   trained.gmnet = true;
   trained.lnet = trained.lnet || trained_.value("lnet", false);
@@ -353,7 +354,7 @@ void Trainer::validate(int epoch_done) {
   spdlog::info("[{}] validation after epoch {}: loss {:.5g}{}{} ({} views, {:.1f} s)", stage_name_, epoch_done,
                rec.loss, best_.metric == "val_loss" ? std::string() : fmt::format(", {} {:.5g}", best_.metric, value),
                improved ? ", best so far: best.pt" : fmt::format(" (best {:.5g} at epoch {})", best_.value, best_.epoch),
-               validator_->size(), seconds_since(t0));
+               validator_->size(), watch.seconds());
   summary_.validations.push_back(std::move(rec));
 }
 

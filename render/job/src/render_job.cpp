@@ -3,8 +3,6 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
-#include <chrono>
-
 #include "phyir/core/atomic_file.h"
 #include "phyir/core/auto_exposure.h"
 #include "phyir/core/colour.h"
@@ -13,6 +11,7 @@
 #include "phyir/core/log.h"
 #include "phyir/core/safe_math.h"
 #include "phyir/core/setting_error.h"
+#include "phyir/core/stopwatch.h"
 #include "phyir/render/equirect.h"
 #include "phyir/scenes/gltf_loader.h"
 #include "phyir/view/input_exposure.h"
@@ -24,12 +23,6 @@ namespace phyir::render {
 namespace fs = std::filesystem;
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 nlohmann::json vec_json(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 
@@ -61,10 +54,10 @@ RenderReport::Probes render_and_write_probes(const RenderJob& job, const RenderS
                settings.layout.grid_width, settings.layout.res_height, settings.layout.res_width, settings.spp,
                probe_mode_name(settings.mode));
   const ProbeOutput probes = ProbeRenderer(scene, effects, settings).render(camera);
-  const auto start = Clock::now();
+  const Stopwatch watch;
   report.files = view::write_probe_images(
       job.out_dir, {probes.mosaic, probes.position, probes.normal, probes.mask, probes.standard_error});
-  report.write_seconds = seconds_since(start);
+  report.write_seconds = watch.seconds();
   report.stats = probes.stats;
   if (probes.stats.counters.nonfinite_samples > 0)
     spdlog::warn("{} non-finite probe samples were caught and zeroed", probes.stats.counters.nonfinite_samples);
@@ -183,23 +176,23 @@ CameraModel job_camera(const RenderJob& job, const scenes::Scene& scene, std::st
 RenderReport run_render_job(const RenderJob& job) {
   validate(job);
   ensure_writable_directory(job.out_dir);
-  const auto total_start = Clock::now();
+  const Stopwatch total_watch;
   RenderReport report;
   report.job = job;
   report.threads = job.threads > 0 ? job.threads : tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, report.threads);
 
-  auto start = Clock::now();
+  const Stopwatch load_watch;
   const scenes::Scene scene = scenes::load_gltf(job.scene_path);
-  report.timings.load_seconds = seconds_since(start);
+  report.timings.load_seconds = load_watch.seconds();
 
-  start = Clock::now();
+  const Stopwatch build_watch;
   report.environment = choose_environment(job, scene);
   if (report.environment.source != "none")
     spdlog::info("environment {} (from {}), scale {}", report.environment.path, report.environment.source,
                  report.environment.scale);
   const RenderScene render_scene(scene, load_environment(report.environment, scene));
-  report.timings.build_seconds = seconds_since(start);
+  report.timings.build_seconds = build_watch.seconds();
   report.scene = {job.scene_path.string(),
                   scene.meshes.size(),
                   scene.triangle_count(),
@@ -224,26 +217,26 @@ RenderReport run_render_job(const RenderJob& job) {
   report.effects = out.effects;
   report.stats = out.stats;
 
-  start = Clock::now();
+  const Stopwatch exr_watch;
   fs::create_directories(job.out_dir);
   report.files = out.film.write_exr(job.out_dir);
-  const double color_write_seconds = seconds_since(start);
+  const double color_write_seconds = exr_watch.seconds();
   if (job.probes) {
     report.probes = render_and_write_probes(job, render_scene, camera, out.effects);
     report.files.insert(report.files.end(), report.probes->files.begin(), report.probes->files.end());
   }
-  start = Clock::now();
+  const Stopwatch preview_watch;
   report.exposure = job.auto_exposure ? auto_exposure(out.film.color()) : AutoExposure{job.exposure, 0.0f};
   write_image(job.out_dir / view::kColorPreviewFile,
               linear_to_display(out.film.color(), report.exposure.stops, job.view));
   report.files.push_back(view::kColorPreviewFile);
-  report.timings.write_seconds = color_write_seconds + seconds_since(start);
-  report.timings.total_seconds = seconds_since(total_start);
+  report.timings.write_seconds = color_write_seconds + preview_watch.seconds();
+  report.timings.total_seconds = total_watch.seconds();
   write_file_atomic(job.out_dir / view::kRenderRecordFile, report.to_json().dump(2) + "\n");
   if (out.stats.counters.nonfinite_samples > 0)
     spdlog::warn("{} non-finite path samples were caught and zeroed", out.stats.counters.nonfinite_samples);
   spdlog::info("wrote {} files to {} in {:.2f} s ({:.2f} Mrays/s)", report.files.size() + 1, job.out_dir.string(),
-               seconds_since(total_start), out.stats.color_seconds > 0 ? out.stats.counters.rays / out.stats.color_seconds / 1e6 : 0.0);
+               total_watch.seconds(), out.stats.color_seconds > 0 ? out.stats.counters.rays / out.stats.color_seconds / 1e6 : 0.0);
   return report;
 }
 

@@ -1,21 +1,10 @@
 #include "phyir/render/probe_renderer.h"
 
-#include <chrono>
-
+#include "phyir/core/stopwatch.h"
 #include "probe_error_target.h"
 #include "probe_view.h"
 
 namespace phyir::render {
-
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-}  // namespace
 
 nlohmann::json ProbeStats::to_json() const {
   return {{"seconds", {{"place", place_seconds}, {"cache", cache_seconds}, {"shade", shade_seconds}, {"share", share_seconds}, {"total", total_seconds}}},
@@ -66,9 +55,9 @@ ProbeRenderer::ProbeRenderer(const RenderScene& scene, const Effects& effects, c
 }
 
 ProbeOutput ProbeRenderer::render(const CameraModel& camera) const {
-  const auto start = Clock::now();
+  const Stopwatch watch;
   std::vector<ProbeSite> sites = place_probes(scene_, camera, settings_.layout, settings_.offset);
-  const double place_seconds = seconds_since(start);
+  const double place_seconds = watch.seconds();
   ProbeOutput out = render_at(std::move(sites));
   out.stats.place_seconds = place_seconds;
   out.stats.placement_rays = 2 * uint64_t(settings_.layout.probe_count());  // placement + gap check

@@ -3,13 +3,13 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
 #include "phyir/core/error.h"
 #include "phyir/core/progress.h"
 #include "phyir/core/safe_math.h"
+#include "phyir/core/stopwatch.h"
 #include "phyir/render/equirect.h"
 #include "phyir/render/streams.h"
 #include "probe_standard_error.h"
@@ -18,12 +18,6 @@
 namespace phyir::render {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // The foot correction needs this many probes to tell the difference common to all of them
 // (the last bounce) from each one's own (foot_correction.h).
@@ -89,10 +83,10 @@ ProbeView::ProbeView(const RenderScene& scene, const Effects& effects, const Pro
 }
 
 ProbeOutput ProbeView::run() {
-  const auto start = Clock::now();
+  const Stopwatch total_watch;
   tiles_ = probe_tiles(todo_, layout_.grid_width);
   if (settings_.mode == ProbeMode::kCache) transport_.build_cache(out_.sites, todo_, tiles_, &out_.stats);
-  const auto shade_start = Clock::now();
+  const Stopwatch shade_watch;
   transport_.build_estimator(out_.sites, &out_.stats);
   if (share_) {
     records_.distance.assign(size_t(layout_.probe_count()) * size_t(texels_), std::numeric_limits<float>::infinity());
@@ -112,13 +106,13 @@ ProbeOutput ProbeView::run() {
   ProbeStats& stats = out_.stats;
   for (const Worker& w : workers_) stats += w.stats;
   if (transport_.cache()) stats.cache_fallbacks = transport_.cache()->fallbacks();
-  stats.shade_seconds = seconds_since(shade_start);
+  stats.shade_seconds = shade_watch.seconds();
   if (share_) share_between_neighbours();
   add_after_sharing(&Worker::photon_light);
   if (effects_.punctual_lights && settings_.punctual_lights)
     stats.counters.rays += deposit_punctual_lights(scene_, layout_, out_.sites, todo_, &out_.mosaic);
   out_.standard_error = pooled_standard_error(out_.standard_error, layout_);
-  stats.total_seconds = seconds_since(start);
+  stats.total_seconds = total_watch.seconds();
   return std::move(out_);
 }
 
@@ -246,13 +240,13 @@ void ProbeView::correct_feet() {
 }
 
 void ProbeView::share_between_neighbours() {
-  const auto start = Clock::now();
+  const Stopwatch watch;
   std::vector<uint8_t> computed(size_t(layout_.probe_count()), 0);
   for (int p : todo_) computed[size_t(p)] = 1;
   out_.mosaic = render::share_between_neighbours(out_.mosaic, layout_, out_.sites, computed, records_,
                                                  settings_.sharing, &out_.stats.shared_texels, &out_.standard_error);
   add_after_sharing(&Worker::emission_seen);
-  out_.stats.share_seconds = seconds_since(start);
+  out_.stats.share_seconds = watch.seconds();
 }
 
 }  // namespace phyir::render
