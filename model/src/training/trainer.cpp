@@ -17,13 +17,10 @@
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-using Clock = std::chrono::steady_clock;
 
 namespace phyir::model {
 
 namespace {
-
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 json augment_to_json(const AugmentOptions& a) {
   return {{"enabled", a.enabled}, {"rotate", a.rotate}, {"mirror", a.mirror},
@@ -56,7 +53,7 @@ TrainSummary Trainer::run() {
   build_networks();
   load_data();
   summary_.checkpoint = checkpoint_path_.string();
-  start_time_ = Clock::now();
+  start_time_ = Stopwatch();
   for (int epoch = start_epoch_; epoch < o_.epochs; ++epoch)
     if (!run_epoch(epoch)) break;
   summary_.steps = global_step_;
@@ -302,7 +299,7 @@ void Trainer::log_step(int epoch, int64_t bi, double loss, const StepLoss& L, do
   }
   std::vector<std::string> row = {stage_name_, std::to_string(epoch + 1), std::to_string(global_step_), csv_number(loss)};
   for (const auto& part : L.parts) row.push_back(csv_number(part.second.item<double>()));
-  row.insert(row.end(), {csv_number(lr), fmt::format("{:.3f}", seconds_since(start_time_))});
+  row.insert(row.end(), {csv_number(lr), fmt::format("{:.3f}", start_time_.seconds())});
   step_log_->row(row);
   if (o_.progress)
     spdlog::info("[{}] epoch {}/{} step {}/{} loss {:.5g} ({}) lr {:.3g} {:.2f} s/step", stage_name_, epoch + 1,
@@ -341,7 +338,7 @@ void Trainer::validate(int epoch_done) {
   for (const auto& metric : rec.metrics) row.push_back(csv_number(metric.second));
   // The rate of the epoch's last step.
   row.insert(row.end(), {csv_number(schedule_.at(std::max<int64_t>(0, global_step_ - 1))),
-                         fmt::format("{:.3f}", seconds_since(start_time_))});
+                         fmt::format("{:.3f}", start_time_.seconds())});
   val_log_->row(row);
   const double value = metric_value(rec, best_.metric);
   const bool improved = best_.better(value, Validator::higher_is_better(best_.metric));
@@ -391,7 +388,7 @@ void Trainer::write_summary() {
     passes.push_back(p);
   }
   log["validation_passes"] = passes;
-  log["seconds"] = seconds_since(start_time_);
+  log["seconds"] = start_time_.seconds();
   std::ofstream(out_ / "train_log.json") << log.dump(2) << "\n";
   if (!std::isnan(best_.value)) {
     summary_.best_checkpoint = (out_ / "best.pt").string();

@@ -6,7 +6,6 @@
 // training.h is Trainer(options).run(). Private header (torch types).
 #include <torch/torch.h>
 
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -18,6 +17,7 @@
 #include "data.h"
 #include "process_group.h"
 #include "lr_schedule.h"
+#include "phyir/core/stopwatch.h"
 #include "phyir/model/training.h"
 #include "stage_loss.h"
 #include "train_log.h"
@@ -88,7 +88,7 @@ class Trainer {
   TrainSummary summary_;
   double epoch_loss_sum_ = 0.0;
   int64_t epoch_steps_ = 0;
-  std::chrono::steady_clock::time_point start_time_;
+  Stopwatch start_time_;
 };
 
 }  // namespace phyir::model
