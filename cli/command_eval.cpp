@@ -55,6 +55,67 @@ void run_model(const EvalFlags& f) {
 #endif
 }
 
+// --insertion-*: the insertion section of the report (eval_insertion.h).
+void add_insertion_flags(CLI::App* cmd, EvalInsertionOptions& o) {
+  cmd->add_option("--insertion-views", o.views,
+                  "also score object insertion (docs/insert.md) on the first N views of the split: Table 10's spheres "
+                  "composited under the predicted probes, the GT probes, one global probe and a constant "
+                  "environment, against the scene path traced with the sphere in it (0: off)")
+      ->capture_default_str();
+  cmd->add_option("--insertion-scenes", o.scenes,
+                  "the dataset's scenes folder, where the manifest's scenes_dir is not reachable from here");
+  cmd->add_option("--insertion-spp", o.spp, "samples per pixel of the insertion composites")
+      ->capture_default_str();
+  cmd->add_option("--insertion-truth-spp", o.truth_spp, "samples per pixel of the insertion truth")
+      ->capture_default_str();
+  cmd->add_option("--insertion-seeds", o.seeds, "seeds per insertion case (mean over them)")
+      ->capture_default_str();
+}
+
+void run_eval_command(EvalFlags& f) {
+  if (f.pred.empty() == f.model.empty()) fail("phyir eval: give exactly one of --pred DIR and --model CKPT");
+  std::unique_ptr<tbb::global_control> limit;
+  if (f.threads > 0)
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, f.threads);
+  eval::EvalOptions& o = f.options;
+  try {  // before any inference
+    o.settings.depth_protocol = eval::parse_depth_protocol(f.depth_protocol);
+  } catch (const Error& e) {
+    fail("phyir eval --depth-protocol: {}", e.what());
+  }
+  try {
+    o.settings.radiance_units = view::parse_radiance_units(f.radiance_units);
+  } catch (const Error& e) {
+    fail("phyir eval --radiance: {}", e.what());
+  }
+  o.gt_dir = f.gt;
+  o.out_dir = f.out;
+  o.settings.relight = !f.no_relight;
+  o.baselines = !f.no_baselines;
+  o.progress = !f.quiet;
+  if (o.settings.sphere.size < 8 || o.settings.sphere.spp < 1 || o.settings.relight_positions < 0)
+    fail("phyir eval: --sphere-size must be >= 8, --sphere-spp >= 1, --relight-positions >= 0");
+  if (f.insertion.views < 0 || f.insertion.spp < 1 || f.insertion.truth_spp < 1 || f.insertion.seeds < 1)
+    fail("phyir eval: --insertion-views must be >= 0, --insertion-spp, --insertion-truth-spp and "
+         "--insertion-seeds >= 1");
+  if (!f.model.empty()) {
+    run_model(f);
+    o.pred_dir = std::filesystem::path(f.out) / "pred";
+    o.model = f.model;
+  } else {
+    o.pred_dir = f.pred;
+  }
+  if (f.insertion.views > 0) {
+    EvalInsertionOptions& in = f.insertion;
+    in.gt_dir = o.gt_dir, in.pred_dir = o.pred_dir, in.out_dir = o.out_dir, in.split = o.split;
+    in.progress = o.progress;
+    o.extra_sections.push_back(evaluate_insertion(in));
+  }
+  const nlohmann::json metrics = eval::run_eval(o);
+  std::printf("%s\nwrote %s/report.md and %s/metrics.json\n", eval::main_table_markdown(metrics).c_str(),
+              f.out.c_str(), f.out.c_str());
+}
+
 }  // namespace
 
 void add_eval_command(CLI::App& app) {
@@ -101,63 +162,9 @@ void add_eval_command(CLI::App& app) {
   cmd->add_option("--model-threads", f->model_threads, "torch threads for --model")->capture_default_str();
   cmd->add_option("--model-seed", f->model_seed, "seed of the rendering layer's samples for --model")
       ->capture_default_str();
-  cmd->add_option("--insertion-views", f->insertion.views,
-                  "also score object insertion (docs/insert.md) on the first N views of the split: Table 10's spheres "
-                  "composited under the predicted probes, the GT probes, one global probe and a constant "
-                  "environment, against the scene path traced with the sphere in it (0: off)")
-      ->capture_default_str();
-  cmd->add_option("--insertion-scenes", f->insertion.scenes,
-                  "the dataset's scenes folder, where the manifest's scenes_dir is not reachable from here");
-  cmd->add_option("--insertion-spp", f->insertion.spp, "samples per pixel of the insertion composites")
-      ->capture_default_str();
-  cmd->add_option("--insertion-truth-spp", f->insertion.truth_spp, "samples per pixel of the insertion truth")
-      ->capture_default_str();
-  cmd->add_option("--insertion-seeds", f->insertion.seeds, "seeds per insertion case (mean over them)")
-      ->capture_default_str();
+  add_insertion_flags(cmd, f->insertion);
   cmd->add_flag("--quiet", f->quiet, "no progress line");
-  cmd->callback([f] {
-    if (f->pred.empty() == f->model.empty()) fail("phyir eval: give exactly one of --pred DIR and --model CKPT");
-    std::unique_ptr<tbb::global_control> limit;
-    if (f->threads > 0)
-      limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, f->threads);
-    eval::EvalOptions& o = f->options;
-    try {  // before any inference
-      o.settings.depth_protocol = eval::parse_depth_protocol(f->depth_protocol);
-    } catch (const Error& e) {
-      fail("phyir eval --depth-protocol: {}", e.what());
-    }
-    try {
-      o.settings.radiance_units = view::parse_radiance_units(f->radiance_units);
-    } catch (const Error& e) {
-      fail("phyir eval --radiance: {}", e.what());
-    }
-    o.gt_dir = f->gt;
-    o.out_dir = f->out;
-    o.settings.relight = !f->no_relight;
-    o.baselines = !f->no_baselines;
-    o.progress = !f->quiet;
-    if (o.settings.sphere.size < 8 || o.settings.sphere.spp < 1 || o.settings.relight_positions < 0)
-      fail("phyir eval: --sphere-size must be >= 8, --sphere-spp >= 1, --relight-positions >= 0");
-    if (!f->model.empty()) {
-      run_model(*f);
-      o.pred_dir = std::filesystem::path(f->out) / "pred";
-      o.model = f->model;
-    } else {
-      o.pred_dir = f->pred;
-    }
-    if (f->insertion.views < 0 || f->insertion.spp < 1 || f->insertion.truth_spp < 1 || f->insertion.seeds < 1)
-      fail("phyir eval: --insertion-views must be >= 0, --insertion-spp, --insertion-truth-spp and "
-           "--insertion-seeds >= 1");
-    if (f->insertion.views > 0) {
-      EvalInsertionOptions& in = f->insertion;
-      in.gt_dir = o.gt_dir, in.pred_dir = o.pred_dir, in.out_dir = o.out_dir, in.split = o.split;
-      in.progress = o.progress;
-      o.extra_sections.push_back(evaluate_insertion(in));
-    }
-    const nlohmann::json metrics = eval::run_eval(o);
-    std::printf("%s\nwrote %s/report.md and %s/metrics.json\n", eval::main_table_markdown(metrics).c_str(),
-                f->out.c_str(), f->out.c_str());
-  });
+  cmd->callback([f] { run_eval_command(*f); });
 }
 
 }  // namespace phyir::cli
