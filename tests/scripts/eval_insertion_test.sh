@@ -6,18 +6,9 @@
 # A scene file that is not the one the view was rendered from is refused, naming it, with no
 # report written.
 #   $1 = phyir binary, $2 = scratch folder (emptied).
-source "$(dirname "${BASH_SOURCE[0]}")/lib/prologue.sh"
-export OMP_WAIT_POLICY=passive
-if "$phyir" train --help 2>&1 | grep -q "not built"; then
-  echo "SKIP: phyir built without the model (-DPHYIR_BUILD_MODEL=OFF)"; exit 0
-fi
-
-"$phyir" --log-level warn scenes generate --out rooms --count 1 --seed 7 --preset mini
-"$phyir" --log-level warn dataset generate --scenes rooms --out data --preset tiny --views-per-scene 1 \
-  --split 1,0,0 --seed 1 --threads 2 --quiet
-net=(--seed 1 --threads 1 --quiet --input-height 32 --input-width 64 --render-height 16 --render-width 32
-     --probe-height 4 --probe-width 8 --diffuse-samples 8 --specular-samples 4 --width-divisor 4)
-"$phyir" --log-level warn train --data data --out lnet --stage lnet --epochs 1 --batch 1 "${net[@]}"
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)  # before the prologue changes directory
+source "$here/lib/prologue.sh"
+source "$here/lib/tiny_lnet.sh"
 insertion=(--insertion-views 1 --insertion-spp 4 --insertion-truth-spp 8)
 common=(--gt data --split train --model lnet/checkpoint.pt --no-relight --no-baselines --quiet --threads 2)
 "$phyir" --log-level warn eval "${common[@]}" "${insertion[@]}" --out report > eval.log

@@ -8,45 +8,18 @@
 # composite is finite, non-negative, covers some pixels and differs from the background.
 #   $1 = phyir binary, $2 = scratch folder (emptied).
 root=${PHYIR_SOURCE_ROOT:-$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)}
-source "$(dirname "${BASH_SOURCE[0]}")/lib/prologue.sh"
-export OMP_WAIT_POLICY=passive
-if "$phyir" train --help 2>&1 | grep -q "not built"; then
-  echo "SKIP: phyir built without the model (-DPHYIR_BUILD_MODEL=OFF)"; exit 0
-fi
-
-"$phyir" --log-level warn scenes generate --out rooms --count 1 --seed 7 --preset mini
-"$phyir" --log-level warn dataset generate --scenes rooms --out data --preset tiny --views-per-scene 1 \
-  --split 1,0,0 --seed 1 --threads 2 --quiet
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)  # before the prologue changes directory
+source "$here/lib/prologue.sh"
+source "$here/lib/tiny_lnet.sh"
 view=$(dirname "$(find data -name view.json | head -1)")
 [ -d "$view" ] || die "the dataset has no view"
-net=(--seed 1 --threads 1 --quiet --input-height 32 --input-width 64 --render-height 16 --render-width 32
-     --probe-height 4 --probe-width 8 --diffuse-samples 8 --specular-samples 4 --width-divisor 4)
-"$phyir" --log-level warn train --data data --out lnet --stage lnet --epochs 1 --batch 1 "${net[@]}"
 "$phyir" --log-level warn infer --model lnet/checkpoint.pt --input "$view/input.png" --out pred --threads 1
 for f in probes.exr probe_mask.exr depth.exr normal.exr basecolor.exr; do
   [ -s "pred/$f" ] || die "phyir infer wrote no $f"
 done
 
-# A 1 m cube (scaled to 0.3 m below), embedded buffer: visible from every side.
-/usr/bin/python3 - <<'PY'
-import base64, json, struct
-p = [(x, y, z) for x in (-.5, .5) for y in (0, 1) for z in (-.5, .5)]
-quads = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
-idx = [i for a, b, c, d in quads for i in (a, b, c, a, c, d)]
-data = b"".join(struct.pack("<3f", *v) for v in p) + struct.pack(f"<{len(idx)}H", *idx)
-uri = "data:application/octet-stream;base64," + base64.b64encode(data).decode()
-json.dump({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
-           "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
-           "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.2, 0.2, 1], "metallicFactor": 0,
-                                                    "roughnessFactor": 0.5}}],
-           "buffers": [{"byteLength": len(data), "uri": uri}],
-           "bufferViews": [{"buffer": 0, "byteLength": 96, "target": 34962},
-                           {"buffer": 0, "byteOffset": 96, "byteLength": 72, "target": 34963}],
-           "accessors": [{"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3",
-                          "min": [-.5, 0, -.5], "max": [.5, 1, .5]},
-                         {"bufferView": 1, "componentType": 5123, "count": 36, "type": "SCALAR"}]},
-          open("cube.gltf", "w"))
-PY
+# A 1 m cube (scaled to 0.3 m below): visible from every side.
+/usr/bin/python3 "$here/lib/cube_gltf.py" cube.gltf
 object=cube.gltf
 read -r width height < <(/usr/bin/python3 -c "import OpenImageIO as o;s=o.ImageInput.open('$view/color.exr').spec();print(s.width,s.height)")
 x=$((width / 2)); y=$((height * 7 / 8))  # ahead of the camera, low: the floor
