@@ -1,6 +1,6 @@
 // phyir bench model: forward and forward+backward time and peak memory of each module of the
 // network (GMNet, GSNet, LNet, rendering layer, full inference) at the default and the paper's
-// resolution: CSV, a markdown table and JSON. docs/commands/bench.md, docs/model.md ("Cost").
+// resolution: CSV, a markdown table and JSON. docs/commands/bench.md, docs/model-results.md ("Cost").
 #include <unistd.h>
 
 #include <cstdio>
@@ -56,7 +56,7 @@ double load_average() {
 
 // libgomp reads OMP_WAIT_POLICY when it loads, before main: if it is unset, run this command
 // again with it set to passive (spinning OpenMP threads slow torch several-fold on a shared
-// machine, docs/model.md).
+// machine, docs/model-results.md).
 void ensure_passive_openmp() {
   if (std::getenv("OMP_WAIT_POLICY")) return;
   std::ifstream f("/proc/self/cmdline", std::ios::binary);

@@ -28,7 +28,7 @@ void add_infer_command(CLI::App& app) {
   cmd->add_option("--threads", o->threads, "torch threads (0: every core; the outputs are the same for any count)")
       ->capture_default_str();
   sets(cmd, "device",
-       cmd->add_option("--device", o->device, "cpu, cuda or cuda:N (CUDA needs a CUDA LibTorch: docs/model.md \"Build\")"))
+       cmd->add_option("--device", o->device, "cpu, cuda or cuda:N (CUDA needs a CUDA LibTorch: docs/model-scale.md \"Build\")"))
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed of the rendering layer's samples")->capture_default_str();
   cmd->add_option("--exposure", o->exposure,

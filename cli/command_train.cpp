@@ -27,7 +27,7 @@ void add_train_command(CLI::App& app) {
   add_train_flags(cmd, *f);
   model::DistributedOptions& d = f->options.distributed;
   auto* dist = cmd->add_option_group("data-parallel", "several processes train as one at the same --batch "
-                                                      "(docs/model.md \"Training on several processes\")");
+                                                      "(docs/model-scale.md \"Training on several processes\")");
   dist->add_option("--nproc", *nproc, "train as N local processes, --batch split between them (each with --threads "
                    "threads)")->check(CLI::PositiveNumber)->capture_default_str();
   dist->add_option("--world-size", d.world_size, "ranks in all (set by --nproc and by train slurm's script)")

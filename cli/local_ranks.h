@@ -1,6 +1,6 @@
 #pragma once
 // `phyir train --nproc N`: one training as N processes on this machine, ranks 0..N-1, meeting
-// at a rendezvous file in the output folder (docs/model.md "Training on several processes").
+// at a rendezvous file in the output folder (docs/model-scale.md "Training on several processes").
 // Rank 0 writes to this terminal, rank r > 0 to OUT/rank-<r>.log. When a rank fails, the others
 // are stopped and the error names the rank, how it ended and its log.
 #include <filesystem>

@@ -121,7 +121,7 @@ void add_train_flags(CLI::App* cmd, TrainFlags& f) {
                   "batches read ahead with --workers: at most batch x (prefetch + 1) views in memory, whatever "
                   "the dataset's size")
       ->check(CLI::PositiveNumber)->capture_default_str();
-  cmd->add_option("--device", o.device, "cpu, cuda or cuda:N (CUDA needs a CUDA LibTorch: docs/model.md \"Build\")")
+  cmd->add_option("--device", o.device, "cpu, cuda or cuda:N (CUDA needs a CUDA LibTorch: docs/model-scale.md \"Build\")")
       ->capture_default_str();
   cmd->add_option("--max-steps", o.max_steps, "stop after this many steps in total (0 = all epochs)");
   cmd->add_option("--checkpoint-every", o.checkpoint_every, "also checkpoint every N steps (0 = per epoch)");

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Training throughput with one process and with N local ranks (docs/model.md "Training on
+# Training throughput with one process and with N local ranks (docs/model-scale.md "Training on
 # several processes"): views per second over the steps after the first (the first pays the
 # start-up and the allocator's warm-up) and each process's peak RSS, from train_log.csv and
 # /usr/bin/time -v (a launcher's figure is the largest of its ranks'). One process gets

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The training recipe of issue 24 item 5 (docs/model.md "Training recipe"): furnished apartments,
+# The training recipe of issue 24 item 5 (docs/model-results.md "Training recipe"): furnished apartments,
 # a dataset at the model's default resolutions, the four stages for two arms (targets in the
 # input's units, the exposure fix; and in absolute radiance, without it), `phyir eval` on the
 # test split with its baselines, a results table (Markdown + CSV), the training curves and the
@@ -30,7 +30,7 @@ Sizes (--pilot is the default):
   --pilot                 8 apartments x 5 views, short stages: 1,190 CPU s measured (about
                           10-12 min on 2 dedicated cores; 45 min at load 6-9 on the shared one)
   --full                  40 apartments x 8 views, longer stages: about 4 CPU hours, 2-2.5 h on
-                          2 dedicated cores (estimated from the pilot's costs, docs/model.md)
+                          2 dedicated cores (estimated from the pilot's costs, docs/model-results.md)
   --count N               apartments                       [pilot 8, full 40]
   --views-per-scene K     views per apartment              [pilot 5, full 8]
   --epochs G,L,J,S        epochs of gmnet, lnet, joint, gsnet [pilot 12,6,2,6; full 30,15,3,10]
@@ -40,7 +40,7 @@ Sizes (--pilot is the default):
                           less one) is used [1]
   --split T,V,E           scene fractions                  [0.7,0.15,0.15]
 
-Dataset (defaults chosen for a cheap view; see docs/model.md for the measured seconds):
+Dataset (defaults chosen for a cheap view; see docs/model-results.md for the measured seconds):
   --width W --height H    panorama [256 x 128]             --spp N [32]
   --probe-grid HxW [32x64]  --probe-res hxw [8x16]  --probe-spp N [2]
   --probe-cache-spp N [16]  --probe-cache-cell M [0.15]  (cache: 11 CPU s a view against 45 s at
@@ -51,7 +51,7 @@ Training:
   --arms "A B"            arms to run [input absolute]     --threads T  torch threads [2]
   --val-views N           validation views per pass [8]
   --gmnet-lr LR [1e-3]  --lnet-lr LR [pilot 1e-4 (B.1), full 1e-3: the pilot's LNet barely
-                          moved at 1e-4, docs/model.md]  --joint-lr LR [1e-5]  --gsnet-lr LR [5e-4]
+                          moved at 1e-4, docs/model-results.md]  --joint-lr LR [1e-5]  --gsnet-lr LR [5e-4]
   --lr-schedule KIND      constant|step|cosine [cosine]
   --gmnet-w-normal X      GMNet's normal weight [1; B.1: 0.1]
 

@@ -3,7 +3,7 @@
 // #SBATCH header from a job's resources, the `phyir` command lines the jobs run, shell quoting
 // and submission. They hold command lines with flags, so they are written here, in the CLI;
 // the dataset library keeps the shard plan (dataset/slurm.h). docs/dataset.md, "On a
-// cluster", and docs/model.md, "Training on several processes", describe the jobs.
+// cluster", and docs/model-scale.md, "Training on several processes", describe the jobs.
 #include <filesystem>
 #include <string>
 #include <vector>

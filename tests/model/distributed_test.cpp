@@ -1,4 +1,4 @@
-// Data-parallel training (data_parallel.h, batch_share.h, docs/model.md "Training on several
+// Data-parallel training (data_parallel.h, batch_share.h, docs/model-scale.md "Training on several
 // processes"): the slices of the global batch, and `phyir train --nproc N` against one process
 // at the same global batch, resumes across rank counts, and ranks that die or hang.
 #include <signal.h>

@@ -1,5 +1,5 @@
-# A dataset for measuring the training reader at the paper's sizes (docs/model.md "Training at
-# scale"): ROOT/source, one synthetic view folder (panorama 512x256, a 128x256 grid of 16x32
+# A dataset for measuring the training reader at the paper's sizes (docs/model-scale.md
+# "Streaming"): ROOT/source, one synthetic view folder (panorama 512x256, a 128x256 grid of 16x32
 # probes, smooth content), and ROOT/views/v0000... N folders linking to its files (the page
 # cache is shared, each view's decoding is real). Usage: /usr/bin/python3 paper_size_views.py ROOT N
 import os, sys, json, numpy as np, OpenImageIO as oiio

@@ -218,7 +218,7 @@ TEST(ProbeStderr, ViewWithoutTheFileLoadsAndRefusesTheWeighting) {
 }
 
 // Not a check: the weights' spread on a dataset (PHYIR_STDERR_DATA, train split), the figures of
-// docs/model.md "Probe loss weighting". Run with --gtest_also_run_disabled_tests.
+// docs/model-results.md "Probe loss weighting". Run with --gtest_also_run_disabled_tests.
 TEST(ProbeStderr, DISABLED_MeasureWeightsOnADataset) {
   const char* data = std::getenv("PHYIR_STDERR_DATA");
   if (data == nullptr) GTEST_SKIP() << "PHYIR_STDERR_DATA not set";

@@ -189,7 +189,7 @@ TEST(ModelStream, StopsEarlyAndRethrowsAWorkersErrorAsThrown) {
   EXPECT_THROW(pm::BatchStream(batches(views()), {2, 0}), phyir::Error);
 }
 
-// The measurement behind docs/model.md "Training at scale" (not a check: run by hand).
+// The measurement behind docs/model-scale.md "Streaming" (not a check: run by hand).
 //   PHYIR_MEASURE_DATA=DIR PHYIR_MEASURE_MODE=stream|memory [PHYIR_MEASURE_VIEWS=N] [PHYIR_MEASURE_BATCHES=K]
 //   /usr/bin/time -v model_test --gtest_also_run_disabled_tests --gtest_filter='*MeasureReaderMemory'
 // reads DIR's views at the paper's sizes (input 256x512, render 128x256, probes 16x32) with

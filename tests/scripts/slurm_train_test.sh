@@ -5,7 +5,7 @@
 # layer) on a tiny generated dataset runs as one job of 2 tasks, one rank each, meeting at rank
 # 0's TCP store, and is checked against the same training as one local process at the same
 # global batch: both ranks joined, rank 0 wrote the checkpoint and logs, and every step's loss
-# equals the local run's to 1e-5 relative (docs/model.md "Training on several processes").
+# equals the local run's to 1e-5 relative (docs/model-scale.md "Training on several processes").
 #   $1 = phyir binary, $2 = scratch folder (emptied).
 set -euo pipefail
 phyir=$1

@@ -1,6 +1,6 @@
 #pragma once
 // How many decoded views are alive at once: the instrument behind streaming's memory bound
-// (docs/model.md "Training at scale"). The dataset enrols each view it decodes; the token
+// (docs/model-scale.md "Streaming"). The dataset enrols each view it decodes; the token
 // rides in the view (ViewTensors::census) and in every batch stacked from it (Batch::census),
 // so a view counts until the last tensor made from it is gone. Counts, never times.
 // Thread-safe: worker threads enrol, the trainer releases. Private header.

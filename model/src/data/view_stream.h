@@ -1,5 +1,5 @@
 #pragma once
-// Streaming training data (docs/model.md "Training at scale"): the views of each batch read
+// Streaming training data (docs/model-scale.md "Streaming"): the views of each batch read
 // by worker threads from their folders (ManifestDataset, torch_dataset.h: load_view),
 // augmented for the epoch (augment.h), collated (data.h), a few batches ahead of the step
 // that uses them. Memory is bounded by the batch and the read-ahead, not the dataset: at most

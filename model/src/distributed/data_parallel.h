@@ -1,5 +1,5 @@
 #pragma once
-// Data-parallel training's bookkeeping (docs/model.md "Training on several processes"): which
+// Data-parallel training's bookkeeping (docs/model-scale.md "Training on several processes"): which
 // views of each global batch a rank reads, and the two collectives around the optimiser (the
 // ranks start from rank 0's weights; gradients are averaged before each step). The losses' and
 // BatchNorm's reductions over the global batch: batch_share.h. Private header (torch types).

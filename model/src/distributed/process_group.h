@@ -3,7 +3,7 @@
 // which rank this process is, how the ranks meet (a store file on a shared file system, or a
 // TCP store that rank 0 serves), and runs the few collectives training needs. Every collective
 // has the group's timeout, so a rank that died or hangs ends the others with an error naming
-// the operation, not a hang. Private header (torch types). Docs: docs/model.md "Training on
+// the operation, not a hang. Private header (torch types). Docs: docs/model-scale.md "Training on
 // several processes".
 #include <torch/torch.h>
 

@@ -1,4 +1,4 @@
-// phyir bench model: wall time and peak memory of each module (docs/model.md, "Cost").
+// phyir bench model: wall time and peak memory of each module (docs/model-results.md, "Cost").
 #include "phyir/model/benchmark.h"
 
 #include <malloc.h>

@@ -22,7 +22,7 @@ torch::Device parse_device(const std::string& value) {
     fail_setting("device",
                  "'{}': CUDA is not available to this LibTorch (it was built without CUDA, as Debian's is, or no "
                  "GPU is visible); use the cpu device, or build with a CUDA LibTorch (-DTorch_DIR=..., "
-                 "docs/model.md \"Build\")",
+                 "docs/model-scale.md \"Build\")",
                  value);
   const int64_t gpus = static_cast<int64_t>(torch::cuda::device_count());
   if (device->has_index() && device->index() >= gpus)

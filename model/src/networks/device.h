@@ -1,5 +1,5 @@
 #pragma once
-// The device a run computes on (the "device" setting, docs/model.md "Build"): parsed once, checked
+// The device a run computes on (the "device" setting, docs/model-scale.md "Build"): parsed once, checked
 // against what this LibTorch was built with, and the tensor options every tensor a run makes
 // from nothing is created with. Data is decoded into host memory and each batch moved once
 // (Batch::to); the networks and the optimiser's state live on the device. Private header.

@@ -1,7 +1,7 @@
 #pragma once
 // Cost of each module of the network: forward and forward+backward wall time
 // and peak resident memory, at the default and the paper's resolution. Torch-free, for the CLI
-// (`phyir bench model`, cli/command_bench_model.cpp). Docs: docs/model.md, "Cost".
+// (`phyir bench model`, cli/command_bench_model.cpp). Docs: docs/model-results.md, "Cost".
 #include <functional>
 #include <string>
 #include <vector>

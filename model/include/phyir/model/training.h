@@ -81,7 +81,7 @@ struct LrScheduleOptions {
   double min_fraction = 0.01;  // cosine: the last step's rate over the base rate
 };
 
-// Data-parallel training (docs/model.md "Training on several processes"): this process is rank
+// Data-parallel training (docs/model-scale.md "Training on several processes"): this process is rank
 // `rank` of `world_size`, and the ranks meet at `rendezvous`: file:PATH (a file on a file
 // system every rank sees; it must not exist before the run) or tcp:HOST:PORT (a store that
 // rank 0 serves on HOST). `phyir train`'s local processes and `phyir train slurm`'s script fill
@@ -110,7 +110,7 @@ struct TrainOptions {
   int threads = 1;             // torch intra-op threads (set explicitly; torch's default is 1 here)
   int workers = 2;             // threads reading and augmenting batches ahead (0: on the training thread)
   int prefetch = 2;            // batches read ahead with workers: at most batch x (prefetch + 1) views
-                               // in memory (docs/model.md "Training at scale"); results do not
+                               // in memory (docs/model-scale.md "Streaming"); results do not
                                // depend on either
   std::string device = "cpu";  // cpu, cuda or cuda:N (torch::Device; CUDA needs a CUDA LibTorch)
   std::string init;            // checkpoint whose networks this stage starts from (earlier stage)
