@@ -2,8 +2,8 @@
 # Time to equal error: phyir against Blender Cycles (CPU) on a scene of the benchmark suite
 # (a furnished apartment), equirect panoramas, each renderer against its own converged
 # reference made of two half references of different seeds (their difference measures the
-# reference's own noise). Method and results: docs/cycles-comparison.md, "Furnished
-# apartment at night". Steps and layout as compare.sh; errors and figures by compare.py.
+# reference's own noise). Method: docs/cycles-comparison.md; results:
+# docs/cycles-comparison-results.md, "Furnished apartment at night". Steps and layout as compare.sh; errors and figures by compare.py.
 #
 #   nice -n 10 scripts/cycles/compare_furnished.sh [--suite-scene apartment_night_living]
 #       [--suite /work/scratch/suite/suite.json] [--scene GLTF] [--camera X,Y,Z]

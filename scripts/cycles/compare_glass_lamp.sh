@@ -3,7 +3,7 @@
 # made by scripts/blender/make_glass_lamp_room.py: alphaMode BLEND globe, lampshade and
 # diffuser; two point lights and an emissive bulb) rendered by phyir and by Cycles from the
 # same point as equirect panoramas, two seeds each, compared by mean radiance and 8 x 8 block
-# z-scores with lit_room_agreement.py's statistics (docs/cycles-comparison.md, "Lit room
+# z-scores with lit_room_agreement.py's statistics (docs/cycles-comparison-blender-exports.md, "Lit room
 # exported by Blender", Method), broken down by the first surface hit.
 #
 #   scripts/cycles/compare_glass_lamp.sh [--runs /tmp/phyir-cycles/glass_lamp] [--seeds 1,2]

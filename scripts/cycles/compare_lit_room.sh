@@ -2,7 +2,7 @@
 # The Blender-exported lit room (tests/data/gltf/blender_lit_room, KHR_lights_punctual point,
 # spot and sun) rendered by phyir and by Cycles from the same point as equirect panoramas,
 # two seeds each, then compared by mean radiance and block z-scores (lit_room_agreement.py).
-# Method and results: docs/cycles-comparison.md, "Lit room exported by Blender".
+# Method and results: docs/cycles-comparison-blender-exports.md, "Lit room exported by Blender".
 #
 #   scripts/cycles/compare_lit_room.sh [--runs /tmp/phyir-cycles/lit_room] [--seeds 1,2]
 #       [--variants lit_room,no_spot,spot_only,no_spot_direct,spot_only_direct]
@@ -21,7 +21,7 @@
 # run it under `nice` on a shared machine. PHYIR and BLENDER override the binaries.
 # --supersample K renders phyir at K x the size with spp / K^2 and box-filters it back (texture
 # footprints K x smaller). PHYIR=build-cycles-terms/cli/phyir (cmake -DPHYIR_BRDF_CYCLES_TERMS=ON)
-# renders with Cycles' specular terms: docs/cycles-comparison.md, "With Cycles' specular terms".
+# renders with Cycles' specular terms: docs/cycles-comparison-blender-exports.md, "With Cycles' specular terms".
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"

@@ -7,7 +7,7 @@ winding, a way some models make a sheet double-sided), only the first is kept.
 
 OUT_DIR gets OUT.gltf (IN's name with _detwinned), OUT.bin (the new index arrays only) and
 symbolic links to IN's buffers and images, so the copy reads the same data. Prints what it
-dropped per mesh. Used in docs/cycles-comparison.md ("Furnished apartment at night").
+dropped per mesh. Used in docs/cycles-comparison-results.md ("Furnished apartment at night").
 """
 import json
 import os

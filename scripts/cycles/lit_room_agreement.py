@@ -27,7 +27,7 @@ are declared but placed nowhere: `no_spot.gltf` (point and sun), `spot_only.gltf
   ((phyir 1 - Cycles 1) - (phyir 2 - Cycles 2)) / 2, which has the same noise as the
   difference of the two-seed averages and no bias whatever the renderers disagree on;
 - for the spot variants, the falloff each renderer should have (glTF t^2 against Cycles
-  3.4's cos(theta) smoothstep, docs/cycles-comparison.md) at every pixel's first hit (from
+  3.4's cos(theta) smoothstep, docs/cycles-comparison-blender-exports.md) at every pixel's first hit (from
   phyir's depth AOV), and the image ratio Cycles / phyir binned by that angle.
 Writes FIGURES/NAME.png (difference and z maps), FIGURES/NAME.json and FIGURES/NAME.csv.
 """
