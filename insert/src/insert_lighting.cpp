@@ -50,7 +50,10 @@ Lighting from_probes(const view::ProbeMosaic& probes, const InsertView& view, in
     }
     local = field->use_neighbourhood(read_image(positions), ground.position, radius, support);
     const glm::vec3 normal = glm::normalize(ground.normal);
-    if (request.blend_distance == BlendDistance::kRay) field->set_ray_distance(true), field->set_support_plane(ground.position, normal);
+    if (request.blend_distance == BlendDistance::kRay) {
+      field->set_ray_distance(true);
+      field->set_support_plane(ground.position, normal);
+    }
     if (request.blend_distance == BlendDistance::kFoot) field->set_blend_plane(normal);
   }
   const glm::ivec2 cell = pixel_cell(probes.layout, view, x, y);
