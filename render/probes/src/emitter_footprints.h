@@ -3,7 +3,7 @@
 // can appear before any sample is taken: those texels are the ones whose partial coverage
 // of a very bright surface dominates a probe's error, and a few stratified samples can miss
 // a sliver of light entirely (a ceiling panel seen edge-on from a probe on the ceiling).
-// Used by the probe renderer's cache mode (probe_renderer.h, docs/probes.md).
+// Used by the probe renderer's cache mode (probe_renderer.h, docs/probes-estimator.md).
 #include <glm/glm.hpp>
 
 #include <cstdint>

@@ -1,6 +1,6 @@
 #pragma once
 // The cache's error at a probe's own surface, measured by the probe and taken out
-// (docs/probes.md, "The foot correction").
+// (docs/probes-estimator.md, "The foot correction").
 //
 // Why. The texels of a probe that look back at the surface it sits on see it within a few
 // centimetres of the probe's foot, so they all read the same one or two cache cells, and

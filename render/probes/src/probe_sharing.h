@@ -1,5 +1,5 @@
 #pragma once
-// Sharing samples between neighbouring probes of one surface (cache mode; docs/probes.md,
+// Sharing samples between neighbouring probes of one surface (cache mode; docs/probes-estimator.md,
 // "Sharing between neighbours").
 //
 // Probes of adjacent grid cells on one surface are centimetres apart, and a texel whose

@@ -10,7 +10,7 @@
 
 // ProbeView's texels: each texel's first samples, its final value (hard texels supersampled,
 // a light's emission seen directly estimated apart), its estimate from a batch of
-// directions, and where it is stored (docs/probes.md, "The texel estimator" and "Hard
+// directions, and where it is stored (docs/probes-estimator.md, "The texel estimator" and "Hard
 // texels"). The view's passes, cache, photons and sharing are in probe_view.cpp.
 
 namespace phyir::render {
@@ -21,13 +21,13 @@ namespace {
 // covered parts and ask only whether an occluder hides the light (visible_emission): 4 x 4
 // = 16 at the default spp, 64 x 4 = 256 where a light's outline crosses the texel
 // (EmitterFootprints::kEdge), where an occluder's edge may too (a housing's rim in front of
-// a panel). Measured on the bench (docs/probes.md): 2 and 32 x spp raise the error by 3%;
+// a panel). Measured on the bench (docs/probes-estimator.md): 2 and 32 x spp raise the error by 3%;
 // 16 and 256 x spp over the whole texel change nothing. Otherwise (textured lights, an
 // environment) they are spread over the texel, one ray each: 16 and 256 x spp.
 // A hard texel whose hard samples spread over more than kDeepSpreadRatio x (their mean + the
 // floor) holds a part far brighter than the rest that only some of them found (a lamp's halo
 // on the ceiling, the sun in a polished surface): it is estimated once more from
-// kDeepSppFactor x hard_spp fresh samples. Measured on the suite, 32x64 grid (docs/probes.md): the night
+// kDeepSppFactor x hard_spp fresh samples. Measured on the suite, 32x64 grid (docs/probes-estimator.md): the night
 // apartment's error 0.55 -> 0.41-0.50 for 20% more CPU, the hard room's 7.5% -> 6.8%, the
 // others within their seed-to-seed noise for 1-11% more CPU.
 constexpr int kDeepSppFactor = 4;

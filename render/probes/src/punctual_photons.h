@@ -1,7 +1,7 @@
 #pragma once
 // The light point and spot lights throw on the surfaces close to them, and the sun on the
 // floors and walls it reaches through windows, in the probes.
-// Internal to the probe renderer (docs/probes.md, "Photons round punctual lights and the sun").
+// Internal to the probe renderer (docs/probes-estimator.md, "Photons round punctual lights and the sun").
 #include <cstdint>
 #include <vector>
 

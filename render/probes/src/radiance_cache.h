@@ -1,6 +1,6 @@
 #pragma once
 // A world-space cache of irradiance on the surfaces that a view's probes see: what makes
-// every probe of a view share its light transport with the others (docs/probes.md).
+// every probe of a view share its light transport with the others (docs/probes-estimator.md).
 //
 // Cells. Space is cut into cubes of `cell_size`, and each cube's surface points are split
 // by the direction of their shading normal (a cube face picked by the dominant axis, cut in

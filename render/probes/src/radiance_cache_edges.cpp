@@ -1,4 +1,4 @@
-// The radiance cache at concave edges (the header note of radiance_cache.h; docs/probes.md,
+// The radiance cache at concave edges (the header note of radiance_cache.h; docs/probes-estimator.md,
 // "The radiance cache"): which cells lie next to one, where their points move to for the profile's
 // bands, and the profile's difference at a lookup.
 #include <tbb/parallel_for.h>

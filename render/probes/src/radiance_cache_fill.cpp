@@ -14,7 +14,7 @@
 #include "phyir/render/sampling.h"
 #include "punctual_deposit.h"
 
-// The radiance cache's fill: a cell's irradiance estimates (docs/probes.md, "The radiance
+// The radiance cache's fill: a cell's irradiance estimates (docs/probes-estimator.md, "The radiance
 // cache": fill and lookup). Discovery, layout, smoothing and lookups: radiance_cache.cpp.
 
 namespace phyir::render {

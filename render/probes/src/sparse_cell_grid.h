@@ -10,7 +10,7 @@
 // reads values that sit next to each other in memory; neighbouring lookups share them.
 // On the bench the previous layout (a per-cell hash table, then a list of 27 neighbours
 // per cell, then the values) spent a fifth of all probe time waiting for memory, and a
-// per-cell table probed 8 times was no better (docs/probes.md, "The radiance cache").
+// per-cell table probed 8 times was no better (docs/probes-estimator.md, "The radiance cache").
 #include <algorithm>
 #include <array>
 #include <cstdint>

@@ -12,7 +12,7 @@
 
 namespace phyir::render {
 
-// The radiance cache of cache mode (docs/probes.md, "The radiance cache").
+// The radiance cache of cache mode (docs/probes-estimator.md, "The radiance cache").
 struct RadianceCacheSettings {
   float cell_size = 0.05f;    // metres
   int samples_per_cell = 128;  // irradiance estimates per cell
@@ -21,9 +21,9 @@ struct RadianceCacheSettings {
   // irradiance under a point light: 2% at 6 cells.
   float direct_distance_cells = 6.0f;
   // Lookups read each cell's indirect light as the mean over its 3 x 3 x 3 neighbourhood in
-  // its normal bucket (docs/probes.md, "The radiance cache").
+  // its normal bucket (docs/probes-estimator.md, "The radiance cache").
   bool smooth_indirect = true;
-  // The concave-edge treatment (docs/probes.md, "The radiance cache"), and how many times samples_per_cell
+  // The concave-edge treatment (docs/probes-estimator.md, "The radiance cache"), and how many times samples_per_cell
   // the two layers of cells next to such an edge fill.
   bool edge_profiles = true;
   int edge_sample_factor = 2;
@@ -32,7 +32,7 @@ struct RadianceCacheSettings {
 };
 
 // Texels averaged with the same texel of neighbouring probes on one surface
-// (docs/probes.md, "Sharing between neighbours").
+// (docs/probes-estimator.md, "Sharing between neighbours").
 struct ProbeSharing {
   int radius = 1;                // window (2r+1)^2; 0: no sharing
   float parallax_texels = 0.5f;  // largest accepted parallax, in texel extents
@@ -61,14 +61,14 @@ struct ProbeSettings {
   float spread_threshold = 0.75f;
   float glossy_roughness = 0.3f;  // secondary hits smoother than this are traced on
   // The probability that a specular chain's end is path traced instead of ending in the cache
-  // as a uniformly lit lobe (docs/probes.md, "The texel estimator", 5). Set by the passes'
+  // as a uniformly lit lobe (docs/probes-estimator.md, "The texel estimator", 5). Set by the passes'
   // schedule (probe_pass_schedule.h): 0 in the first pass.
   float chain_end_paths = 0.0f;
-  ProbeSharing sharing;           // texels averaged with neighbouring probes' (docs/probes.md, "Sharing between neighbours")
-  bool correct_foot = true;       // the cache's error at each probe's foot taken out (docs/probes.md, "The foot correction")
+  ProbeSharing sharing;           // texels averaged with neighbouring probes' (docs/probes-estimator.md, "Sharing between neighbours")
+  bool correct_foot = true;       // the cache's error at each probe's foot taken out (docs/probes-estimator.md, "The foot correction")
   // Photons from each point and spot light, and per square metre of the sun's beam where it
   // reaches the probes, take the light they reflect at the first hits where they land densely
-  // (docs/probes.md, "Photons round punctual lights and the sun"); 0: none.
+  // (docs/probes-estimator.md, "Photons round punctual lights and the sun"); 0: none.
   int photons_per_light = 4096;
   // Punctual lights added, exactly, to the texel each one's direction falls in (docs/probes.md,
   // "What a texel is"). Both modes; off only to measure the estimated part alone.
