@@ -1,5 +1,5 @@
 // phyir bench probes: what per-pixel light probes cost and how wrong they are, per mode and
-// setting, against a converged reference (render/probe_study.h has the method, docs/probes.md
+// setting, against a converged reference (render/probe_study.h has the method, docs/probes-accuracy.md
 // the results). This file parses the settings, runs the study and writes its tables.
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -51,7 +51,7 @@ struct BenchProbeFlags {
   render::ProbeSettings base = bench_base();  // grid, offset, photons, bounces and seed from the flags
   std::vector<std::string> res_list = {
       fmt::format("{}x{}", render::ProbeLayout().res_height, render::ProbeLayout().res_width)};
-  // The settings of docs/probes.md's table.
+  // The settings of docs/probes-accuracy.md's table.
   std::vector<std::string> configs = {"cache:2:32", "cache:4:64", "cache:4:256", "cache:8:64",
                                       "path:4",     "path:16",    "path:64"};
   render::ProbeStudyOptions study;  // reference spp and probes, probe indices, subset only

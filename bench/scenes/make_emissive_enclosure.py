@@ -3,7 +3,7 @@
 whose six walls all emit radiance 1 and are black dielectrics (base colour 0, roughness 1,
 metalness 0: only the ~4% Fresnel lobe reflects), like enclosure() of
 tests/probes/probe_renderer_test.cpp. Every probe texel sees an emitter; the probes' exact
-answer is 1 + the walls' Fresnel reflection (docs/probes.md, "Rooms that are all light").
+answer is 1 + the walls' Fresnel reflection (docs/probes-accuracy.md, "Rooms that are all light").
 Its camera stands off-centre inside. Usage: python3 make_emissive_enclosure.py [OUT_DIR]"""
 import json
 import os

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # One light probe as its own Blender Cycles render: the per-probe cost that `phyir render
-# --probes` is compared against (docs/probes.md, "Against one render per probe").
+# --probes` is compared against (docs/probes-accuracy.md, "Against one render per probe").
 #
 #   scripts/cycles/probe_cycles.sh --scene ROOM.gltf --subset SUBSET.json [--probes 4]
 #       [--res 16x32] [--samples 16,64,256,1024,4096] [--reference-samples 16384]

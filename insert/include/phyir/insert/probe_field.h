@@ -18,7 +18,7 @@ inline constexpr size_t kMaxLocalProbes = 64;
 // does not take that probe alone (each probe's texels carry their own noise).
 inline constexpr float kLocalSmoothing = 0.05f;
 // A probe is on the support surface's plane when its normal is within this angle of the
-// surface's (the probes' own "one surface" tolerance, docs/probes.md) and its origin, 1 cm off
+// surface's (the probes' own "one surface" tolerance, docs/probes-estimator.md) and its origin, 1 cm off
 // its surface, within this distance of the plane (the offset plus tessellation and depth error).
 inline constexpr float kSupportNormalDegrees = 25.0f;
 inline constexpr float kSupportPlaneMetres = 0.03f;

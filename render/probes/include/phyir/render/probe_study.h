@@ -1,6 +1,6 @@
 #pragma once
 // What per-pixel light probes cost and how wrong they are, per mode and setting, against a
-// converged reference (docs/probes.md, "Accuracy and cost"; `phyir bench probes` runs it and
+// converged reference (docs/probes-accuracy.md, "Accuracy and cost"; `phyir bench probes` runs it and
 // writes the tables). The path tracer's studies are render/studies.h.
 //
 // The reference is the unbiased path mode at `reference_spp` on a subset of valid probes
@@ -29,7 +29,7 @@ namespace phyir::render {
 struct ProbeStudyOptions {
   std::string scene;               // named in messages
   ProbeSettings base;              // layout, offset, path, seed, photons: every setting starts from it
-  int reference_spp = 16384;       // relative noise 1.2% on the mini room (docs/probes.md)
+  int reference_spp = 16384;       // relative noise 1.2% on the mini room (docs/probes-accuracy.md)
   int reference_probes = 16;       // random valid probes the error is measured on
   std::vector<int> probe_indices;  // these instead (i * grid width + j), to study one probe
   bool subset_only = false;        // cache mode too renders only the subset (its cache then sees only it)
