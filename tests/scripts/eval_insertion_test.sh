@@ -3,8 +3,8 @@
 # a network trained for a step (its predictions only have to be the toolkit's `phyir infer`
 # folders), eval with --model and one view's insertion: metrics.json's "insertion" section has
 # every Table 10 sphere under every lighting, finite and non-negative, and report.md its table.
-# A scene file that is not the one the view was rendered from is refused, naming it, with no
-# report written.
+# A scene file that is not the one the view was rendered from, and predictions without probes,
+# are refused, naming the file, with no report written.
 #   $1 = phyir binary, $2 = scratch folder (emptied).
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)  # before the prologue changes directory
 source "$here/lib/prologue.sh"
@@ -26,6 +26,15 @@ for sphere in ("diffuse", "matte_silver", "mirror_silver"):
 report = open("report/report.md").read()
 assert "## Object insertion" in report and "RMSE predicted" in report, "no insertion table in report.md"
 PY
+# Predictions without probes (a method that predicts no lighting): insertion refused, naming
+# the file, no report.
+cp -r report/pred nolight
+find nolight -name probes.exr -delete
+rc=0
+"$phyir" --log-level warn eval --gt data --split train --pred nolight --no-relight --no-baselines --quiet \
+  --threads 2 "${insertion[@]}" --out report3 > nolight.log 2>&1 || rc=$?
+[ "$rc" -ne 0 ] && [ "$rc" -lt 128 ] && grep -q "probes.exr" nolight.log && [ ! -e report3/metrics.json ] \
+  || die "predictions without probes: exit $rc, $(cat nolight.log)"
 # The scene changed since the dataset was made: refused, naming the file, no report.
 echo " " >> rooms/room_0.gltf
 rc=0
