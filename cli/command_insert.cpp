@@ -75,7 +75,7 @@ void add_insert_command(CLI::App& app) {
       ->check(CLI::ExistingDirectory);
   cmd->add_option("object", o->object, "glTF/GLB object, in metres, +Y up")->required();
   cmd->add_option("--pixel", o->pixel, "X Y: the panorama pixel the object stands on")->required()->expected(2);
-  cmd->add_option("--path", o->path_end, "X Y: move the object from --pixel to this pixel (dynamic insertion)")
+  cmd->add_option("--path", o->path_end, "X Y: move the object from --pixel to this pixel (dynamic insertion): frame_NNN/ per step, contact_sheet.png, path.gif")
       ->expected(2);
   cmd->add_option("--steps", o->steps, "frames along --path")->capture_default_str();
   cmd->add_option("--scale", o->request.placement.scale, "uniform scale of the object")->capture_default_str();
