@@ -59,7 +59,11 @@ Lighting from_probes(const view::ProbeMosaic& probes, const InsertView& view, in
   const glm::ivec2 cell = pixel_cell(probes.layout, view, x, y);
   const glm::ivec2 nearest = field->nearest_valid(cell.x, cell.y);
   Lighting lighting;
-  lighting.environment = std::make_unique<render::EnvironmentLight>(probes.probe(nearest.x, nearest.y));
+  // Directions are drawn from the local probes' mean where there is a local blend: every light
+  // a blended probe sees is then sampled (the global probe's own map missed a close lamp seen
+  // in another texel by its neighbours, which left it to the BRDF's samples: noise).
+  const Image sampling = local ? field->local_sampling_map() : probes.probe(nearest.x, nearest.y);
+  lighting.environment = std::make_unique<render::EnvironmentLight>(sampling);
   if (varying) lighting.environment->set_positional(field);
   lighting.record = {{"global_probe", {nearest.x, nearest.y}},
                      {"grid", {probes.layout.grid_height, probes.layout.grid_width}},
@@ -68,7 +72,8 @@ Lighting from_probes(const view::ProbeMosaic& probes, const InsertView& view, in
                      {"blend", !varying ? "none" : !local ? "projected" : request.support_plane_only ? "local_support_plane" : "local"},
                      {"local_probes", field->local_probe_count()},
                      {"blend_power", request.blend_power},
-                     {"blend_distance", blend_distance_name(request.blend_distance)}};
+                     {"blend_distance", blend_distance_name(request.blend_distance)},
+                     {"directions_from", local ? "local probes' mean" : "global probe"}};
   return lighting;
 }
 

@@ -191,6 +191,20 @@ glm::vec3 ProbeField::projected_radiance(const glm::vec3& position, const glm::v
   return probe_radiance(p.x, p.y, direction);
 }
 
+Image ProbeField::local_sampling_map() const {
+  if (local_.empty()) return {};
+  const view::ProbeLayout& l = probes_.layout;
+  Image map(l.res_width, l.res_height, 3, 0.0f);
+  float total = 0.0f;
+  for (const LocalProbe& p : local_) {
+    const Image one = probes_.probe(p.cell.x, p.cell.y);
+    for (size_t k = 0; k < map.pixels.size(); ++k) map.pixels[k] += p.taper * std::max(0.0f, one.pixels[k]);
+    total += p.taper;
+  }
+  for (float& v : map.pixels) v /= total;
+  return map;
+}
+
 glm::vec3 ProbeField::mean_radiance() const {
   const view::ProbeLayout& l = probes_.layout;
   double sum[3] = {0, 0, 0}, area = 0.0;

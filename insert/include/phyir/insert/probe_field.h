@@ -77,6 +77,10 @@ class ProbeField : public render::PositionalRadiance {
   // would see the vertex's direction through the support surface (the floor under a table, for
   // the table-top object's upward rays). Without it every probe is used in every direction.
   void set_support_plane(const glm::vec3& point, const glm::vec3& normal);
+  // Local mode: the taper-weighted mean of the local probes' images (res_width x res_height):
+  // a map that is bright wherever any blended probe sees light, for the environment's
+  // importance sampling (its density only; the radiance stays the blend's). Empty otherwise.
+  Image local_sampling_map() const;
   // The mean of every valid probe's texels, weighted by solid angle (the constant baseline).
   glm::vec3 mean_radiance() const;
 
