@@ -262,5 +262,24 @@ TEST(ProbeField, RayDistanceKeepsProbesBehindTheSupportSurfaceOutOfItsRays) {
   EXPECT_THROW(field.set_support_plane(centre, 2.0f * up), Error);
 }
 
+// The local blend's sampling map is the taper-weighted mean of its probes' images: bright
+// wherever any of them sees light.
+TEST(ProbeField, SamplingMapIsTheTaperedMeanOfTheLocalProbes) {
+  view::ProbeMosaic probes = make_probes(2, 4, bright_left);
+  Image positions(4, 2, 3, 0.0f);
+  for (float& m : probes.mask.pixels) m = 0.0f;
+  probes.mask.at(1, 1) = 1.0f, probes.mask.at(2, 1) = 1.0f;  // bright at the centre, dark 0.5 m off
+  positions.at(2, 1, 0) = 0.5f;
+  ProbeField field(probes, kCamera);
+  EXPECT_TRUE(field.local_sampling_map().empty());  // no local blend yet
+  ASSERT_TRUE(field.use_neighbourhood(positions, glm::vec3(0.0f), 1.0f));
+  const Image map = field.local_sampling_map();
+  ASSERT_EQ(map.width, probes.layout.res_width);
+  ASSERT_EQ(map.height, probes.layout.res_height);
+  const float dark_taper = (1.0f - 0.25f) * (1.0f - 0.25f);
+  const float expected = (10.0f + dark_taper * 0.1f) / (1.0f + dark_taper);
+  for (float v : map.pixels) EXPECT_NEAR(v, expected, 1e-4f);
+}
+
 }  // namespace
 }  // namespace phyir::insert
