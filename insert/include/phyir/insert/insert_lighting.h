@@ -5,8 +5,9 @@
 //   global     one probe for the whole object: the valid probe nearest the placement pixel
 //   constant   one colour from every direction: the mean radiance of the view's valid probes
 //   FILE       an HDR equirect environment file, the same everywhere
-// Spatially varying sources sample directions by the global probe's texels and take the
-// radiance from the probes nearest each path vertex (render::PositionalRadiance).
+// Spatially varying sources sample directions by the local probes' mean map (the global
+// probe's texels in projection mode) and take the radiance from the probes nearest each path
+// vertex (render::PositionalRadiance).
 #include <filesystem>
 #include <memory>
 #include <string>
