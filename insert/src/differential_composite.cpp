@@ -50,12 +50,13 @@ Composite differential_composite(const Image& background, const Image& view_dept
       // The object: seen where the surface-only render sees nothing or something farther.
       const bool object = hit && (!surface || d < without_object.depth.at(x, y, 0) - 1e-4f) && in_front(d, vd);
       out.mask.at(x, y, 0) = object ? 1.0f : 0.0f;
+      const bool support = !object && surface && on_surface(without_object.depth.at(x, y, 0), vd) && facing(x, y);
       for (int c = 0; c < 3; ++c) {
         const float bg = background.at(x, y, c);
         float v = bg;
         if (object) {
           v = with_object.color.at(x, y, c);
-        } else if (surface && on_surface(without_object.depth.at(x, y, 0), vd) && facing(x, y)) {
+        } else if (support) {
           v = calibrated_difference(bg, with_object.color.at(x, y, c), without_object.color.at(x, y, c));
         }
         out.color.at(x, y, c) = v;

@@ -9,7 +9,9 @@ namespace phyir::insert {
 
 namespace fs = std::filesystem;
 
-view::ProbeMosaic read_view_probes(const fs::path& dir, const InsertView& view) {
+namespace {
+
+view::ProbeMosaic read_checked_probes(const fs::path& dir, const InsertView& view) {
   if (!view::has_probes(dir))
     fail("{}: missing (render the view with probes, or light the object from an HDR file)",
          (dir / view::kProbesFile).string());
@@ -23,6 +25,16 @@ view::ProbeMosaic read_view_probes(const fs::path& dir, const InsertView& view) 
   return probes;
 }
 
+}  // namespace
+
+std::shared_ptr<const view::ProbeMosaic> read_view_probes(const fs::path& dir, const InsertView& view) {
+  ProbeCache& cache = *view.probe_cache;
+  const std::lock_guard<std::mutex> lock(cache.mutex);
+  auto& mosaic = cache.mosaics[dir];
+  if (!mosaic) mosaic = std::make_shared<const view::ProbeMosaic>(read_checked_probes(dir, view));
+  return mosaic;
+}
+
 namespace {
 
 // The probe grid cell of pixel (x, y).
@@ -31,9 +43,10 @@ glm::ivec2 pixel_cell(const view::ProbeLayout& l, const InsertView& view, int x,
           std::min(l.grid_width - 1, x * l.grid_width / view.width())};
 }
 
-Lighting from_probes(const view::ProbeMosaic& probes, const InsertView& view, int x, int y, bool varying,
+Lighting from_probes(std::shared_ptr<const view::ProbeMosaic> mosaic, const InsertView& view, int x, int y, bool varying,
                      const fs::path& dir, const LightingRequest& request) {
-  auto field = std::make_shared<ProbeField>(probes, view.camera);
+  const view::ProbeMosaic& probes = *mosaic;
+  auto field = std::make_shared<ProbeField>(std::move(mosaic), view.camera);
   field->set_blend_power(request.blend_power);
   const fs::path positions = dir / view::kProbePositionFile, normals_file = dir / view::kProbeNormalFile;
   bool local = false;
@@ -89,8 +102,8 @@ fs::path predicted_probe_geometry(const fs::path& predicted_dir, const InsertVie
   return p.width == layout.grid_width && p.height == layout.grid_height ? view.dir : predicted_dir;
 }
 
-Lighting constant(const view::ProbeMosaic& probes, const InsertView& view) {
-  const glm::vec3 mean = ProbeField(probes, view.camera).mean_radiance();
+Lighting constant(std::shared_ptr<const view::ProbeMosaic> probes, const InsertView& view) {
+  const glm::vec3 mean = ProbeField(std::move(probes), view.camera).mean_radiance();
   Image one(1, 1, 3);
   for (int k = 0; k < 3; ++k) one.pixels[size_t(k)] = mean[k];
   Lighting lighting;
@@ -118,8 +131,8 @@ Lighting make_lighting(const LightingRequest& request, const InsertView& view, i
     lighting.record["probes"] = view.dir.string();
   } else if (s == "predicted") {
     if (request.predicted_dir.empty()) fail("predicted lighting needs the prediction folder (a `phyir infer` result)");
-    const view::ProbeMosaic predicted = read_view_probes(request.predicted_dir, view);
-    const fs::path geometry = predicted_probe_geometry(request.predicted_dir, view, predicted.layout);
+    const auto predicted = read_view_probes(request.predicted_dir, view);
+    const fs::path geometry = predicted_probe_geometry(request.predicted_dir, view, predicted->layout);
     lighting = from_probes(predicted, view, x, y, true, geometry, request);
     lighting.record["probes"] = request.predicted_dir.string();
     lighting.record["probe_positions"] = (geometry / view::kProbePositionFile).string();

@@ -23,7 +23,8 @@ float cell_distance(int i0, int j0, int i1, int j1, int width) {
 
 }  // namespace
 
-ProbeField::ProbeField(const view::ProbeMosaic& probes, const glm::vec3& camera) : probes_(probes), camera_(camera) {
+ProbeField::ProbeField(std::shared_ptr<const view::ProbeMosaic> probes, const glm::vec3& camera)
+    : mosaic_(std::move(probes)), probes_(*mosaic_), camera_(camera) {
   const view::ProbeLayout& l = probes_.layout;
   std::vector<glm::ivec2> valid;
   for (int i = 0; i < l.grid_height; ++i)
@@ -47,14 +48,22 @@ ProbeField::ProbeField(const view::ProbeMosaic& probes, const glm::vec3& camera)
     }
 }
 
-glm::vec3 ProbeField::probe_radiance(int i, int j, const glm::vec3& direction) const {
+glm::ivec2 ProbeField::texel_of(const glm::vec3& direction) const {
   const view::ProbeLayout& l = probes_.layout;
   const glm::vec2 uv = equirect_uv(direction);
-  const int c = std::clamp(int(uv.x * float(l.res_width)), 0, l.res_width - 1);
-  const int r = std::clamp(int(uv.y * float(l.res_height)), 0, l.res_height - 1);
-  const int x = j * l.res_width + c, y = i * l.res_height + r;
+  return {std::clamp(int(uv.x * float(l.res_width)), 0, l.res_width - 1),
+          std::clamp(int(uv.y * float(l.res_height)), 0, l.res_height - 1)};
+}
+
+glm::vec3 ProbeField::texel_radiance(int i, int j, const glm::ivec2& texel) const {
+  const view::ProbeLayout& l = probes_.layout;
+  const int x = j * l.res_width + texel.x, y = i * l.res_height + texel.y;
   const Image& m = probes_.radiance;
   return glm::max(glm::vec3(m.at(x, y, 0), m.at(x, y, 1), m.at(x, y, 2)), glm::vec3(0.0f));
+}
+
+glm::vec3 ProbeField::probe_radiance(int i, int j, const glm::vec3& direction) const {
+  return texel_radiance(i, j, texel_of(direction));
 }
 
 glm::ivec2 ProbeField::cell_of(const glm::vec3& position) const {
@@ -146,6 +155,7 @@ bool ProbeField::sees_through_support(const glm::vec3& probe, const glm::vec3& v
 
 glm::vec3 ProbeField::radiance(const glm::vec3& position, const glm::vec3& direction) const {
   if (local_.empty()) return projected_radiance(position, direction);
+  const glm::ivec2 texel = texel_of(direction);  // the same texel of every probe
   glm::vec3 sum(0.0f);
   float weight = 0.0f;
   for (const LocalProbe& p : local_) {
@@ -155,11 +165,11 @@ glm::vec3 ProbeField::radiance(const glm::vec3& position, const glm::vec3& direc
     if (ray_distance_) d -= glm::dot(d, direction) * direction;  // the offset across the ray
     const float r2 = glm::dot(d, d) + kLocalSmoothing * kLocalSmoothing;
     const float w = p.taper * (blend_power_ == 2.0f ? 1.0f / r2 : std::pow(r2, -0.5f * blend_power_));
-    sum += w * probe_radiance(p.cell.x, p.cell.y, direction);
+    sum += w * texel_radiance(p.cell.x, p.cell.y, texel);
     weight += w;
   }
   // Every probe behind the support surface (a vertex under the plane's tolerance): the nearest.
-  if (!(weight > 0.0f)) return probe_radiance(local_[0].cell.x, local_[0].cell.y, direction);
+  if (!(weight > 0.0f)) return texel_radiance(local_[0].cell.x, local_[0].cell.y, texel);
   return sum / weight;
 }
 
@@ -175,6 +185,7 @@ glm::vec3 ProbeField::projected_radiance(const glm::vec3& position, const glm::v
   const float gx = uv.x * float(l.grid_width) - 0.5f, gy = uv.y * float(l.grid_height) - 0.5f;
   const int j0 = int(std::floor(gx)), i0 = int(std::floor(gy));
   const float fx = gx - float(j0), fy = gy - float(i0);
+  const glm::ivec2 texel = texel_of(direction);
   glm::vec3 sum(0.0f);
   float weight = 0.0f;
   for (int di = 0; di < 2; ++di)
@@ -182,13 +193,13 @@ glm::vec3 ProbeField::projected_radiance(const glm::vec3& position, const glm::v
       const int i = std::clamp(i0 + di, 0, l.grid_height - 1), j = wrap(j0 + dj, l.grid_width);
       const float w = (di ? fy : 1.0f - fy) * (dj ? fx : 1.0f - fx);
       if (!(w > 0.0f) || !probes_.valid(i, j)) continue;
-      sum += w * probe_radiance(i, j, direction);
+      sum += w * texel_radiance(i, j, texel);
       weight += w;
     }
   if (weight > 0.0f) return sum / weight;
   const glm::ivec2 c = cell_of(position);
   const glm::ivec2 p = nearest_valid(c.x, c.y);
-  return probe_radiance(p.x, p.y, direction);
+  return texel_radiance(p.x, p.y, texel);
 }
 
 Image ProbeField::local_sampling_map() const {

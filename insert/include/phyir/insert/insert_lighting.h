@@ -46,7 +46,8 @@ struct Lighting {
 
 // The probes of `dir`, checked against the view: the grid must have the panorama's aspect ratio
 // (one probe per block of pixels). Missing or mismatched: phyir::Error naming the file.
-view::ProbeMosaic read_view_probes(const std::filesystem::path& dir, const InsertView& view);
+// Read once per view and folder (InsertView::probe_cache).
+std::shared_ptr<const view::ProbeMosaic> read_view_probes(const std::filesystem::path& dir, const InsertView& view);
 
 // The lighting for an object standing on pixel (x, y) of `view`.
 Lighting make_lighting(const LightingRequest& request, const InsertView& view, int x, int y);

@@ -4,14 +4,25 @@
 // centre, and the exposure and display view its PNGs were made with. A dataset view folder or
 // a `phyir render` folder; the maps may come from a prediction folder (`phyir infer`).
 #include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <string>
 
 #include <glm/glm.hpp>
 
 #include "phyir/core/image.h"
 #include "phyir/render/camera.h"
+#include "phyir/view/probe_mosaic.h"
 
 namespace phyir::insert {
+
+// The probe mosaics read for a view, by folder (read_view_probes): a benchmark composites the
+// same view under several lightings and seeds, and each mosaic is tens of megabytes.
+struct ProbeCache {
+  std::mutex mutex;
+  std::map<std::filesystem::path, std::shared_ptr<const view::ProbeMosaic>> mosaics;
+};
 
 struct InsertView {
   std::filesystem::path dir;
@@ -21,6 +32,7 @@ struct InsertView {
   glm::vec3 camera{0.0f};       // panorama centre, metres
   double exposure_stops = 0.0;  // input.png's (view.json), else color.png's (render.json), else 0
   std::string display_view = "Standard";
+  std::shared_ptr<ProbeCache> probe_cache = std::make_shared<ProbeCache>();  // shared by copies
   int width() const { return color.width; }
   int height() const { return color.height; }
 };

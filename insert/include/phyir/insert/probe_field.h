@@ -6,6 +6,7 @@
 // four is valid, the nearest valid probe of the grid along the row, then anywhere.
 #include <glm/glm.hpp>
 
+#include <memory>
 #include <vector>
 
 #include "phyir/render/environment_light.h"
@@ -32,7 +33,9 @@ struct SupportPlane {
 class ProbeField : public render::PositionalRadiance {
  public:
   // `camera`: the panorama's centre. The mosaic must hold at least one valid probe.
-  ProbeField(const view::ProbeMosaic& probes, const glm::vec3& camera);
+  ProbeField(std::shared_ptr<const view::ProbeMosaic> probes, const glm::vec3& camera);
+  ProbeField(const view::ProbeMosaic& probes, const glm::vec3& camera)
+      : ProbeField(std::make_shared<const view::ProbeMosaic>(probes), camera) {}
 
   glm::vec3 radiance(const glm::vec3& position, const glm::vec3& direction) const override;
   // Probe (i, j)'s radiance from `direction` (its texel, piecewise constant).
@@ -85,7 +88,8 @@ class ProbeField : public render::PositionalRadiance {
   glm::vec3 mean_radiance() const;
 
  private:
-  view::ProbeMosaic probes_;
+  std::shared_ptr<const view::ProbeMosaic> mosaic_;  // shared with the view's cache
+  const view::ProbeMosaic& probes_;
   glm::vec3 camera_;
   std::vector<glm::ivec2> fallback_;  // per cell, the valid probe nearest it
   struct LocalProbe {
@@ -99,6 +103,9 @@ class ProbeField : public render::PositionalRadiance {
   bool ray_distance_ = false;
   glm::vec3 support_point_{0.0f}, support_normal_{0.0f};  // zero normal: no support plane
   glm::vec3 projected_radiance(const glm::vec3& position, const glm::vec3& direction) const;
+  // The texel (column, row) of `direction` in every probe, and probe (i, j)'s radiance there.
+  glm::ivec2 texel_of(const glm::vec3& direction) const;
+  glm::vec3 texel_radiance(int i, int j, const glm::ivec2& texel) const;
   // Whether a probe below the support plane lies behind the vertex along `direction`.
   bool sees_through_support(const glm::vec3& probe, const glm::vec3& vertex, const glm::vec3& direction) const;
 };
