@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <map>
+#include <memory>
 
 #include "phyir/core/error.h"
 #include "phyir/core/progress.h"
@@ -20,8 +21,7 @@ namespace {
 
 const std::vector<std::string> kLightings = {"predicted", "gt", "global", "constant"};
 
-// The view's scene file, checked against the manifest's checksum: the truth must be rendered
-// from the scene the view was.
+// The view's scene file (checked against the manifest's checksum by SceneRooms).
 fs::path view_scene(const EvalInsertionOptions& o, const view::ViewRecord& v, const nlohmann::json& manifest) {
   const nlohmann::json& scene = v.json.at("scene");
   const std::string file = scene.at("file").get<std::string>();
@@ -31,18 +31,32 @@ fs::path view_scene(const EvalInsertionOptions& o, const view::ViewRecord& v, co
   if (!fs::is_regular_file(path))
     fail("view {}: its scene {} is not at {} (the manifest's scenes_dir as given to phyir dataset generate; "
          "give the scenes folder with --insertion-scenes)", v.id, file, path.string());
-  const std::string expected = scene.value("sha256", "");
-  if (!expected.empty() && dataset::sha256_file(path) != expected)
-    fail("view {}: {} is not the scene the view was rendered from (its SHA-256 differs from the manifest's)", v.id,
-         path.string());
   return path;
 }
 
-double mean(const std::vector<double>& v) {
-  double s = 0.0;
-  for (double x : v) s += x;
-  return v.empty() ? 0.0 : s / double(v.size());
-}
+double mean(const std::vector<double>& v) { return insert::summarize(v).mean; }
+
+// The scenes the views were rendered from, each hashed and loaded once (a scene has several
+// views). Each view's record must name the scene by its SHA-256: the truth must be rendered from
+// the scene the view was.
+struct SceneRooms {
+  std::map<fs::path, std::string> hashes;
+  std::map<fs::path, std::shared_ptr<insert::BenchRoom>> rooms;
+  const insert::BenchRoom& at(const fs::path& path, const view::ViewRecord& v) {
+    auto& hash = hashes[path];
+    if (hash.empty()) hash = dataset::sha256_file(path);
+    const std::string expected = v.json.at("scene").value("sha256", "");
+    if (!expected.empty() && hash != expected)
+      fail("view {}: {} is not the scene the view was rendered from (its SHA-256 differs from the manifest's)", v.id,
+           path.string());
+    auto& room = rooms[path];
+    if (!room) {
+      room = std::make_shared<insert::BenchRoom>(insert::BenchRoom{scenes::load_gltf(path), nullptr});
+      room->environment = render::scene_environment(room->scene);
+    }
+    return *room;
+  }
+};
 
 std::string markdown(const std::map<std::string, std::map<std::string, std::vector<double>>>& rmse,
                      const std::map<std::string, std::map<std::string, std::vector<double>>>& ssim, int views,
@@ -80,9 +94,9 @@ eval::ReportSection evaluate_insertion(const EvalInsertionOptions& o) {
   nlohmann::json cases = nlohmann::json::array(), skipped = nlohmann::json::array();
   std::map<std::string, std::map<std::string, std::vector<double>>> rmse, ssim;  // object -> lighting -> cases
   Progress progress("eval: insertion", views.size(), "views", o.progress);
+  SceneRooms rooms;
   for (const view::ViewRecord& v : views) {
-    insert::BenchRoom room{scenes::load_gltf(view_scene(o, v, manifest)), nullptr};
-    room.environment = render::scene_environment(room.scene);
+    const insert::BenchRoom& room = rooms.at(view_scene(o, v, manifest), v);
     const insert::InsertView iv = insert::read_insert_view(v.dir);
     settings.predicted_dir = o.pred_dir / v.id;
     if (!fs::is_regular_file(settings.predicted_dir / view::kProbesFile))
