@@ -108,6 +108,13 @@ std::variant<ByteImage, Image> read_image_from_memory_at_file_depth(const std::v
   return read_all(*input.in, what);
 }
 
+namespace {
+
+// An 8-bit file's value: clamped to [0, 1], non-finite as 0.
+float display_value(float v) { return std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f; }
+
+}  // namespace
+
 void write_image(const fs::path& path, const Image& image,
                  const std::vector<std::string>& channel_names) {
   if (image.empty()) fail("{}: refusing to write an empty image", path.string());
@@ -129,8 +136,7 @@ void write_image(const fs::path& path, const Image& image,
     ok = out->write_image(TypeDesc::FLOAT, image.pixels.data());
   } else {
     std::vector<float> clamped(image.pixels.size());
-    std::transform(image.pixels.begin(), image.pixels.end(), clamped.begin(),
-                   [](float v) { return std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f; });
+    std::transform(image.pixels.begin(), image.pixels.end(), clamped.begin(), display_value);
     ok = out->write_image(TypeDesc::FLOAT, clamped.data());
   }
   if (!ok || !out->close()) {
@@ -161,8 +167,7 @@ void write_animation(const fs::path& path, const std::vector<Image>& frames, flo
     const Image& f = frames[k];
     for (size_t i = 0; i < rgb.size() / 3; ++i)
       for (int c = 0; c < 3; ++c) {
-        const float v = f.pixels[i * size_t(f.channels) + size_t(c)];
-        rgb[i * 3 + size_t(c)] = std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f;
+        rgb[i * 3 + size_t(c)] = display_value(f.pixels[i * size_t(f.channels) + size_t(c)]);
       }
     ok = (k == 0 || out->open(tmp.string(), spec, ImageOutput::AppendSubimage)) &&
          out->write_image(TypeDesc::FLOAT, rgb.data());
