@@ -62,8 +62,6 @@ void ViewTransport::build_cache(const std::vector<ProbeSite>& sites, const std::
   stats->cache_rays = stats->counters.rays;
   stats->cache_cells = cache_->cell_count();
   stats->cache_direct_cells = cache_->direct_cell_count();
-  stats->cache_edge_cells = cache_->edge_cell_count();
-  stats->cache_edge_profiles = cache_->edge_profile_count();
   stats->cache_fill_samples = cache_->fill_samples();
   stats->cache_seconds = watch.seconds();
   dark_floor_ = kDarkFloorFraction * cache_->mean_irradiance_luminance() * kInvPi;

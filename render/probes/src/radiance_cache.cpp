@@ -150,85 +150,39 @@ void RadianceCache::build(const std::vector<const Collector*>& collectors, PathC
           }
     }
   });
-  if (settings_.edge_profiles) find_concave_edges();
 
   tbb::enumerable_thread_specific<PathCounters> local;
   Progress progress("probe cache", cells_.size(), "cells", settings_.progress);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, cells_.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
     PathCounters& c = local.local();
     for (size_t i = r.begin(); i < r.end(); ++i)
-      fill(&cells_[i], cells_[i].edge >= 0 ? &edges_[size_t(cells_[i].edge)] : nullptr, &c);
+      fill(&cells_[i], &c);
     progress.advance(r.size());
   });
   for (const PathCounters& c : local) *counters += c;
   const std::vector<glm::vec3> smoothed = settings_.smooth_indirect ? smooth_indirect() : std::vector<glm::vec3>();
   lookup_ = grid_of([&](size_t i) {
     const Cell& cell = cells_[i];
-    return Value{smoothed.empty() ? cell.indirect : smoothed[i], cell.direct, cell.punctual, cell.has_direct, cell.edge};
+    return Value{smoothed.empty() ? cell.indirect : smoothed[i], cell.direct, cell.punctual, cell.has_direct};
   });
   direct_cells_ = size_t(std::count_if(cells_.begin(), cells_.end(), [](const Cell& c) { return c.has_direct; }));
-  edge_cells_ = size_t(std::count_if(cells_.begin(), cells_.end(), [](const Cell& c) { return c.edge_layer != 0; }));
-  fill_samples_ = 0;
-  for (const Cell& c : cells_)
-    fill_samples_ += uint64_t(samples_in(c));
-  for (const EdgeProfile& e : edges_)
-    for (int pairs : e.band_pairs) fill_samples_ += uint64_t(pairs);
+  fill_samples_ = uint64_t(cells_.size()) * uint64_t(std::max(settings_.samples_per_cell, 1));
 }
 
-int RadianceCache::samples_in(const Cell& cell) const {
-  const int factor = cell.edge_layer != 0 ? std::max(settings_.edge_sample_factor, 1) : 1;
-  return std::max(settings_.samples_per_cell, 1) * factor;
-}
-
-std::vector<glm::vec3> RadianceCache::smooth_indirect() {
-  // The cells along the edge of each cell next to a concave edge, found once for both its
-  // light and its profile.
-  std::vector<std::vector<int>> along(cells_.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, cells_.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i < r.end(); ++i)
-      if (cells_[i].edge_layer != 0) along[i] = along_edge(i);
-  });
+std::vector<glm::vec3> RadianceCache::smooth_indirect() const {
   std::vector<glm::vec3> smoothed(cells_.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, cells_.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i < r.end(); ++i) {
       glm::dvec3 sum(0.0);
       int count = 0;
-      if (cells_[i].edge_layer != 0) {  // next to a concave edge: along it only
-        for (int index : along[i]) {
-          sum += glm::dvec3(cells_[size_t(index)].indirect);
-          ++count;
-        }
-      } else {
-        for (int index : neighbours_[i]) {
-          if (index < 0) continue;
-          sum += glm::dvec3(cells_[size_t(index)].indirect);
-          ++count;
-        }
+      for (int index : neighbours_[i]) {
+        if (index < 0) continue;
+        sum += glm::dvec3(cells_[size_t(index)].indirect);
+        ++count;
       }
       smoothed[i] = glm::vec3(sum / double(count));  // count >= 1: the cell is its own neighbour
     }
   });
-  // The profiles' differences, along the edge likewise (a neighbour's bands lie at the
-  // same distances from the same plane on a straight edge).
-  std::vector<std::array<glm::vec3, kEdgeBands>> deltas(edges_.size());
-  for (size_t i = 0; i < cells_.size(); ++i) {
-    if (cells_[i].edge < 0) continue;
-    EdgeProfile& own = edges_[size_t(cells_[i].edge)];
-    for (int b = 0; b < kEdgeBands; ++b) {
-      glm::dvec3 sum(0.0);
-      int count = 0;
-      for (int index : along[i]) {
-        if (cells_[size_t(index)].edge < 0) continue;
-        const EdgeProfile& other = edges_[size_t(cells_[size_t(index)].edge)];
-        if (other.band_pairs[size_t(b)] == 0) continue;
-        sum += glm::dvec3(other.band_delta[size_t(b)]);
-        ++count;
-      }
-      deltas[size_t(cells_[i].edge)][size_t(b)] =
-          count > 0 ? glm::vec3(sum / double(count)) : own.band_delta[size_t(b)];
-    }
-  }
-  for (size_t e = 0; e < edges_.size(); ++e) edges_[e].band_delta = deltas[e];
   return smoothed;
 }
 
@@ -289,9 +243,6 @@ bool RadianceCache::interpolate(const CachePoint& point, CachedIrradiance* out) 
     }
   }
   out->indirect = w_all > 0.0 ? glm::vec3(indirect / w_all) : self->indirect;
-  if (self->edge >= 0)
-    out->indirect = glm::max(out->indirect + edge_difference(edges_[size_t(self->edge)], point.position),
-                             glm::vec3(0.0f));
   out->has_direct = self->has_direct;
   out->direct = w_direct > 0.0 ? glm::vec3(direct / w_direct) : self->direct;
   out->punctual = w_direct > 0.0 ? glm::vec3(punctual / w_direct) : self->punctual;

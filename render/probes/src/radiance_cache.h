@@ -50,18 +50,10 @@
 // estimate of the indirect light instead (unbiased, noisy; counted as a fallback) and no
 // direct light.
 //
-// Concave edges. Where a surface meets another in front of it (a ceiling and a wall), the
-// irradiance falls steeply in the last few centimetres (the corner sees the other surface
-// close up), faster than cells can follow, and smoothing over the 3 x 3 x 3 neighbourhood
-// there is one-sided (only cells away from the edge) or, a layer out, averages across the
-// bend of the fall: the cells next to the edge read 10-30% too bright, the next ones a few
-// percent too dark. So the two layers of cells next to a concave edge are smoothed only
-// along the edge (each within its own layer) and fill edge_sample_factor times as many
-// estimates, and the first layer keeps a profile of the light towards the edge: each
-// estimate is repeated, with the same direction and random numbers, from the point moved
-// along its surface to two distances from the other surface's plane, and the mean
-// differences (correlated paths: the far part cancels) are added to lookups between the
-// cell's points and the edge.
+// Near a concave edge (a ceiling meeting a wall) irradiance falls in the last centimetres
+// faster than cells follow, and the smoothing there is one-sided: the cache reads bright
+// within a cell of the edge. Like every error of the cells' size it shrinks with them, and
+// the passes of an error target shrink them (probe_pass_schedule.h).
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -148,13 +140,9 @@ class RadianceCache {
   uint64_t cell_key(const glm::vec3& position, const glm::vec3& normal) const;
 
   size_t cell_count() const { return cells_.size(); }
-  // Irradiance estimates the fill made (the edge profiles' repeats included).
+  // Irradiance estimates the fill made.
   uint64_t fill_samples() const { return fill_samples_; }
   size_t direct_cell_count() const { return direct_cells_; }
-  // Cells in the two layers next to a concave edge (see the header note), and those with a
-  // profile.
-  size_t edge_cell_count() const { return edge_cells_; }
-  size_t edge_profile_count() const { return edges_.size(); }
   // The mean over cells of the luminance of the cached irradiance (direct part where held):
   // a scale of the view's brightness.
   float mean_irradiance_luminance() const;
@@ -162,19 +150,6 @@ class RadianceCache {
   const RadianceCacheSettings& settings() const { return settings_; }
 
  private:
-  static constexpr int kEdgeBands = 2;
-  // The light of a cell next to a concave edge towards it: the other surface's plane, the
-  // distance from it of the cell's points' mean, and at kEdgeBands smaller distances the
-  // indirect light's mean difference from the cell's own points.
-  struct EdgeProfile {
-    glm::vec3 plane_point{0.0f};
-    glm::vec3 plane_normal{0.0f};  // unit, towards the cell
-    glm::vec3 toward{0.0f};        // unit, along the cell's surface towards the plane
-    float centroid_distance = 0.0f;
-    std::array<float, kEdgeBands> band_distance{};
-    std::array<glm::vec3, kEdgeBands> band_delta{};
-    std::array<int, kEdgeBands> band_pairs{};
-  };
   struct Cell {
     uint64_t key = 0;
     int count = 0;
@@ -183,8 +158,6 @@ class RadianceCache {
     glm::vec3 direct{0.0f};
     glm::vec3 punctual{0.0f};
     bool has_direct = false;
-    int edge_layer = 0;  // 1, 2: the first or second layer of cells from a concave edge
-    int edge = -1;            // index into edges_ when it holds a profile
   };
   // What a lookup reads of a cell, packed apart from the fill's points (cache lines).
   struct Value {
@@ -192,32 +165,15 @@ class RadianceCache {
     glm::vec3 direct{0.0f};
     glm::vec3 punctual{0.0f};
     bool has_direct = false;
-    int32_t edge = -1;
   };
   // A cell's 3 x 3 x 3 neighbourhood in its own normal bucket: indices into cells_, -1
-  // where absent (x-major, each offset -1..1); the build's smoothing and edge search.
+  // where absent (x-major, each offset -1..1); the build's smoothing.
   using Neighbours = std::array<int32_t, 27>;
   static int neighbour_slot(const glm::ivec3& offset) { return (offset.x + 1) * 9 + (offset.y + 1) * 3 + (offset.z + 1); }
 
-  // Fills a cell; `edge` is its profile, if any (filled too).
-  void fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) const;
-  int samples_in(const Cell& cell) const;  // irradiance estimates a cell's own value takes
-  // Each cell's indirect light smoothed from the cells' own means (and the edge profiles'
-  // differences, in place).
-  std::vector<glm::vec3> smooth_indirect();
-  // Concave edges (radiance_cache_edges.cpp): which cells are next to one, where a point
-  // of a cell moved to band b lies (false if off the surface), the profile's difference
-  // at a point.
-  void find_concave_edges();
-  // The cell of another surface in the 3 x 3 x 3 block round cell i whose plane is nearest
-  // in front of it and faces it (-1 if none), given every cell's point centre and normal.
-  int facing_cell(size_t i, const std::vector<glm::vec3>& centre, const std::vector<glm::vec3>& normal,
-                  float* distance_to_it) const;
-  // The cells of the same layer next to an edge as cell `index`, along the edge (itself
-  // included): what its light is smoothed over.
-  std::vector<int> along_edge(size_t index) const;
-  bool band_point(const EdgeProfile& edge, const CachePoint& point, int band, CachePoint* moved) const;
-  glm::vec3 edge_difference(const EdgeProfile& edge, const glm::vec3& position) const;
+  void fill(Cell* cell, PathCounters* counters) const;
+  // Each cell's indirect light smoothed from the cells' own means.
+  std::vector<glm::vec3> smooth_indirect() const;
   int find(uint64_t key) const;  // index into cells_, -1 if absent
   // Lattice coordinates (with the grid shift) of a position, in cells.
   glm::dvec3 lattice(const glm::vec3& position) const;
@@ -232,9 +188,7 @@ class RadianceCache {
   SparseCellGrid<int32_t> index_;  // cell -> index into cells_
   SparseCellGrid<Value> lookup_;  // what lookups read: the build's final values
   std::vector<Neighbours> neighbours_;  // per cell, as cells_
-  std::vector<EdgeProfile> edges_;
   size_t direct_cells_ = 0;
-  size_t edge_cells_ = 0;
   uint64_t fill_samples_ = 0;
   mutable std::atomic<uint64_t> fallbacks_{0};
 };

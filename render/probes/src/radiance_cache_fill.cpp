@@ -19,7 +19,7 @@
 
 namespace phyir::render {
 
-void RadianceCache::fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) const {
+void RadianceCache::fill(Cell* cell, PathCounters* counters) const {
   // Direct light only far from every emitter (the header note); with no emitters at all the
   // direct part is exactly 0 and needs no sampling.
   const EmitterSampler& emitters = scene_->emitters();
@@ -31,8 +31,7 @@ void RadianceCache::fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) 
 
   // samples_per_cell estimates shared out over the points, each point's own cosine
   // directions and light points stratified over the unit square.
-  const int total = samples_in(*cell);
-  std::array<glm::dvec3, kEdgeBands> band_sum{};
+  const int total = std::max(settings_.samples_per_cell, 1);
   glm::dvec3 indirect(0.0), direct(0.0);
   std::vector<glm::vec2> directions, light_points;
   int sample = 0;
@@ -45,14 +44,6 @@ void RadianceCache::fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) 
       Rng light_permutation = stream(point_key, Purpose::kCacheFillLightPoints);
       stratified_square(n, light_permutation, &light_points);
     }
-    // The point moved towards the edge, per band (the same directions and random numbers).
-    std::array<CachePoint, kEdgeBands> moved;
-    std::array<bool, kEdgeBands> on_surface{};
-    for (int b = 0; edge && b < kEdgeBands; ++b) {
-      on_surface[size_t(b)] = band_point(*edge, cell->points[k], b, &moved[size_t(b)]);
-      ++counters->rays;
-      if (on_surface[size_t(b)]) edge->band_pairs[size_t(b)] += n;
-    }
     for (int s = 0; s < n; ++s) {
       const uint64_t key = sample_key(settings_.seed, cell->key, uint64_t(sample++));
       const float u_select = sample_direct ? stream(key, Purpose::kCacheFillLight).next_float() : 0.0f;
@@ -60,12 +51,6 @@ void RadianceCache::fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) 
                                           sample_direct ? light_points[size_t(s)] : glm::vec2(0.0f), key, counters);
       indirect += glm::dvec3(e.indirect);
       direct += glm::dvec3(e.direct);
-      for (int b = 0; edge && b < kEdgeBands; ++b) {
-        if (!on_surface[size_t(b)]) continue;
-        const CachedIrradiance m =
-            estimate(moved[size_t(b)], directions[size_t(s)], false, 0.0f, glm::vec2(0.0f), key, counters);
-        band_sum[size_t(b)] += glm::dvec3(m.indirect) - glm::dvec3(e.indirect);
-      }
     }
   }
   if (sample_direct && !emitters.delta_lights().empty()) {
@@ -80,9 +65,6 @@ void RadianceCache::fill(Cell* cell, EdgeProfile* edge, PathCounters* counters) 
   const double count = double(std::max(sample, 1));
   cell->indirect = glm::vec3(indirect / count);
   cell->direct = glm::vec3(direct / count);
-  for (int b = 0; edge && b < kEdgeBands; ++b)
-    if (edge->band_pairs[size_t(b)] > 0)
-      edge->band_delta[size_t(b)] = glm::vec3(band_sum[size_t(b)] / double(edge->band_pairs[size_t(b)]));
 }
 
 CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec2& u, bool direct, float u_select,

@@ -23,10 +23,6 @@ struct RadianceCacheSettings {
   // Lookups read each cell's indirect light as the mean over its 3 x 3 x 3 neighbourhood in
   // its normal bucket (docs/probes-estimator.md, "The radiance cache").
   bool smooth_indirect = true;
-  // The concave-edge treatment (docs/probes-estimator.md, "The radiance cache"), and how many times samples_per_cell
-  // the two layers of cells next to such an edge fill.
-  bool edge_profiles = true;
-  int edge_sample_factor = 2;
   uint64_t seed = 0;
   bool progress = false;
 };
@@ -65,7 +61,6 @@ struct ProbeSettings {
   // schedule (probe_pass_schedule.h): 0 in the first pass.
   float chain_end_paths = 0.0f;
   ProbeSharing sharing;           // texels averaged with neighbouring probes' (docs/probes-estimator.md, "Sharing between neighbours")
-  bool correct_foot = true;       // the cache's error at each probe's foot taken out (docs/probes-estimator.md, "The foot correction")
   // Photons from each point and spot light, and per square metre of the sun's beam where it
   // reaches the probes, take the light they reflect at the first hits where they land densely
   // (docs/probes-estimator.md, "Photons round punctual lights and the sun"); 0: none.
