@@ -140,7 +140,6 @@ void ProbeView::shade_pass() {
 void ProbeView::shade_tile(const std::vector<size_t>& tile, Worker* w) {
   w->tile.resize(tile.size());
   for (size_t m = 0; m < tile.size(); ++m) {
-    w->tile[m].k = tile[m];
     w->tile[m].p = todo_[tile[m]];
     prepare_probe(&w->tile[m]);
     if (!transport_.photons().empty()) gather_photons(w->tile[m], w);

@@ -36,7 +36,6 @@ class ProbeView {
   struct TexelState;
   // A probe of the tile being shaded: what its texels share.
   struct TileProbe {
-    size_t k = 0;  // index into todo_
     int p = 0;     // index into the grid
     Interleave interleave;         // interleaved strata when texels are shared
     std::vector<uint8_t> lit;      // texels a light may cover (EmitterFootprints)
