@@ -91,11 +91,11 @@ void expect_share_is_the_integral_left_out(const scenes::Scene& scene, int per_l
   for (const ProbeAt& probe : probes) {
     // The photons' estimate is exact where nothing hides them; where an edge hides some,
     // the sampling of the texel's photons is random: 16 draws of it, averaged.
-    std::vector<glm::vec3> radiance(kH * kW, glm::vec3(0.0f)), one;
+    std::vector<glm::vec3> radiance(kH * kW, glm::vec3(0.0f)), one, one_cos;
     uint64_t shadow_rays = 0;
     const int draws = 16;
     for (uint64_t key = 0; key < draws; ++key) {
-      photons.gather(probe.origin, kH, kW, mix64(key), &one, &shadow_rays);
+      photons.gather(probe.origin, probe.normal, kH, kW, mix64(key), &one, &one_cos, &shadow_rays);
       for (size_t t = 0; t < one.size(); ++t) radiance[t] += one[t] / float(draws);
     }
     shadow_rays /= draws;

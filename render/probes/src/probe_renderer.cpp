@@ -20,6 +20,9 @@ nlohmann::json ProbeStats::to_json() const {
           {"emission_rays", emission_rays},
           {"photons", {{"photons", photons}, {"rays", photon_rays}, {"texels", photon_texels}}},
           {"negative_texels_clamped", negative_texels},
+          {"foot_correction",
+           {{"probes", foot_corrections},
+            {"common_difference", {foot_common_difference.x, foot_common_difference.y, foot_common_difference.z}}}},
           {"cache", cache_json()},
           {"error", error.to_json()},
           {"nonfinite_samples_caught", counters.nonfinite_samples}};
@@ -89,6 +92,7 @@ ProbeStats& ProbeStats::operator+=(const ProbeStats& o) {
   photon_rays += o.photon_rays;
   photon_texels += o.photon_texels;
   negative_texels += o.negative_texels;
+  foot_corrections += o.foot_corrections;
   return *this;
 }
 

@@ -67,6 +67,7 @@ nlohmann::json ProbeSettings::to_json() const {
     j["spread_threshold"] = spread_threshold;
     j["share_radius"] = sharing.radius;
     j["share_parallax_texels"] = sharing.parallax_texels;
+    j["correct_foot"] = correct_foot;
     j["photons_per_light"] = photons_per_light;
   }
   return j;

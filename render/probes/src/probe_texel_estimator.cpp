@@ -57,8 +57,8 @@ TexelEstimator::TexelEstimator(const RenderScene& scene, const Effects& effects,
       // The photons stand in for exact punctual light only (punctual_at's, near_light's).
       photons_(photons && !photons->empty() && exact_punctual_ ? photons : nullptr) {}
 
-glm::vec3 TexelEstimator::sample(const Ray& ray, uint64_t key, Part part, float texel_solid_angle, bool* saw_hard,
-                                 float* distance, glm::vec3* emitted,
+glm::vec3 TexelEstimator::sample(const Ray& ray, uint64_t key, Part part, const FootCorrection& foot,
+                                 float texel_solid_angle, bool* saw_hard, float* distance, glm::vec3* emitted,
                                  PathCounters* c) const {
   *emitted = glm::vec3(0.0f);
   if (settings_.mode == ProbeMode::kPath) return tracer_.radiance(ray, key, c);
@@ -86,10 +86,12 @@ glm::vec3 TexelEstimator::sample(const Ray& ray, uint64_t key, Part part, float 
   if (settings_.path.max_bounces < 1) return L;
   if (si.transmission > 0.0f)  // glass: path traced from its hit
     return L + tracer_.continue_from(si, ray, key, settings_.path.max_bounces, c);
+  FirstHit first;
+  first.foot = &foot;
   float shares[PunctualPhotons::kMaxLights];
-  const bool photons_share =
-      photons_ && photons_->shares(ray.origin, si.position, si.geometric_normal, texel_solid_angle, shares);
-  return L + reflected(si, -ray.direction, 0, key, c, photons_share ? shares : nullptr);
+  if (photons_ && photons_->shares(ray.origin, si.position, si.geometric_normal, texel_solid_angle, shares))
+    first.photon_shares = shares;
+  return L + reflected(si, -ray.direction, 0, key, c, &first);
 }
 
 glm::vec3 TexelEstimator::miss(const glm::vec3& direction) const {
@@ -97,13 +99,15 @@ glm::vec3 TexelEstimator::miss(const glm::vec3& direction) const {
 }
 
 glm::vec3 TexelEstimator::reflected(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key,
-                                    PathCounters* c, const float* photon_shares) const {
+                                    PathCounters* c, const FirstHit* first) const {
   ShadingPoint x = shading_point(si, wo_world);
   if (!(x.wo.z >= kMinCosine)) return glm::vec3(0.0f);
   x.brdf = clamped(si.brdf);
   const BrdfParams& p = x.brdf;
   const glm::vec3 fd = Fd_Lambert(p.base_color, p.metalness);
   CachedIrradiance E = lookup(si, x, depth, key, c);
+  const float* photon_shares = first ? first->photon_shares : nullptr;
+  if (first && first->foot) first->foot->apply(si.position, x.frame.n, &E);
   if (E.has_direct && !is_mirror(p.roughness)) return reflected_split(x, fd, E, depth, key, c, photon_shares);
   glm::vec3 L(0.0f);
   if (max_component(fd) > 0.0f) L += fd * E.indirect;

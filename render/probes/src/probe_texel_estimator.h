@@ -1,7 +1,8 @@
 #pragma once
 // How the probe renderer estimates one direction of a probe texel (docs/probes.md, "The two
 // modes"): in path mode a camera ray of the path tracer; in cache mode the first hit's
-// emission, its diffuse light from the radiance cache, its specular light by next-event estimation and a rouletted GGX ray,
+// emission, its diffuse light from the radiance cache (through the foot correction at a
+// probe ray's own hit), its specular light by next-event estimation and a rouletted GGX ray,
 // direct light sampled per direction near the lights, glass path traced. Internal to
 // probe_renderer.cpp.
 #include <glm/glm.hpp>
@@ -9,6 +10,7 @@
 #include "phyir/render/brdf.h"
 #include "phyir/render/direct_lighting.h"
 #include "phyir/render/effects.h"
+#include "foot_correction.h"
 #include "punctual_photons.h"
 #include "phyir/render/frame.h"
 #include "phyir/render/path_tracer.h"
@@ -38,12 +40,19 @@ class TexelEstimator {
   // Radiance arriving at ray.origin from -ray.direction (cache mode: `part` of it).
   // *distance is lowered to the first hit's distance (cache mode; unchanged on a miss).
   // *emitted receives the part of the result a light seen first emits (cache mode; not the
-  // environment's).
+  // environment's). Lookups at the first hit go through `foot` (foot_correction.h).
   // `texel_solid_angle`: the texel's, for the photons' share of its first hits.
-  glm::vec3 sample(const Ray& ray, uint64_t key, Part part, float texel_solid_angle,
+  glm::vec3 sample(const Ray& ray, uint64_t key, Part part, const FootCorrection& foot, float texel_solid_angle,
                    bool* saw_hard, float* distance, glm::vec3* emitted, PathCounters* c) const;
 
  private:
+  // What applies at a probe ray's own hit only: the foot correction of its cache lookup, and
+  // the share of each punctual light's value there that the photons take
+  // (PunctualPhotons::shares; null where they take none).
+  struct FirstHit {
+    const FootCorrection* foot = nullptr;
+    const float* photon_shares = nullptr;
+  };
   glm::vec3 miss(const glm::vec3& direction) const;
 
   // Radiance the (opaque) surface at si reflects towards wo_world; `depth` = its scattering
@@ -54,10 +63,10 @@ class TexelEstimator {
   // Indirect light: diffuse from the cache, f_d E(x); specular through the same BRDF-sampled
   // ray (f_s cos / pdf of it times the light its hit y reflects, Russian-rouletted by the
   // specular share of the sample's weight).
-  // `photon_shares` (a probe ray's own hit only; PunctualPhotons::shares): the share of each
-  // punctual light's value there that the photons take; null where they take none.
+  // `first` (a probe ray's own hit only) corrects the lookup there and names the lights
+  // the photons take.
   glm::vec3 reflected(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key, PathCounters* c,
-                      const float* photon_shares = nullptr) const;
+                      const FirstHit* first = nullptr) const;
 
   bool glossy(const BrdfParams& p) const { return p.roughness < settings_.glossy_roughness; }
 

@@ -19,6 +19,10 @@ namespace phyir::render {
 
 namespace {
 
+// The foot correction needs this many probes to tell the difference common to all of them
+// (the last bounce) from each one's own (foot_correction.h).
+constexpr size_t kMinFootCorrections = 64;
+
 // Probes are shaded in tiles of kTileRows x kTileCols neighbours on the grid, texel by texel
 // across the tile: neighbouring probes see the same scene in the same direction from points
 // a few centimetres apart, so one probe's texel finds the cache cells, BVH nodes and texture
@@ -55,7 +59,9 @@ ProbeView::ProbeView(const RenderScene& scene, const Effects& effects, const Pro
       probe_seed_(stream_key(settings.seed, Purpose::kProbeSeed)),  // apart from color.exr's streams
       adaptive_(settings.mode == ProbeMode::kCache && settings.hard_spp_factor > 1),
       share_(settings.mode == ProbeMode::kCache && settings.sharing.radius > 0),
-      transport_(scene, effects, settings) {
+      correct_foot_(settings.mode == ProbeMode::kCache && settings.correct_foot),
+      transport_(scene, effects, settings),
+      cones_(settings.layout.res_height, settings.layout.res_width) {
   if (sites.size() != size_t(layout_.probe_count()))
     fail("{} probe sites given for a {}x{} grid", sites.size(), layout_.grid_height, layout_.grid_width);
   out_.layout = layout_;
@@ -87,9 +93,15 @@ ProbeOutput ProbeView::run() {
     records_.samples.assign(size_t(layout_.probe_count()) * size_t(texels_), 0.0f);
     records_.variance.assign(size_t(layout_.probe_count()) * size_t(texels_), 0.0f);
   }
-  Progress progress("probes", todo_.size(), "probes", settings_.progress);
+  feet_.assign(correct_foot_ ? todo_.size() : 0, FootCorrection());
+  Progress progress("probes", todo_.size() * (correct_foot_ ? 2 : 1), correct_foot_ ? "probe halves" : "probes",
+                    settings_.progress);
   progress_ = &progress;
-  shade_pass();
+  shade_pass(0);
+  if (correct_foot_) {
+    correct_feet();
+    shade_pass(1);
+  }
   progress.finish();
   ProbeStats& stats = out_.stats;
   for (const Worker& w : workers_) stats += w.stats;
@@ -127,32 +139,44 @@ void ProbeView::select_probes() {
   stats.computed_probes = todo_.size();
 }
 
-void ProbeView::shade_pass() {
+void ProbeView::shade_pass(int pass) {
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, tiles_.size(), 1),
       [&](const tbb::blocked_range<size_t>& r) {
         Worker& w = workers_.local();
-        for (size_t n = r.begin(); n < r.end(); ++n) shade_tile(tiles_[n], &w);
+        for (size_t n = r.begin(); n < r.end(); ++n) shade_tile(tiles_[n], pass, &w);
       },
       tbb::simple_partitioner());
 }
 
-void ProbeView::shade_tile(const std::vector<size_t>& tile, Worker* w) {
+void ProbeView::shade_tile(const std::vector<size_t>& tile, int pass, Worker* w) {
   w->tile.resize(tile.size());
   for (size_t m = 0; m < tile.size(); ++m) {
+    w->tile[m].k = tile[m];
     w->tile[m].p = todo_[tile[m]];
-    prepare_probe(&w->tile[m]);
-    if (!transport_.photons().empty()) gather_photons(w->tile[m], w);
+    prepare_probe(&w->tile[m], pass);
+    if (pass == 0 && !transport_.photons().empty()) gather_photons(w->tile[m], w);
   }
   for (TileProbe& probe : w->tile) probe.texels.assign(size_t(texels_), TexelState());
   for (int t = 0; t < texels_; ++t)
-    for (TileProbe& probe : w->tile) first_look(probe, t, w);
+    for (TileProbe& probe : w->tile)
+      if (in_pass(probe, t, pass)) first_look(probe, t, pass, w);
   for (int t = 0; t < texels_; ++t)
-    for (TileProbe& probe : w->tile) finish_texel(probe, t, w);
+    for (TileProbe& probe : w->tile)
+      if (in_pass(probe, t, pass)) finish_texel(probe, t, w);
+  if (pass == 0 && correct_foot_)
+    for (const TileProbe& probe : w->tile)
+      feet_[probe.k] = FootCorrection::measure(*transport_.cache(), out_.sites[size_t(probe.p)], probe.measured);
   progress_->advance(tile.size());
 }
 
-void ProbeView::prepare_probe(TileProbe* probe) const {
+// The texels a pass shades: all of them, or with the foot correction those that may look to
+// the front (pass 0) and those facing the probe's own surface (pass 1).
+bool ProbeView::in_pass(const TileProbe& probe, int t, int pass) const {
+  return !correct_foot_ || (pass == 1) == cones_.faces_away(t, out_.sites[size_t(probe.p)].normal);
+}
+
+void ProbeView::prepare_probe(TileProbe* probe, int pass) const {
   const int p = probe->p;
   const ProbeSite& site = out_.sites[size_t(p)];
   probe->interleave = Interleave();
@@ -167,19 +191,21 @@ void ProbeView::prepare_probe(TileProbe* probe) const {
   probe->lights = EmitterCoverage::View();
   probe->analytic = false;
   bool any_lit = false;
-  for (int t = 0; t < texels_ && !any_lit; ++t) any_lit = probe->lit[size_t(t)] != 0;
+  for (int t = 0; t < texels_ && !any_lit; ++t) any_lit = probe->lit[size_t(t)] != 0 && in_pass(*probe, t, pass);
   if (adaptive_ && transport_.coverage().usable() && !effects_.environment && any_lit) {
     probe->lights = transport_.coverage().view(site.origin);
     probe->analytic = probe->lights.valid();
   }
+  probe->measured = FootIrradiance(site.normal);
+  probe->foot = pass == 1 ? feet_[probe->k].less(common_difference_) : FootCorrection();
 }
 
 void ProbeView::gather_photons(TileProbe& probe, Worker* w) {
   const ProbeSite& site = out_.sites[size_t(probe.p)];
   uint64_t rays = 0;
-  transport_.photons().gather(site.origin, layout_.res_height, layout_.res_width,
-                              item_stream_key(probe_seed_, uint64_t(probe.p), Purpose::kProbePhotonRoulette),
-                              &w->photon_radiance, &rays);
+  transport_.photons().gather(site.origin, site.normal, layout_.res_height, layout_.res_width,
+                  item_stream_key(probe_seed_, uint64_t(probe.p), Purpose::kProbePhotonRoulette), &w->photon_radiance,
+                  &w->photon_radiance_cos, &rays);
   w->stats.counters.rays += rays;
   w->stats.photon_rays += rays;
   for (int t = 0; t < texels_; ++t) {
@@ -187,6 +213,9 @@ void ProbeView::gather_photons(TileProbe& probe, Worker* w) {
     if (!(max_component(value) > 0.0f)) continue;
     w->photon_light.push_back({texel_id(probe.p, t), value});
     ++w->stats.photon_texels;
+    if (correct_foot_ && in_pass(probe, t, 0))
+      probe.measured.add_texel(w->photon_radiance_cos[size_t(t)], glm::vec3(0.0f),
+                               equirect_texel_solid_angle(t / layout_.res_width, layout_.res_width, layout_.res_height));
   }
 }
 
@@ -197,6 +226,17 @@ void ProbeView::add_after_sharing(const std::vector<std::pair<uint64_t, glm::vec
       for (int ch = 0; ch < 3; ++ch) out_.mosaic.at(at.x, at.y, ch) += value[ch];
     }
   }
+}
+
+void ProbeView::correct_feet() {
+  // The common difference is a mean over the probes: with few of them it would take most of
+  // each probe's own difference with it, so then none is corrected.
+  const size_t active =
+      size_t(std::count_if(feet_.begin(), feet_.end(), [](const FootCorrection& f) { return f.active(); }));
+  if (active < kMinFootCorrections) std::fill(feet_.begin(), feet_.end(), FootCorrection());
+  common_difference_ = FootCorrection::common_difference(feet_);
+  out_.stats.foot_corrections = active < kMinFootCorrections ? 0 : active;
+  out_.stats.foot_common_difference = common_difference_;
 }
 
 void ProbeView::share_between_neighbours() {

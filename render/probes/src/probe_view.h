@@ -3,15 +3,17 @@
 // "The two modes"). Internal to the probe renderer. The light transport the probes share
 // (cache, photons, lights' coverage, estimator) is its ViewTransport's
 // (probe_view_transport.h); the view keeps its passes' bookkeeping: which probes, in which
-// tiles, the records sharing needs and the outputs. Its passes and
+// tiles, the foot corrections, the records sharing needs and the outputs. Its passes and
 // sharing are in probe_view.cpp, its texels (first_look and after) in probe_view_texels.cpp.
 //
 //   select_probes         which probes are computed; their position, normal and mask images
 //   transport_            the shared transport, built before the first pass
-//   shade_pass            every tile in parallel
+//   shade_pass            every tile in parallel (twice with the foot correction: the texels
+//                         that may look to the front, then those facing the probe's surface)
 //     shade_tile          a tile's probes texel by texel across the tile, twice:
 //       first_look        every texel's first samples (and a lit texel's emission seen directly)
 //       finish_texel      its value: hard texels (by their samples or their neighbours') resampled
+//   correct_feet          the cache's error at each probe's foot, less the common part
 //   share_between_neighbours  texels averaged with neighbouring probes' on one surface
 #include <memory>
 #include <utility>
@@ -20,6 +22,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include "phyir/core/progress.h"
+#include "foot_correction.h"
 #include "phyir/render/probe_renderer.h"
 #include "probe_sharing.h"
 #include "probe_view_transport.h"
@@ -36,11 +39,14 @@ class ProbeView {
   struct TexelState;
   // A probe of the tile being shaded: what its texels share.
   struct TileProbe {
+    size_t k = 0;  // index into todo_
     int p = 0;     // index into the grid
     Interleave interleave;         // interleaved strata when texels are shared
     std::vector<uint8_t> lit;      // texels a light may cover (EmitterFootprints)
     EmitterCoverage::View lights;  // the lights' exact coverage, where `analytic`
     bool analytic = false;
+    FootIrradiance measured{glm::vec3(0.0f, 0.0f, 1.0f)};
+    FootCorrection foot;
     std::vector<TexelState> texels;  // the pass's texels between their first samples and their value
   };
   // One thread's working memory and statistics.
@@ -52,14 +58,16 @@ class ProbeView {
     std::vector<TileProbe> tile;
     std::vector<std::pair<uint64_t, glm::vec3>> emission_seen;  // added after sharing
     std::vector<std::pair<uint64_t, glm::vec3>> photon_light;   // the photons' estimates, added after sharing
-    std::vector<glm::vec3> photon_radiance;  // one probe's, PunctualPhotons::gather
+    std::vector<glm::vec3> photon_radiance, photon_radiance_cos;  // one probe's, PunctualPhotons::gather
   };
   // A texel being shaded.
   struct Texel {
     TileProbe* probe = nullptr;
     int t = 0, row = 0, col = 0;
     ProbeTexel cone{0, 0, 1, 1};
+    FootIrradiance* measure = nullptr;  // where its cosine-weighted light goes (pass 0 of the correction)
     float distance = 0.0f;              // its nearest hit
+    glm::vec3 cos_all{0.0f}, cos_emitted{0.0f};
     int samples = 0;          // directions its value (apart from the emission seen directly) took
     float variance = 0.0f;    // of that value's luminance (ProbeView::estimate)
   };
@@ -74,15 +82,16 @@ class ProbeView {
     bool hard = false;         // they met glass, a glossy surface or a light
     bool done = false;         // a light's outline: supersampled from the start
     glm::vec3 exact{0.0f};     // the emission seen directly, estimated apart
+    glm::vec3 exact_cos{0.0f}; // its cosine-weighted mean (FootIrradiance)
   };
 
   void select_probes();
-  void shade_pass();
-  void shade_tile(const std::vector<size_t>& tile, Worker* w);
-  void prepare_probe(TileProbe* probe) const;
+  void shade_pass(int pass);
+  void shade_tile(const std::vector<size_t>& tile, int pass, Worker* w);
+  void prepare_probe(TileProbe* probe, int pass) const;
   // A texel's first spp samples (and a lit texel's emission seen directly), then, once every
   // texel of the probe has them, its final value: hard texels from fresh samples.
-  void first_look(TileProbe& probe, int t, Worker* w);
+  void first_look(TileProbe& probe, int t, int pass, Worker* w);
   void finish_texel(TileProbe& probe, int t, Worker* w);
   // The value of a texel whose first samples are in: them, or hard_spp fresh ones.
   glm::vec3 settle(TileProbe& probe, int t, Worker* w);
@@ -97,11 +106,13 @@ class ProbeView {
   glm::vec3 estimate(Texel& x, int first, int count, Part part, bool* saw_hard, float* spread, Worker* w);
   void store_texel(const Texel& x, glm::vec3 value, const glm::vec3& seen_emission, Worker* w);
   // The photons' estimate of a probe's texels (punctual_photons.h), kept to be added after
-  // sharing.
+  // sharing; the texels of pass 0 go into the foot correction's measure now.
   void gather_photons(TileProbe& probe, Worker* w);
   void add_after_sharing(const std::vector<std::pair<uint64_t, glm::vec3>> Worker::*list);
+  void correct_feet();
   void share_between_neighbours();
 
+  bool in_pass(const TileProbe& probe, int t, int pass) const;
   uint64_t texel_id(int probe, int texel) const { return uint64_t(probe) * uint64_t(texels_) + uint64_t(texel); }
 
   const RenderScene& scene_;
@@ -110,12 +121,15 @@ class ProbeView {
   const ProbeLayout& layout_;
   const int texels_;
   const uint64_t probe_seed_;
-  const bool adaptive_, share_;
+  const bool adaptive_, share_, correct_foot_;
   ProbeOutput out_;
   std::vector<int> todo_;
   ProbeTiles tiles_;
   ViewTransport transport_;
+  TexelCones cones_;
   TexelRecords records_;
+  std::vector<FootCorrection> feet_;
+  glm::vec3 common_difference_{0.0f};
   tbb::enumerable_thread_specific<Worker> workers_;
   Progress* progress_ = nullptr;  // during run()
 };

@@ -55,11 +55,11 @@ constexpr int kMinStrataPairs = 8;
 // test finds the texels whose few first samples all fell on one side of an edge: a sun
 // patch's rim seen from a ceiling probe, a lamp shade lit from inside seen from the floor.
 // No decision looks at the samples it selects, so none biases the value.
-void ProbeView::first_look(TileProbe& probe, int t, Worker* w) {
+void ProbeView::first_look(TileProbe& probe, int t, int pass, Worker* w) {
   const int row = t / layout_.res_width, col = t % layout_.res_width;
   TexelState& s = probe.texels[size_t(t)];
   s = TexelState{Texel{&probe, t, row, col, ProbeTexel(row, col, layout_.res_height, layout_.res_width),
-                       std::numeric_limits<float>::infinity()}};
+                       pass == 0 && correct_foot_ ? &probe.measured : nullptr, std::numeric_limits<float>::infinity()}};
   s.looked = true;
   if (probe.lit[size_t(t)] != 0) {
     s.part = Part::kRest;
@@ -71,8 +71,15 @@ void ProbeView::first_look(TileProbe& probe, int t, Worker* w) {
 
 void ProbeView::finish_texel(TileProbe& probe, int t, Worker* w) {
   TexelState& s = probe.texels[size_t(t)];
-  const glm::vec3 value = s.done ? s.first : settle(probe, t, w);
-  store_texel(s.x, value, s.exact, w);
+  glm::vec3 value = s.done ? s.first : settle(probe, t, w);
+  Texel& x = s.x;
+  if (s.part == Part::kRest) {  // the texel's whole light: its rest and its emission
+    x.cos_all += s.exact_cos;
+    x.cos_emitted = s.exact_cos;
+  }
+  if (x.measure)
+    x.measure->add_texel(x.cos_all, x.cos_emitted, equirect_texel_solid_angle(x.row, layout_.res_width, layout_.res_height));
+  store_texel(x, value, s.exact, w);
 }
 
 glm::vec3 ProbeView::settle(TileProbe& probe, int t, Worker* w) {
@@ -140,12 +147,13 @@ bool ProbeView::look_at_light(TexelState& s, Worker* w) {
     probe.lights.texel_pieces(x.row, x.col, layout_.res_height, layout_.res_width, &w->pieces);
     Rng rng = item_stream(probe_seed_, texel_id(probe.p, x.t), Purpose::kProbeLightPart);
     s.exact = visible_emission(probe.lights, w->pieces, scene_.accelerator(), out_.sites[size_t(probe.p)].origin,
-                               spp * (edge ? kLightPartEdgeSppFactor : kLightPartSppFactor), rng, &w->strata,
-                               &w->stats.counters.rays);
+                               spp * (edge ? kLightPartEdgeSppFactor : kLightPartSppFactor), rng, probe.measured,
+                               &s.exact_cos, &w->strata, &w->stats.counters.rays);
   } else {
     bool unused = false;
     s.exact = estimate(x, spp + hard_spp, spp * (edge ? kEmissionEdgeSppFactor : kEmissionSppFactor), Part::kEmission,
                        &unused, nullptr, w);
+    s.exact_cos = x.cos_emitted;
   }
   w->stats.emission_rays += w->stats.counters.rays - rays_before;
   w->stats.light_edge_texels += edge;
@@ -157,7 +165,9 @@ bool ProbeView::look_at_light(TexelState& s, Worker* w) {
   return true;
 }
 
-// `spread` (if given) receives the range of the samples' luminances.
+// `spread` (if given) receives the range of the samples' luminances; x.cos_all and
+// x.cos_emitted the sample means of the radiance and its emitted part times the cosine to
+// the probe's normal when the texel is measured (FootIrradiance), else 0.
 glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* saw_hard, float* spread, Worker* w) {
   TileProbe& probe = *x.probe;
   const uint64_t id = texel_id(probe.p, x.t);
@@ -167,7 +177,7 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* s
   stratified_square(count, permutation, &w->strata, probe.interleave);
   const glm::vec3 origin = out_.sites[size_t(probe.p)].origin;
   const float solid_angle = equirect_texel_solid_angle(x.row, layout_.res_width, layout_.res_height);
-  glm::dvec3 sum(0.0);
+  glm::dvec3 sum(0.0), sum_cos(0.0), sum_emitted_cos(0.0);
   double sum_y = 0.0, sum_y2 = 0.0;
   w->luminances.clear();
   float lo = std::numeric_limits<float>::infinity(), hi = 0.0f;
@@ -175,13 +185,18 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* s
     const uint64_t key = sample_key(probe_seed_, id, uint64_t(first + s));
     const Ray ray{origin, x.cone.direction(w->strata[size_t(s)])};
     glm::vec3 emitted;
-    glm::vec3 L =
-        transport_.estimator().sample(ray, key, part, solid_angle, saw_hard, &x.distance, &emitted, &w->stats.counters);
+    glm::vec3 L = transport_.estimator().sample(ray, key, part, probe.foot, solid_angle, saw_hard, &x.distance, &emitted,
+                                     &w->stats.counters);
     if (!is_finite(L) || !is_finite(emitted)) {
       ++w->stats.counters.nonfinite_samples;
       L = emitted = glm::vec3(0.0f);
     }
     sum += glm::dvec3(L);
+    if (x.measure) {
+      const double cosine = x.measure->cosine(ray.direction);
+      sum_cos += glm::dvec3(L) * cosine;
+      sum_emitted_cos += glm::dvec3(emitted) * cosine;
+    }
     const float y = luminance(L);
     sum_y += y, sum_y2 += double(y) * y;
     w->luminances.push_back(y);
@@ -192,6 +207,8 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* s
   if (!(x.variance >= 0.0f))
     x.variance = count > 1 ? float(std::max(sum_y2 - sum_y * sum_y / count, 0.0) / (double(count) * (count - 1))) : 0.0f;
   if (spread) *spread = count > 0 ? hi - lo : 0.0f;
+  x.cos_all = glm::vec3(sum_cos / double(count));
+  x.cos_emitted = glm::vec3(sum_emitted_cos / double(count));
   return glm::vec3(sum / double(count));
 }
 

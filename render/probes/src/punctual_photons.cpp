@@ -212,10 +212,12 @@ bool PunctualPhotons::shares(const glm::vec3& origin, const glm::vec3& position,
   return any;
 }
 
-void PunctualPhotons::gather(const glm::vec3& origin, int height, int width, uint64_t key,
-                             std::vector<glm::vec3>* radiance, uint64_t* rays) const {
+void PunctualPhotons::gather(const glm::vec3& origin, const glm::vec3& normal, int height, int width, uint64_t key,
+                             std::vector<glm::vec3>* radiance, std::vector<glm::vec3>* radiance_cos,
+                             uint64_t* rays) const {
   const size_t texels = size_t(height * width);
   radiance->assign(texels, glm::vec3(0.0f));
+  radiance_cos->assign(texels, glm::vec3(0.0f));
   // The photons this probe takes, each with what it adds if nothing hides it, and their sum
   // per texel (luminance).
   struct Candidate {
@@ -249,7 +251,10 @@ void PunctualPhotons::gather(const glm::vec3& origin, int height, int width, uin
     reached[c.texel] += share;
     const float hits = std::floor(start[c.texel] + reached[c.texel]) - std::floor(start[c.texel] + before);
     if (!(hits > 0.0f) || !visible(photons_[c.photon], origin, rays)) continue;
-    (*radiance)[c.texel] += c.value * (hits / share);
+    const glm::vec3 value = c.value * (hits / share);
+    (*radiance)[c.texel] += value;
+    const glm::vec3 d = glm::normalize(photons_[c.photon].hit.position - origin);
+    (*radiance_cos)[c.texel] += value * std::max(0.0f, glm::dot(d, normal));
   }
 }
 

@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include "emitter_coverage.h"
+#include "foot_correction.h"
 #include "phyir/render/accelerator.h"
 #include "phyir/render/rng.h"
 
@@ -19,8 +20,10 @@ namespace phyir::render {
 // inside the triangle: the others cost no ray), and each asks only whether something hides
 // the light. Where a light is in full view the estimate is exact; elsewhere every direction
 // lands on the light, where an occluder's edge cuts it, none on the rest of the texel.
+// *emission_cos receives the same times the cosine to the probe's normal (FootIrradiance).
 glm::vec3 visible_emission(const EmitterCoverage::View& lights, const std::vector<EmitterCoverage::View::Piece>& pieces,
                            const Accelerator& accelerator, const glm::vec3& origin, int count, Rng& rng,
-                           std::vector<glm::vec2>* strata, uint64_t* rays);
+                           const FootIrradiance& foot, glm::vec3* emission_cos, std::vector<glm::vec2>* strata,
+                           uint64_t* rays);
 
 }  // namespace phyir::render

@@ -63,6 +63,8 @@ struct ProbeStats {
   uint64_t photon_rays = 0;       // their rays and the probes' shadow rays to them (in counters.rays)
   uint64_t photon_texels = 0;     // texels the photons added light to
   uint64_t negative_texels = 0;   // texel estimates below zero (the control variate's), clamped to 0
+  uint64_t foot_corrections = 0;  // probes whose own-surface texels took the cache's error out (foot_correction.h)
+  glm::vec3 foot_common_difference{0.0f};  // the difference common to all probes (the last bounce), W/m^2
   double share_seconds = 0.0;
   ProbeErrorTarget error;
   uint64_t cache_cells = 0, cache_direct_cells = 0, cache_fill_samples = 0, cache_fallbacks = 0;

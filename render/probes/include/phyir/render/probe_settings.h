@@ -61,6 +61,7 @@ struct ProbeSettings {
   // schedule (probe_pass_schedule.h): 0 in the first pass.
   float chain_end_paths = 0.0f;
   ProbeSharing sharing;           // texels averaged with neighbouring probes' (docs/probes-estimator.md, "Sharing between neighbours")
+  bool correct_foot = true;       // the cache's error at each probe's foot taken out (docs/probes-estimator.md, "The foot correction")
   // Photons from each point and spot light, and per square metre of the sun's beam where it
   // reaches the probes, take the light they reflect at the first hits where they land densely
   // (docs/probes-estimator.md, "Photons round punctual lights and the sun"); 0: none.
