@@ -4,7 +4,7 @@
 // consistent.
 //
 // Cache mode reuses light across space through kernels of fixed width: the radiance cache's
-// cells (interpolation, the 3x3x3 smoothing, the concave edges' layers), the distance beyond
+// cells (interpolation, the 3x3x3 smoothing, one-sided at concave edges), the distance beyond
 // which a cell caches direct light, and sharing's parallax bound. Each biases a pass by an
 // amount that shrinks with its kernel, so pass k (k = 0 the first) takes every kernel
 // shrunk by s_k = (k + 1)^(-1/3), as progressive photon mapping shrinks its radius between

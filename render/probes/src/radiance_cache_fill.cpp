@@ -1,7 +1,6 @@
 #include "radiance_cache.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 
