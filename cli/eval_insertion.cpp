@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <map>
-#include <memory>
 
 #include "phyir/core/error.h"
 #include "phyir/core/progress.h"
@@ -41,7 +40,7 @@ double mean(const std::vector<double>& v) { return insert::summarize(v).mean; }
 // the scene the view was.
 struct SceneRooms {
   std::map<fs::path, std::string> hashes;
-  std::map<fs::path, std::shared_ptr<insert::BenchRoom>> rooms;
+  std::map<fs::path, insert::BenchRoom> rooms;  // a map's elements stay where they are
   const insert::BenchRoom& at(const fs::path& path, const view::ViewRecord& v) {
     auto& hash = hashes[path];
     if (hash.empty()) hash = dataset::sha256_file(path);
@@ -49,12 +48,12 @@ struct SceneRooms {
     if (!expected.empty() && hash != expected)
       fail("view {}: {} is not the scene the view was rendered from (its SHA-256 differs from the manifest's)", v.id,
            path.string());
-    auto& room = rooms[path];
-    if (!room) {
-      room = std::make_shared<insert::BenchRoom>(insert::BenchRoom{scenes::load_gltf(path), nullptr});
-      room->environment = render::scene_environment(room->scene);
+    auto it = rooms.find(path);
+    if (it == rooms.end()) {
+      it = rooms.emplace(path, insert::BenchRoom{scenes::load_gltf(path), nullptr}).first;
+      it->second.environment = render::scene_environment(it->second.scene);
     }
-    return *room;
+    return it->second;
   }
 };
 

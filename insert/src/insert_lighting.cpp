@@ -102,8 +102,10 @@ fs::path predicted_probe_geometry(const fs::path& predicted_dir, const InsertVie
   return p.width == layout.grid_width && p.height == layout.grid_height ? view.dir : predicted_dir;
 }
 
-Lighting constant(std::shared_ptr<const view::ProbeMosaic> probes, const InsertView& view) {
-  const glm::vec3 mean = ProbeField(std::move(probes), view.camera).mean_radiance();
+// No ProbeField: its nearest-valid-probe table is a search over the whole grid, and the mean
+// needs none of it.
+Lighting constant(const view::ProbeMosaic& probes) {
+  const glm::vec3 mean = mean_probe_radiance(probes);
   Image one(1, 1, 3);
   for (int k = 0; k < 3; ++k) one.pixels[size_t(k)] = mean[k];
   Lighting lighting;
@@ -137,7 +139,7 @@ Lighting make_lighting(const LightingRequest& request, const InsertView& view, i
     lighting.record["probes"] = request.predicted_dir.string();
     lighting.record["probe_positions"] = (geometry / view::kProbePositionFile).string();
   } else if (s == "constant") {
-    lighting = constant(read_view_probes(view.dir, view), view);
+    lighting = constant(*read_view_probes(view.dir, view));
     lighting.record["probes"] = view.dir.string();
   } else {
     if (!fs::is_regular_file(s))

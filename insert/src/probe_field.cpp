@@ -216,21 +216,22 @@ Image ProbeField::local_sampling_map() const {
   return map;
 }
 
-glm::vec3 ProbeField::mean_radiance() const {
-  const view::ProbeLayout& l = probes_.layout;
+glm::vec3 mean_probe_radiance(const view::ProbeMosaic& probes) {
+  const view::ProbeLayout& l = probes.layout;
   double sum[3] = {0, 0, 0}, area = 0.0;
   for (int i = 0; i < l.grid_height; ++i)
     for (int j = 0; j < l.grid_width; ++j) {
-      if (!probes_.valid(i, j)) continue;
+      if (!probes.valid(i, j)) continue;
       for (int r = 0; r < l.res_height; ++r) {
         const double a = equirect_texel_solid_angle(r, l.res_width, l.res_height);
         for (int c = 0; c < l.res_width; ++c) {
           const int x = j * l.res_width + c, y = i * l.res_height + r;
-          for (int k = 0; k < 3; ++k) sum[k] += a * std::max(0.0f, probes_.radiance.at(x, y, k));
+          for (int k = 0; k < 3; ++k) sum[k] += a * std::max(0.0f, probes.radiance.at(x, y, k));
           area += a;
         }
       }
     }
+  if (!(area > 0.0)) fail("probe_mask.exr: no valid probe in the {}x{} grid", l.grid_height, l.grid_width);
   return glm::vec3(float(sum[0] / area), float(sum[1] / area), float(sum[2] / area));
 }
 

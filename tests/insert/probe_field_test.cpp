@@ -281,5 +281,16 @@ TEST(ProbeField, SamplingMapIsTheTaperedMeanOfTheLocalProbes) {
   for (float v : map.pixels) EXPECT_NEAR(v, expected, 1e-4f);
 }
 
+// The constant baseline: the solid-angle weighted mean over the valid probes only.
+TEST(ProbeField, MeanRadianceIsOverTheValidProbesOnly) {
+  view::ProbeMosaic probes = make_probes(2, 4, bright_left);  // columns 0-1: 10, columns 2-3: 0.1
+  for (float& m : probes.mask.pixels) m = 0.0f;
+  probes.mask.at(0, 0) = 1.0f, probes.mask.at(3, 1) = 1.0f;  // one bright and one dim probe
+  const glm::vec3 mean = mean_probe_radiance(probes);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(mean[k], 0.5f * (10.0f + 0.1f), 1e-4f);
+  for (float& m : probes.mask.pixels) m = 0.0f;
+  EXPECT_THROW(mean_probe_radiance(probes), Error);
+}
+
 }  // namespace
 }  // namespace phyir::insert

@@ -30,10 +30,15 @@ struct SupportPlane {
   glm::vec3 normal{0.0f, 1.0f, 0.0f};
 };
 
+// The mean of every valid probe's texels, weighted by solid angle (the constant baseline).
+// phyir::Error where no probe is valid.
+glm::vec3 mean_probe_radiance(const view::ProbeMosaic& probes);
+
 class ProbeField : public render::PositionalRadiance {
  public:
   // `camera`: the panorama's centre. The mosaic must hold at least one valid probe.
   ProbeField(std::shared_ptr<const view::ProbeMosaic> probes, const glm::vec3& camera);
+  // A copy of `probes` (tens of megabytes on a view's grid): for tests and one-off callers.
   ProbeField(const view::ProbeMosaic& probes, const glm::vec3& camera)
       : ProbeField(std::make_shared<const view::ProbeMosaic>(probes), camera) {}
 
@@ -84,8 +89,6 @@ class ProbeField : public render::PositionalRadiance {
   // a map that is bright wherever any blended probe sees light, for the environment's
   // importance sampling (its density only; the radiance stays the blend's). Empty otherwise.
   Image local_sampling_map() const;
-  // The mean of every valid probe's texels, weighted by solid angle (the constant baseline).
-  glm::vec3 mean_radiance() const;
 
  private:
   std::shared_ptr<const view::ProbeMosaic> mosaic_;  // shared with the view's cache
