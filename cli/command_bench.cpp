@@ -74,6 +74,7 @@ void add_common(CLI::App* cmd, BenchFlags& f) {
   add_image_size_flags(cmd, f.width, f.height);
   add_threads_flag(cmd, f.threads);
   add_max_bounces_flag(cmd, f.settings.path.max_bounces);
+  add_light_subpaths_flag(cmd, f.settings.path.light_subpaths);
   add_seed_flag(cmd, f.settings.seed);
 }
 

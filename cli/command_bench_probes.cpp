@@ -311,6 +311,7 @@ void add_bench_probes_command(CLI::App& bench) {
   add_study_flags(cmd, *f);
   add_threads_flag(cmd, f->threads);
   add_max_bounces_flag(cmd, f->base.path.max_bounces);
+  add_light_subpaths_flag(cmd, f->base.path.light_subpaths);
   add_seed_flag(cmd, f->base.seed);
   // The grid the times are measured on, and what every configuration shares.
   add_probe_flags(cmd, f->base, kProbeGrid | kProbeOffset | kProbePhotons,

@@ -31,9 +31,19 @@ CLI::Option* add_threads_flag(CLI::App* cmd, int& threads) {
       ->group(kGroup);
 }
 
+CLI::Option* add_light_subpaths_flag(CLI::App* cmd, bool& light_subpaths) {
+  return sets(cmd, "light_subpaths",
+              cmd->add_option("--light-subpaths", light_subpaths,
+                              "join a path from a point or spot light at every vertex (docs/light-subpaths.md; scenes with such lights): "
+                              "the light a bulb throws on surfaces close to it, at one more ray per path and per vertex"))
+      ->capture_default_str()
+      ->group(kGroup);
+}
+
 void add_sampling_flags(CLI::App* cmd, render::RenderSettings& settings, int& threads) {
   add_spp_flag(cmd, settings.spp);
   add_max_bounces_flag(cmd, settings.path.max_bounces);
+  add_light_subpaths_flag(cmd, settings.path.light_subpaths);
   add_seed_flag(cmd, settings.seed);
   add_threads_flag(cmd, threads);
 }

@@ -41,7 +41,9 @@ Image true_render(const BenchRoom& room, const scenes::Scene& placed, const Inse
 
 CaseScores run_case(const InsertView& v, const BenchRoom& room, const BenchPlacement& p,
                     const BenchObject& object, const BenchSettings& o, const fs::path& dir) {
-  CaseScores r{p.name, object.name};
+  CaseScores r;
+  r.placement = p.name;
+  r.object = object.name;
   InsertRequest request;
   request.x = p.x, request.y = p.y;
   request.spp = o.spp;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "phyir/core/safe_math.h"
+#include "phyir/render/light_subpaths.h"
 #include "phyir/render/ray_offset.h"
 
 namespace phyir::render {
@@ -23,9 +24,6 @@ ShadingPoint shading_point(const SurfaceInteraction& si, const glm::vec3& wo_wor
   return x;
 }
 
-namespace {
-
-// f and the competing ray's density for the asked-for lobes.
 glm::vec3 lobe_eval(const ShadingPoint& x, Lobes lobes, const glm::vec3& wi) {
   switch (lobes) {
     case Lobes::kAll: return brdf_eval(x.brdf, x.wo, wi);
@@ -42,19 +40,15 @@ float lobe_pdf(const ShadingPoint& x, Lobes lobes, const glm::vec3& wi) {
   }
 }
 
-// Whether light from wi (above the shading normal's horizon) can reach x: from above the
-// facet's plane always; from below it (the shadow terminator of a coarse smooth-shaded mesh)
-// only where x was lifted onto the smooth surface, whose shadow ray may clear the mesh
-// (docs/brdf.md, "Smooth normals on coarse meshes"). A flat or concave facet, a normal map:
-// the facet's plane decides.
 bool can_arrive(const ShadingPoint& x, const glm::vec3& wi_world) {
   return glm::dot(wi_world, x.geometric_normal) > 0.0f || x.shadow_lift != glm::vec3(0.0f);
 }
 
-// Where every shadow ray of x starts: its smooth-surface point, on the shaded side.
 glm::vec3 shadow_origin(const ShadingPoint& x) {
   return offset_ray_origin(x.position + x.shadow_lift, x.geometric_normal);
 }
+
+namespace {
 
 // The shadow ray of a light sample: to a point on an emitter, to a point light, or out of
 // the scene towards a directional light; it always leaves on the shaded side of the facet.
@@ -77,11 +71,14 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
   // f > 0 implies wi.z >= kMinCosine for every lobe.
   if (!(wi.z > 0.0f) || !can_arrive(x, ls.wi) || !(max_component(f) > 0.0f)) return glm::vec3(0.0f);
   auto value = [&] {
-    // A punctual light cannot be hit by the competing ray: no MIS.
-    const float w = options.mis && !ls.delta ? power_heuristic(float(options.light_samples) * ls.pdf,
-                                                  options.brdf_strategy_probability *
-                                                      options.guide.pdf(lobe_pdf(x, options.lobes, wi), ls.wi))
-                                : 1.0f;
+    // A punctual light cannot be hit by the competing ray: no MIS, unless a light subpath
+    // joined at the previous vertex competes.
+    float w = 1.0f;
+    if (options.mis && !ls.delta)
+      w = power_heuristic(float(options.light_samples) * ls.pdf,
+                          options.brdf_strategy_probability * options.guide.pdf(lobe_pdf(x, options.lobes, wi), ls.wi));
+    else if (ls.delta && options.subpaths)
+      w = options.subpaths->eye_weight(options.previous, x, ls.light, ls.pdf);
     return throughput * f * ls.radiance * (wi.z * w / ls.pdf);
   };
   auto visible = [&] {

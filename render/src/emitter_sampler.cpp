@@ -392,6 +392,7 @@ bool EmitterSampler::sample_delta(int light, float pmf, const glm::vec3& referen
   out->radiance = seen.irradiance;
   out->pdf = pmf;
   out->mesh = out->triangle = -1;
+  out->light = light;
   out->delta = true;
   return true;
 }
@@ -475,6 +476,17 @@ float EmitterSampler::pdf(const glm::vec3& reference, int mesh, int triangle, co
   if (by_solid_angle(e, reference) && seen.set(reference, e.p0, e.p1, e.p2))
     return solid_angle_sampled(pmf, seen.solid_angle(), e.normal, reference, point).pdf;
   return area_sampled(pmf, e.area, e.normal, reference, point).pdf;
+}
+
+float EmitterSampler::delta_pmf(const glm::vec3& reference, int light) const {
+  if (light < 0 || light >= delta_.size()) return 0.0f;
+  if (spatial_) {
+    float total = 0.0f;
+    const float* weights = selection_weights_at(reference, true, &total);
+    return total > 0.0f ? weights[clusters_.size() + size_t(light)] / total : 0.0f;
+  }
+  if (triangle_share_ >= 1.0f) return 0.0f;
+  return (1.0f - triangle_share_) * delta_distribution_.pmf(light);
 }
 
 bool EmitterSampler::by_solid_angle(const EmissiveTriangle& e, const glm::vec3& reference) {

@@ -29,6 +29,16 @@ class PathKernel {
   glm::vec3 run(const PathStart& start) {
     ray_ = start.ray;
     previous_position_ = ray_.origin;
+    if constexpr (kEmitters) subpaths_ = start.subpaths;
+    if (start.hit && start.previous) {
+      previous_delta_ = false;
+      previous_position_ = start.previous->position;
+      previous_pdf_ = start.previous->pdf;
+      subpath_drawn_ = true;
+      choice_from_ = start.previous->choice_from;
+      subpath_valid_ = start.subpath != nullptr;
+      if (start.subpath) subpath_ = *start.subpath;
+    }
     ++counters_->paths;
     for (int bounce = 0;; ++bounce) {
       if constexpr (kEnvironment) draw_environment_variates(bounce);
@@ -94,7 +104,8 @@ class PathKernel {
     }
     const ShadingPoint x = shading_point(si, wo_world);
     const GuideMixture mixture = guide_mixture(si);
-    add_direct_light(x, mixture, bounce, first);
+    add_direct_light(si, x, mixture, bounce, first);
+    if constexpr (kEmitters) join_light_subpath(x, mixture, bounce);
     return reflect(si, x, mixture, bounce, first) && roulette(bounce);
   }
 
@@ -116,7 +127,7 @@ class PathKernel {
 
   // Next-event estimation (the non-delta part of the BRDF only).
   // Its competing ray is drawn from `mixture`, whose density weighs the light samples.
-  void add_direct_light(const ShadingPoint& x, const GuideMixture& mixture, int bounce,
+  void add_direct_light(const SurfaceInteraction& si, const ShadingPoint& x, const GuideMixture& mixture, int bounce,
                         const FirstBounceSamples* first) {
     if constexpr (kEmitters) {
       Rng rng = stream(key_, Purpose::kPathLight, uint64_t(bounce));
@@ -126,6 +137,12 @@ class PathKernel {
       if (first) u.select = first->light_select, u.point = first->light_point;
       DirectLightOptions options;
       options.guide = mixture;
+      // Against the light subpath the previous vertex joined (none before the first hit,
+      // after a mirror, or at glass, where no subpath can end).
+      if (!previous_delta_ && (bounce == 0 ? subpaths_ != nullptr : joins_at(bounce - 1)) && LightSubpaths::joinable(si)) {
+        options.subpaths = subpaths_;
+        options.previous = PreviousVertex{previous_position_, previous_pdf_, choice_from_};
+      }
       gather(sample_emitter_light(scene_, x, u, options, beta_, nullptr, counters_), 1.0f);
     }
     if constexpr (kEnvironment) {
@@ -133,6 +150,27 @@ class PathKernel {
         gather(sample_environment_light(scene_, x, environment_u_, portal_u_, beta_, counters_, Lobes::kAll, mixture),
                1.0f);
     }
+  }
+
+  // Whether the vertex of `bounce` joins a light subpath.
+  bool joins_at(int bounce) const {
+    return subpaths_ && bounce + 1 < max_bounces_;
+  }
+
+  // The path's light subpath joined at x, where the next vertex would take a next-event
+  // estimate to compete with it (the path's last vertex takes none); drawn at the first.
+  void join_light_subpath(const ShadingPoint& x, const GuideMixture& mixture, int bounce) {
+    if (!joins_at(bounce)) return;
+    if (!subpath_drawn_) {
+      Rng rng = stream(key_, Purpose::kPathLightSubpath);
+      LightSubpathVariates u;
+      u.choice = rng.next_float();
+      u.direction = rng.next_2d();
+      subpath_drawn_ = true;
+      choice_from_ = x.position;
+      subpath_valid_ = subpaths_->sample(choice_from_, u, &subpath_, counters_);
+    }
+    if (subpath_valid_) gather(subpaths_->join(x, subpath_, Lobes::kAll, mixture, beta_, counters_), 1.0f);
   }
 
   // The environment sample's numbers for the vertex the next ray finds, drawn before that
@@ -204,6 +242,10 @@ class PathKernel {
   const int max_bounces_;
   PathCounters* counters_;
   PathRecords* records_;  // training a guide only
+  const LightSubpaths* subpaths_ = nullptr;
+  bool subpath_drawn_ = false, subpath_valid_ = false;  // the path's light subpath
+  LightVertex subpath_;
+  glm::vec3 choice_from_{0.0f};  // where it chose its light
   const EnvironmentLight* environment_;
   glm::vec3 L_{0.0f};
   glm::vec3 beta_{1.0f};
@@ -229,7 +271,8 @@ glm::vec3 trace_path(const RenderScene& scene, const PathSettings& settings, con
 }  // namespace
 
 PathTracer::PathTracer(const RenderScene& scene, const Effects& effects, const PathSettings& settings)
-    : scene_(&scene), effects_(effects), settings_(settings) {
+    : scene_(&scene), effects_(effects), settings_(settings),
+      subpaths_(settings.light_subpaths && effects.punctual_lights ? LightSubpaths(scene) : LightSubpaths()) {
   const int key = (effects.light_sampling() ? 4 : 0) | (effects.environment ? 2 : 0) | (effects.transmission ? 1 : 0);
   static constexpr Kernel kKernels[8] = {
       &trace_path<false, false, false>, &trace_path<false, false, true>,
@@ -241,23 +284,33 @@ PathTracer::PathTracer(const RenderScene& scene, const Effects& effects, const P
 }
 
 glm::vec3 PathTracer::radiance(const Ray& ray, uint64_t path_key, PathCounters* counters) const {
-  return kernel_(*scene_, settings_, PathStart{ray}, path_key, settings_.max_bounces, counters);
+  return kernel_(*scene_, settings_, PathStart{ray, nullptr, nullptr, nullptr, light_subpaths()}, path_key,
+                 settings_.max_bounces, counters);
 }
 
 glm::vec3 PathTracer::radiance(const Ray& ray, uint64_t path_key, const FirstBounceSamples& first,
                                PathCounters* counters) const {
-  return kernel_(*scene_, settings_, PathStart{ray, nullptr, &first}, path_key, settings_.max_bounces, counters);
+  return kernel_(*scene_, settings_, PathStart{ray, nullptr, &first, nullptr, light_subpaths()}, path_key,
+                 settings_.max_bounces, counters);
 }
 
 glm::vec3 PathTracer::radiance(const Ray& ray, uint64_t path_key, const FirstBounceSamples& first,
                                PathCounters* counters, guiding::RecordBuffer* records) const {
-  return kernel_(*scene_, settings_, PathStart{ray, nullptr, &first, records}, path_key, settings_.max_bounces,
-                 counters);
+  return kernel_(*scene_, settings_, PathStart{ray, nullptr, &first, records, light_subpaths()}, path_key,
+                 settings_.max_bounces, counters);
 }
 
 glm::vec3 PathTracer::continue_from(const SurfaceInteraction& hit, const Ray& ray, uint64_t path_key,
                                     int max_bounces, PathCounters* counters) const {
-  return kernel_(*scene_, settings_, PathStart{ray, &hit}, path_key, max_bounces, counters);
+  return kernel_(*scene_, settings_, PathStart{ray, &hit, nullptr, nullptr, light_subpaths()}, path_key, max_bounces,
+                 counters);
+}
+
+glm::vec3 PathTracer::continue_from(const SurfaceInteraction& hit, const Ray& ray, const PreviousVertex& previous,
+                                    const LightVertex* subpath, uint64_t path_key, int max_bounces,
+                                    PathCounters* counters) const {
+  return kernel_(*scene_, settings_, PathStart{ray, &hit, nullptr, nullptr, light_subpaths(), &previous, subpath},
+                 path_key, max_bounces, counters);
 }
 
 }  // namespace phyir::render

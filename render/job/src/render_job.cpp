@@ -267,6 +267,7 @@ nlohmann::json RenderReport::to_json() const {
   report["settings"] = {{"spp", job.settings.spp},
                         {"max_bounces", job.settings.path.max_bounces},
                         {"roulette_start", job.settings.path.roulette_start},
+                        {"light_subpaths", job.settings.path.light_subpaths},
                         {"seed", job.settings.seed},
                         {"threads", threads},
                         {"aovs", job.settings.aovs},
@@ -279,6 +280,9 @@ nlohmann::json RenderReport::to_json() const {
   report["color_png"] = {{view::kExposureStopsKey, exposure.stops}, {"view", job.view}};
   if (job.auto_exposure) report["color_png"]["percentile_value"] = exposure.percentile_value;
   report["effects"] = effects.to_json();
+  // What ran: light subpaths join only where there is a point or spot light to start from.
+  report["effects"]["light_subpaths"] =
+      job.settings.path.light_subpaths && effects.punctual_lights && scene.point_lights + scene.spot_lights > 0;
   report["counters"] = stats.to_json();
   report["guiding"] = stats.guiding.to_json(job.settings.guiding);
   report["timings"] = {{"load_seconds", timings.load_seconds},

@@ -53,6 +53,7 @@ nlohmann::json ProbeSettings::to_json() const {
                       {"origin_offset_m", offset},
                       {"seed", seed},
                       {"max_bounces", path.max_bounces},
+                      {"light_subpaths", path.light_subpaths},
                       {"punctual_lights", punctual_lights}};
   if (target_error > 0.0f) {
     j["target_error"] = target_error;

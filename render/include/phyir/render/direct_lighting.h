@@ -52,6 +52,28 @@ enum class Lobes {
   kCosine,    // f = 1, p = cos / pi: irradiance (a radiance cache's estimate)
 };
 
+// f and the competing ray's density for the asked-for lobes at x (wi local).
+glm::vec3 lobe_eval(const ShadingPoint& x, Lobes lobes, const glm::vec3& wi);
+float lobe_pdf(const ShadingPoint& x, Lobes lobes, const glm::vec3& wi);
+
+// Whether light from wi_world (above the shading normal's horizon) can reach x: from above
+// the facet's plane always; from below it only where x was lifted onto the smooth surface
+// (docs/brdf.md, "Smooth normals on coarse meshes").
+bool can_arrive(const ShadingPoint& x, const glm::vec3& wi_world);
+
+// Where every shadow ray of x starts: its smooth-surface point, on the shaded side.
+glm::vec3 shadow_origin(const ShadingPoint& x);
+
+// The path vertex before the one being shaded, as a multiple-importance weight needs it.
+struct PreviousVertex {
+  glm::vec3 position{0.0f};
+  float pdf = 0.0f;  // solid-angle density of the ray from it to the shaded vertex
+  // Where the path's light subpath chose its light (light_subpaths.h): its first joining vertex.
+  glm::vec3 choice_from{0.0f};
+};
+
+class LightSubpaths;
+
 struct LightVariates {
   float select = 0.5f;       // which light
   glm::vec2 point{0.5f};     // where on it
@@ -72,6 +94,10 @@ struct DirectLightOptions {
   // Path guiding: the competing ray is drawn from this mixture of the lobes and a guide, and
   // its density in the weight is the mixture's (inactive: the lobes' alone).
   GuideMixture guide;
+  // Light subpaths joined at the previous vertex (light_subpaths.h): a punctual light's
+  // sample is weighted against them (null: weight 1, as with no competing strategy).
+  const LightSubpaths* subpaths = nullptr;
+  PreviousVertex previous;
 };
 
 // One next-event estimate of the light arriving straight from the emitters through the

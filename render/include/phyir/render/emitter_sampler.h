@@ -56,6 +56,7 @@ struct EmitterSample {
                                // the probability of having chosen it
   int mesh = -1;               // -1 for a punctual light
   int triangle = -1;
+  int light = -1;              // a punctual light's index in DeltaLights
   bool delta = false;          // a punctual light: no MIS, no surface at `position`
 };
 
@@ -94,6 +95,9 @@ class EmitterSampler {
   // the same point. Zero for non-emissive triangles, and for grazing points
   // (|cos| < kMinCosine), which sample() rejects (returns false), keeping MIS consistent.
   float pdf(const glm::vec3& reference, int mesh, int triangle, const glm::vec3& point, bool punctual = true) const;
+  // The probability that sample() (punctual = true) chooses punctual light `light` from
+  // `reference`: its EmitterSample::pdf, without drawing one.
+  float delta_pmf(const glm::vec3& reference, int light) const;
 
  private:
   struct EmissiveTriangle {

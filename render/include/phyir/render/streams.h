@@ -26,6 +26,7 @@ enum class Purpose : uint64_t {
   kPathGlass = 5,        // lobe choice and direction at glass
   kPathPortal = 6,       // next-event estimation on the environment through the light portals
   kPathGuide = 7,        // path guiding: the choice between the BRDF and the guide (guide_mixture.h)
+  kPathLightSubpath = 8, // the light subpath joined at a vertex (light_subpaths.h)
   // The radiance cache, per estimate.
   kCacheFallbackDirection = 102,  // a lookup outside every cell
   kCacheFillDirections = 103,     // permutation of a cache point's stratified cosine directions
@@ -34,6 +35,7 @@ enum class Purpose : uint64_t {
   kCachePoint = 106,              // per item (cell), index = the cell's point: its fill's key
   kCacheFillEnvironment = 107,    // the environment sample of a fill estimate
   kCacheFillPortal = 108,         // its sample through the light portals
+  kCacheFillLightSubpath = 109,   // the light subpath joined at a fill estimate's point
   // The probe texel estimator, per specular depth.
   kTexelLight = 201,              // a next-event sample
   kTexelBrdf = 202,               // the BRDF- or GGX-sampled ray
