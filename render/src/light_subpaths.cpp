@@ -19,6 +19,10 @@ using Type = scenes::PunctualLight::Type;
 // light itself would otherwise take every choice (and divide by zero).
 constexpr float kMinChoiceDistance2 = 1e-6f;
 
+// With more lights than this the choice is by power alone: a choice weighs every light, at
+// each of a path's next-event estimates (as EmitterSampler::kMaxSpatialClusters bounds its own).
+constexpr size_t kMaxSpatialLights = 64;
+
 }  // namespace
 
 LightSubpaths::LightSubpaths(const RenderScene& scene) : scene_(&scene) {
@@ -37,6 +41,7 @@ LightSubpaths::LightSubpaths(const RenderScene& scene) : scene_(&scene) {
     l.power = lights.power(i);
     entry_[size_t(i)] = int(lights_.size());
     lights_.push_back(l);
+    total_power_ += l.power;
   }
 }
 
@@ -47,12 +52,14 @@ int LightSubpaths::entry_of(int light) const {
 }
 
 float LightSubpaths::choice_weight(const glm::vec3& x, size_t k) const {
+  if (lights_.size() > kMaxSpatialLights) return lights_[k].power;
   const glm::vec3 d = lights_[k].position - x;
   return lights_[k].power / std::max(glm::dot(d, d), kMinChoiceDistance2);
 }
 
 float LightSubpaths::choice_pmf(const glm::vec3& x, int k) const {
   // By power over squared distance: the lights near x light what x sees.
+  if (lights_.size() > kMaxSpatialLights) return total_power_ > 0.0f ? lights_[size_t(k)].power / total_power_ : 0.0f;
   float total = 0.0f;
   for (size_t i = 0; i < lights_.size(); ++i) total += choice_weight(x, i);
   return total > 0.0f ? choice_weight(x, size_t(k)) / total : 0.0f;
@@ -80,6 +87,7 @@ float LightSubpaths::eye_weight(const PreviousVertex& previous, const ShadingPoi
   if (!(p_light > 0.0f)) return 1.0f;
   const glm::vec3 d = y.position - previous.position;
   const float d2 = glm::dot(d, d);
+  if (!(d2 > 0.0f)) return 1.0f;
   const float cos_y = std::abs(glm::dot(y.geometric_normal, d)) / std::sqrt(d2);
   const float p_eye = previous.pdf * cos_y / d2 * nee_pmf;
   return power_heuristic(p_eye, p_light);

@@ -53,9 +53,8 @@ TEST(EmitterSamplerDeltaPmf, IsThePdfItsPunctualSamplesCarry) {
 }
 
 // The integral of density() over the room's six walls (uniform points on each, normals
-// facing in), for every light: the probability that a subpath lands at all, 1.
-TEST(LightSubpathsDensity, IntegratesToOneOverAClosedRoom) {
-  const scenes::Scene scene = room(0.05f, true);
+// facing in), summed over the lights: the probability that a subpath lands at all, 1.
+double density_integral(const scenes::Scene& scene, int side) {
   const RenderScene rs(scene);
   const LightSubpaths subpaths(rs);
   const glm::vec3 x(0.2f, 0.9f, -0.4f), d = kRoomMax - kRoomMin;
@@ -68,22 +67,40 @@ TEST(LightSubpathsDensity, IntegratesToOneOverAClosedRoom) {
                          {kRoomMin + glm::vec3(0, d.y, 0), {d.x, 0, 0}, {0, 0, d.z}, {0, -1, 0}},
                          {kRoomMin, {d.x, 0, 0}, {0, d.y, 0}, {0, 0, 1}},
                          {kRoomMin + glm::vec3(0, 0, d.z), {d.x, 0, 0}, {0, d.y, 0}, {0, 0, -1}}};
-  constexpr int kSide = 600;  // stratified points per wall side
   double total = 0.0;
   Rng rng(3, 1);
   for (const Wall& w : walls) {
     const double area = double(glm::length(glm::cross(w.u, w.v)));
     double sum = 0.0;
-    for (int a = 0; a < kSide; ++a)
-      for (int b = 0; b < kSide; ++b) {
-        const glm::vec3 y = w.corner + w.u * ((float(a) + rng.next_float()) / kSide) +
-                            w.v * ((float(b) + rng.next_float()) / kSide);
-        for (int light = 0; light < 2; ++light) sum += double(subpaths.density(x, light, y, w.normal));
+    for (int a = 0; a < side; ++a)
+      for (int b = 0; b < side; ++b) {
+        const glm::vec3 y = w.corner + w.u * ((float(a) + rng.next_float()) / float(side)) +
+                            w.v * ((float(b) + rng.next_float()) / float(side));
+        for (int light = 0; light < int(scene.lights.size()); ++light)
+          sum += double(subpaths.density(x, light, y, w.normal));
       }
-    total += area * sum / double(kSide * kSide);
+    total += area * sum / double(side * side);
   }
+  return total;
+}
+
+TEST(LightSubpathsDensity, IntegratesToOneOverAClosedRoom) {
+  const double total = density_integral(room(0.05f, true), 600);
   std::printf("[ density ] integral over the room %.4f\n", total);
   EXPECT_NEAR(total, 1.0, 0.01);
+}
+
+// Beyond 64 lights the choice is by power alone: still a density of total 1.
+TEST(LightSubpathsDensity, IntegratesToOneWithManyLightsChosenByPower) {
+  scenes::Scene scene = room(0.05f, false);
+  Rng rng(9, 1);
+  for (int i = 0; i < 70; ++i)
+    scene.lights.push_back(test::make_point_light(
+        1.0f + 10.0f * rng.next_float(),
+        glm::mix(kRoomMin + glm::vec3(0.1f), kRoomMax - glm::vec3(0.1f), glm::vec3(rng.next_float(), rng.next_float(), rng.next_float()))));
+  const double total = density_integral(scene, 150);
+  std::printf("[ density ] 71 lights: integral over the room %.4f\n", total);
+  EXPECT_NEAR(total, 1.0, 0.02);
 }
 
 struct Estimate {

@@ -96,7 +96,8 @@ class LightSubpaths {
     float cos_outer = -1.0f;            // -1: the whole sphere
     float power = 0.0f;                 // luminance, W
   };
-  // The choice weight of entry k of lights_ from x (power over squared distance).
+  // The choice weight of entry k of lights_ from x (power over squared distance; power alone
+  // beyond kMaxSpatialLights lights).
   float choice_weight(const glm::vec3& x, size_t k) const;
   // P(l | x) for entry k of lights_.
   float choice_pmf(const glm::vec3& x, int k) const;
@@ -108,6 +109,7 @@ class LightSubpaths {
   const RenderScene* scene_ = nullptr;
   std::vector<Light> lights_;
   std::vector<int> entry_;  // DeltaLights index -> index in lights_, -1 for directional
+  float total_power_ = 0.0f;
 };
 
 }  // namespace phyir::render
