@@ -112,14 +112,16 @@ bool LightSubpaths::sample(const glm::vec3& choice_from, const LightSubpathVaria
   if (!scene_->trace(Ray{l.position, Frame(l.axis).to_world(local)}, &out->hit) || !joinable(out->hit)) return false;
   out->light = l.index;
   out->choice_from = choice_from;
-  return true;
+  out->density = density(choice_from, l.index, out->hit.position, out->hit.geometric_normal);
+  out->nee_pmf = scene_->emitters().delta_pmf(out->hit.position, l.index);
+  return out->density > 0.0f;
 }
 
 float LightSubpaths::eye_density(const ShadingPoint& x, Lobes lobes, const GuideMixture& guide,
-                                 const glm::vec3& wi_world, const LightVertex& v, float distance2) const {
+                                 const glm::vec3& wi_world, const LightVertex& v, float distance2) {
   const float cos_y = glm::dot(v.hit.geometric_normal, -wi_world);
   const float p_direction = guide.pdf(lobe_pdf(x, lobes, x.frame.to_local(wi_world)), wi_world);
-  return p_direction * cos_y / distance2 * scene_->emitters().delta_pmf(v.hit.position, v.light);
+  return p_direction * cos_y / distance2 * v.nee_pmf;
 }
 
 glm::vec3 LightSubpaths::join(const ShadingPoint& x, const LightVertex& v, Lobes lobes, const GuideMixture& guide,
@@ -143,8 +145,7 @@ glm::vec3 LightSubpaths::join(const ShadingPoint& x, const LightVertex& v, Lobes
   const glm::vec3 wl = y.frame.to_local(seen.wi);
   const glm::vec3 f_y = brdf_eval(y.brdf, y.wo, wl);
   if (!(wl.z > 0.0f) || !can_arrive(y, seen.wi) || !(max_component(f_y) > 0.0f)) return glm::vec3(0.0f);
-  const float p_light = density(v.choice_from, v.light, y.position, y.geometric_normal);
-  if (!(p_light > 0.0f)) return glm::vec3(0.0f);
+  const float p_light = v.density;
   const float w = power_heuristic(p_light, eye_density(x, lobes, guide, wi_world, v, d2));
   ++counters->rays;
   const float through = scene_->accelerator().transmittance(

@@ -48,6 +48,10 @@ struct LightVertex {
   int light = -1;
   glm::vec3 choice_from{0.0f};  // the vertex whose P(l | x) chose the light
   SurfaceInteraction hit;       // normals face the light
+  // What every join of it weighs with, the same at each: the light strategy's density of
+  // `hit` and the probability that a next-event estimate there chooses `light`.
+  float density = 0.0f;
+  float nee_pmf = 0.0f;
 };
 
 // The random numbers of one light subpath.
@@ -103,8 +107,8 @@ class LightSubpaths {
   float choice_pmf(const glm::vec3& x, int k) const;
   int entry_of(int light) const;
   // The eye strategy's density of the subpath's hit from x (drawn from `guide`'s mixture).
-  float eye_density(const ShadingPoint& x, Lobes lobes, const GuideMixture& guide, const glm::vec3& wi_world,
-                    const LightVertex& v, float distance2) const;
+  static float eye_density(const ShadingPoint& x, Lobes lobes, const GuideMixture& guide, const glm::vec3& wi_world,
+                           const LightVertex& v, float distance2);
 
   const RenderScene* scene_ = nullptr;
   std::vector<Light> lights_;
