@@ -1,7 +1,8 @@
 // The emitter tree (emitter_tree.h): its pmf sums to one and equals what sample() reports
 // and how often it chooses; beside a tessellated light it favours the nearest triangles,
 // far away it chooses by power; and light sampling through it (emitter_sampler.h) stays
-// unbiased right against a tessellated panel.
+// unbiased right against a tessellated panel and a tessellated sphere lamp (against
+// Lambert's formula, the part below the point's horizon clipped off).
 #include "phyir/render/emitter_tree.h"
 
 #include <gtest/gtest.h>
@@ -140,6 +141,55 @@ TEST(EmitterTree, LightSamplingBesideATessellatedPanelIsUnbiased) {
             << est.standard_error << "\n";
   EXPECT_NEAR(est.mean, omega, 4.0 * est.standard_error + 1e-3 * omega);
   EXPECT_NEAR(est.mean / omega, 1.0, 0.02);
+}
+
+// The polygon's part above the plane through the origin with normal n (one plane of
+// Sutherland and Hodgman's clipping).
+std::vector<glm::dvec3> above_plane(const std::vector<glm::dvec3>& polygon, const glm::dvec3& n) {
+  std::vector<glm::dvec3> out;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const glm::dvec3& a = polygon[i];
+    const glm::dvec3& b = polygon[(i + 1) % polygon.size()];
+    const double da = glm::dot(a, n), db = glm::dot(b, n);
+    if (da >= 0.0) out.push_back(a);
+    if ((da >= 0.0) != (db >= 0.0)) out.push_back(a + (b - a) * (da / (da - db)));
+  }
+  return out;
+}
+
+// Irradiance 2 mm from a one-sided tessellated sphere lamp (radiance 1), by Lambert's
+// formula over the triangles that face the point, clipped at its horizon.
+double sphere_irradiance(const scenes::Mesh& mesh, const glm::vec3& reference, const glm::vec3& normal) {
+  double sum = 0.0;
+  for (const glm::uvec3& t : mesh.triangles) {
+    std::vector<glm::dvec3> v;
+    for (unsigned i : {t.x, t.y, t.z}) v.push_back(glm::dvec3(mesh.positions[i]) - glm::dvec3(reference));
+    if (glm::dot(glm::cross(v[1] - v[0], v[2] - v[0]), v[0]) >= 0.0) continue;  // seen from behind
+    const std::vector<glm::dvec3> clipped = above_plane(v, glm::dvec3(normal));
+    if (clipped.size() >= 3) sum += test::polygon_irradiance(clipped, glm::dvec3(normal), 1.0);
+  }
+  return sum;
+}
+
+TEST(EmitterTree, LightSamplingBesideASphereLampIsUnbiased) {
+  const glm::vec3 centre(0.0f, 2.0f, 0.0f);
+  scenes::Scene scene;
+  test::add_uv_sphere(scene, centre, 0.1f, test::add_material(scene, test::make_emitter(glm::vec3(1.0f))), 32, 16);
+  const EmitterSampler sampler(scene);
+  const glm::vec3 reference = centre + glm::vec3(0.102f, 0.0f, 0.0f);
+  // Facing the lamp, and tilted 73 degrees from it (its far side below the horizon).
+  for (const glm::vec3& normal : {glm::vec3(-1.0f, 0.0f, 0.0f), glm::normalize(glm::vec3(-0.3f, 1.0f, 0.0f))}) {
+    const double exact = sphere_irradiance(scene.meshes[0], reference, normal);
+    Rng rng(23, 1);
+    const test::MeanAndError est = test::monte_carlo(200000, [&](int) {
+      EmitterSample s;
+      if (!sampler.sample(reference, rng.next_float(), rng.next_2d(), &s)) return 0.0;
+      return double(s.radiance.x) * std::max(0.0, double(glm::dot(s.wi, normal))) / double(s.pdf);
+    });
+    std::cout << "irradiance 2 mm from a sphere lamp, normal (" << normal.x << ", " << normal.y << "): exact " << exact
+              << ", sampled " << est.mean << " +- " << est.standard_error << "\n";
+    EXPECT_NEAR(est.mean, exact, 4.0 * est.standard_error + 2e-3 * exact);
+  }
 }
 
 }  // namespace

@@ -77,6 +77,8 @@ class EmitterSampler {
   // out: light sampling picks the sheet once, and a ray hitting a copy gets the kept one's pdf.
   size_t twin_triangle_count() const { return twins_; }
   size_t cluster_count() const { return clusters_.size(); }
+  // More than kMaxSpatialClusters clusters and punctual lights: chosen by power alone, without trees.
+  bool chosen_by_power() const { return !empty() && !spatial_; }
   float total_power() const { return distribution_.total(); }
 
   // A lower bound of the distance from `point` to every emitter that is ever sampled (the

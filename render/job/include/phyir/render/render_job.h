@@ -56,6 +56,8 @@ struct RenderReport {
     size_t twin_emissive_triangles = 0;      // coincident copies of double-sided emitters: sampled once
     std::vector<std::string> warnings;       // what the loader skipped or approximated
     int point_lights = 0, spot_lights = 0, directional_lights = 0;  // KHR_lights_punctual
+    size_t emitter_clusters = 0;             // what light sampling chooses among first (EmitterSampler)
+    bool emitters_by_power = false;          // too many clusters and punctual lights: chosen by power alone
   };
   struct Timings {
     double load_seconds = 0.0, build_seconds = 0.0, write_seconds = 0.0, total_seconds = 0.0;
