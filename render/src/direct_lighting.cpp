@@ -76,11 +76,7 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
     float w = 1.0f;
     if (options.mis && !ls.delta)
       w = power_heuristic(float(options.light_samples) * ls.pdf,
-                          options.brdf_strategy_probability * options.guide.pdf(lobe_pdf(x, options.lobes, wi), ls.wi),
-                          options.subpaths ? options.subpaths->emissive_competing_pdf(options.previous, x.position,
-                                                                                        x.geometric_normal, ls.wi,
-                                                                                        ls.mesh, ls.triangle)
-                                           : 0.0f);
+                          options.brdf_strategy_probability * options.guide.pdf(lobe_pdf(x, options.lobes, wi), ls.wi));
     else if (ls.delta && options.subpaths)
       w = options.subpaths->eye_weight(options.previous, x, ls.light, ls.pdf);
     return throughput * f * ls.radiance * (wi.z * w / ls.pdf);
@@ -184,10 +180,9 @@ glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint&
 }
 
 float emitter_hit_weight(const RenderScene& scene, const glm::vec3& from, float brdf_pdf, const SurfaceInteraction& hit,
-                         int light_samples, bool punctual, float subpath_pdf) {
-  return power_heuristic(
-      brdf_pdf, float(light_samples) * scene.emitters().pdf(from, hit.mesh, hit.triangle, hit.position, punctual),
-      subpath_pdf);
+                         int light_samples, bool punctual) {
+  return power_heuristic(brdf_pdf, float(light_samples) *
+                                       scene.emitters().pdf(from, hit.mesh, hit.triangle, hit.position, punctual));
 }
 
 float environment_hit_weight(const RenderScene& scene, const glm::vec3& from, float brdf_pdf, const glm::vec3& direction) {

@@ -466,7 +466,9 @@ bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const gl
 
 float EmitterSampler::pdf(const glm::vec3& reference, int mesh, int triangle, const glm::vec3& point,
                           bool punctual) const {
-  const int index = index_of(mesh, triangle);
+  if (mesh < 0 || static_cast<size_t>(mesh) >= first_of_mesh_.size() || first_of_mesh_[mesh] < 0) return 0.0f;
+  if (triangle < 0 || static_cast<size_t>(triangle) >= scene_->meshes[mesh].triangles.size()) return 0.0f;
+  const int index = lookup_[first_of_mesh_[mesh] + triangle];
   if (index < 0) return 0.0f;
   const EmissiveTriangle& e = triangles_[index];
   const float pmf = selection_pmf(reference, index, punctual);
@@ -474,12 +476,6 @@ float EmitterSampler::pdf(const glm::vec3& reference, int mesh, int triangle, co
   if (by_solid_angle(e, reference) && seen.set(reference, e.p0, e.p1, e.p2))
     return solid_angle_sampled(pmf, seen.solid_angle(), e.normal, reference, point).pdf;
   return area_sampled(pmf, e.area, e.normal, reference, point).pdf;
-}
-
-int EmitterSampler::index_of(int mesh, int triangle) const {
-  if (mesh < 0 || static_cast<size_t>(mesh) >= first_of_mesh_.size() || first_of_mesh_[mesh] < 0) return -1;
-  if (triangle < 0 || static_cast<size_t>(triangle) >= scene_->meshes[mesh].triangles.size()) return -1;
-  return lookup_[first_of_mesh_[mesh] + triangle];
 }
 
 float EmitterSampler::delta_pmf(const glm::vec3& reference, int light) const {

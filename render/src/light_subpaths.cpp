@@ -25,17 +25,6 @@ constexpr size_t kMaxSpatialLights = 64;
 
 }  // namespace
 
-LightSubpathVariates draw_subpath_variates(Rng* rng) {
-  LightSubpathVariates u;
-  u.choice = rng->next_float();
-  u.direction = rng->next_2d();
-  u.emission.select = rng->next_float();
-  u.emission.point = rng->next_2d();
-  u.emission.side = rng->next_float();
-  u.emission_direction = rng->next_2d();
-  return u;
-}
-
 LightSubpaths::LightSubpaths(const RenderScene& scene) : scene_(&scene) {
   const DeltaLights& lights = scene.emitters().delta_lights();
   entry_.assign(size_t(lights.size()), -1);
@@ -54,21 +43,6 @@ LightSubpaths::LightSubpaths(const RenderScene& scene) : scene_(&scene) {
     lights_.push_back(l);
     total_power_ += l.power;
   }
-  emissive_ = scene.emitters().emissive_triangle_count() > 0;
-}
-
-void LightSubpaths::sample(const glm::vec3& choice_from, const LightSubpathVariates& u, DrawnSubpaths* out,
-                           PathCounters* counters) const {
-  out->has_punctual = !lights_.empty() && sample(choice_from, u, &out->punctual, counters);
-  out->has_emissive = emissive_ && sample_emissive(choice_from, u, &out->emissive, counters);
-}
-
-glm::vec3 LightSubpaths::join(const ShadingPoint& x, const DrawnSubpaths& drawn, Lobes lobes,
-                              const GuideMixture& guide, const glm::vec3& throughput, PathCounters* counters) const {
-  glm::vec3 sum(0.0f);
-  if (drawn.has_punctual) sum += join(x, drawn.punctual, lobes, guide, throughput, counters);
-  if (drawn.has_emissive) sum += join_emissive(x, drawn.emissive, lobes, guide, throughput, counters);
-  return sum;
 }
 
 bool LightSubpaths::joinable(const SurfaceInteraction& y) { return !is_mirror(y.brdf.roughness) && !(y.transmission > 0.0f); }

@@ -36,7 +36,8 @@ class PathKernel {
       previous_pdf_ = start.previous->pdf;
       subpath_drawn_ = true;
       choice_from_ = start.previous->choice_from;
-      if (start.subpath) drawn_ = *start.subpath;
+      subpath_valid_ = start.subpath != nullptr;
+      if (start.subpath) subpath_ = *start.subpath;
     }
     ++counters_->paths;
     for (int bounce = 0;; ++bounce) {
@@ -72,8 +73,7 @@ class PathKernel {
     }
     if (si->emits) {
       float w = 1.0f;
-      if (kEmitters && !previous_delta_)
-        w = emitter_hit_weight(scene_, previous_position_, previous_pdf_, *si, 1, true, emissive_subpath_pdf(*si));
+      if (kEmitters && !previous_delta_) w = emitter_hit_weight(scene_, previous_position_, previous_pdf_, *si);
       gather(beta_ * si->emission, w);
     }
     return true;
@@ -139,13 +139,9 @@ class PathKernel {
       options.guide = mixture;
       // Against the light subpath the previous vertex joined (none before the first hit,
       // after a mirror, or at glass, where no subpath can end).
-      competing_ = !previous_delta_ && (bounce == 0 ? subpaths_ != nullptr : joins_at(bounce - 1)) &&
-                   LightSubpaths::joinable(si);
-      if (competing_) {
+      if (!previous_delta_ && (bounce == 0 ? subpaths_ != nullptr : joins_at(bounce - 1)) && LightSubpaths::joinable(si)) {
         options.subpaths = subpaths_;
         options.previous = PreviousVertex{previous_position_, previous_pdf_, choice_from_};
-        competing_previous_ = options.previous;
-        competing_normal_ = si.geometric_normal;
       }
       gather(sample_emitter_light(scene_, x, u, options, beta_, nullptr, counters_), 1.0f);
     }
@@ -167,21 +163,14 @@ class PathKernel {
     if (!joins_at(bounce)) return;
     if (!subpath_drawn_) {
       Rng rng = stream(key_, Purpose::kPathLightSubpath);
-      const LightSubpathVariates u = draw_subpath_variates(&rng);
+      LightSubpathVariates u;
+      u.choice = rng.next_float();
+      u.direction = rng.next_2d();
       subpath_drawn_ = true;
       choice_from_ = x.position;
-      subpaths_->sample(choice_from_, u, &drawn_, counters_);
-      if (drawn_.has_emissive && settings_.guide) drawn_.emissive.hit_guide = guide_mixture(drawn_.emissive.hit);
+      subpath_valid_ = subpaths_->sample(choice_from_, u, &subpath_, counters_);
     }
-    gather(subpaths_->join(x, drawn_, Lobes::kAll, mixture, beta_, counters_), 1.0f);
-  }
-
-  // The emissive subpath's density of the path that reached emitter `hit` from the previous
-  // vertex, where that vertex's next-event estimate competed with the subpaths.
-  float emissive_subpath_pdf(const SurfaceInteraction& hit) const {
-    if (!competing_ || !subpaths_) return 0.0f;
-    return subpaths_->emissive_competing_pdf(competing_previous_, previous_position_, competing_normal_, ray_.direction,
-                                             hit.mesh, hit.triangle);
+    if (subpath_valid_) gather(subpaths_->join(x, subpath_, Lobes::kAll, mixture, beta_, counters_), 1.0f);
   }
 
   // The environment sample's numbers for the vertex the next ray finds, drawn before that
@@ -254,13 +243,8 @@ class PathKernel {
   PathCounters* counters_;
   PathRecords* records_;  // training a guide only
   const LightSubpaths* subpaths_ = nullptr;
-  bool subpath_drawn_ = false;  // the path's light subpaths
-  DrawnSubpaths drawn_;
-  // Whether the previous vertex's next-event estimate competed with the subpaths, with its own
-  // previous vertex and geometric normal (the BRDF ray from it that hits an emitter does too).
-  bool competing_ = false;
-  PreviousVertex competing_previous_;
-  glm::vec3 competing_normal_{0.0f};
+  bool subpath_drawn_ = false, subpath_valid_ = false;  // the path's light subpath
+  LightVertex subpath_;
   glm::vec3 choice_from_{0.0f};  // where it chose its light
   const EnvironmentLight* environment_;
   glm::vec3 L_{0.0f};
@@ -288,8 +272,7 @@ glm::vec3 trace_path(const RenderScene& scene, const PathSettings& settings, con
 
 PathTracer::PathTracer(const RenderScene& scene, const Effects& effects, const PathSettings& settings)
     : scene_(&scene), effects_(effects), settings_(settings),
-      subpaths_(settings.light_subpaths && (effects.punctual_lights || effects.emitters) ? LightSubpaths(scene)
-                                                                                          : LightSubpaths()) {
+      subpaths_(settings.light_subpaths && effects.punctual_lights ? LightSubpaths(scene) : LightSubpaths()) {
   const int key = (effects.light_sampling() ? 4 : 0) | (effects.environment ? 2 : 0) | (effects.transmission ? 1 : 0);
   static constexpr Kernel kKernels[8] = {
       &trace_path<false, false, false>, &trace_path<false, false, true>,
@@ -324,7 +307,7 @@ glm::vec3 PathTracer::continue_from(const SurfaceInteraction& hit, const Ray& ra
 }
 
 glm::vec3 PathTracer::continue_from(const SurfaceInteraction& hit, const Ray& ray, const PreviousVertex& previous,
-                                    const DrawnSubpaths* subpath, uint64_t path_key, int max_bounces,
+                                    const LightVertex* subpath, uint64_t path_key, int max_bounces,
                                     PathCounters* counters) const {
   return kernel_(*scene_, settings_, PathStart{ray, &hit, nullptr, nullptr, light_subpaths(), &previous, subpath},
                  path_key, max_bounces, counters);

@@ -94,15 +94,19 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
   }
   const EnvironmentLight* environment = scene.environment();
   glm::vec3 E = environment ? environment_irradiance(x, key, counters) : glm::vec3(0.0f);
-  // The estimate's light subpaths, joined here and at the vertices of the path from the
-  // cosine ray's hit, compete with their next-event estimates and BRDF rays (only where that
-  // path goes on: docs/light-subpaths.md).
+  // The estimate's light subpath, joined here and at the vertices of the path from the
+  // cosine ray's hit, competes with their punctual lights' estimates (only where that path
+  // goes on: docs/light-subpaths.md).
   const LightSubpaths* subpaths = max_bounces_ >= 2 ? tracer_.light_subpaths() : nullptr;
-  DrawnSubpaths drawn;
+  LightVertex subpath;
+  bool has_subpath = false;
   if (subpaths) {
     Rng rng = stream(key, Purpose::kCacheFillLightSubpath);
-    subpaths->sample(point.position, draw_subpath_variates(&rng), &drawn, counters);
-    E += subpaths->join(x, drawn, Lobes::kCosine, GuideMixture{}, glm::vec3(1.0f), counters);
+    LightSubpathVariates v;
+    v.choice = rng.next_float();
+    v.direction = rng.next_2d();
+    has_subpath = subpaths->sample(point.position, v, &subpath, counters);
+    if (has_subpath) E += subpaths->join(x, subpath, Lobes::kCosine, GuideMixture{}, glm::vec3(1.0f), counters);
   }
   const glm::vec3 local = sample_cosine_hemisphere(u);
   const glm::vec3 wi = x.frame.to_world(local);
@@ -125,7 +129,7 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
     // The light the hit reflects (its emission is direct light, above).
     if (max_bounces_ >= 2)
       E += kPi * tracer_.continue_from(si, ray, PreviousVertex{point.position, local.z * kInvPi, point.position},
-                                       subpaths ? &drawn : nullptr, key, max_bounces_ - 1, counters);
+                                       has_subpath ? &subpath : nullptr, key, max_bounces_ - 1, counters);
   }
   return finish_indirect(E, &out, counters);
 }

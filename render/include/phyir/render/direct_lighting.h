@@ -95,8 +95,7 @@ struct DirectLightOptions {
   // its density in the weight is the mixture's (inactive: the lobes' alone).
   GuideMixture guide;
   // Light subpaths joined at the previous vertex (light_subpaths.h): a punctual light's
-  // sample is weighted against them, an emissive one against them and the BRDF ray (null: as
-  // with no competing subpath).
+  // sample is weighted against them (null: weight 1, as with no competing strategy).
   const LightSubpaths* subpaths = nullptr;
   PreviousVertex previous;
 };
@@ -132,10 +131,8 @@ glm::vec3 sample_environment_light(const RenderScene& scene, const ShadingPoint&
 // the probability of tracing it included) that hits the emitter at `hit`, against
 // `light_samples` next-event samples of the same scattering event, which chose among the
 // punctual lights too or (punctual = false) not.
-// `subpath_pdf`: the emissive light subpath's density of the same path, where one competes
-// (LightSubpaths::emissive_competing_pdf; 0: none).
 float emitter_hit_weight(const RenderScene& scene, const glm::vec3& from, float brdf_pdf, const SurfaceInteraction& hit,
-                         int light_samples = 1, bool punctual = true, float subpath_pdf = 0.0f);
+                         int light_samples = 1, bool punctual = true);
 
 // The same for a ray from `from` that leaves the scene and sees the environment in
 // `direction`, against the environment's sample and (with portals) the portals'.

@@ -60,23 +60,6 @@ struct EmitterSample {
   bool delta = false;          // a punctual light: no MIS, no surface at `position`
 };
 
-// A point on an emissive triangle drawn from the light's side (EmitterSampler::sample_emission),
-// and the side it emits from.
-struct EmissionSample {
-  glm::vec3 position{0.0f};
-  glm::vec3 normal{0.0f};    // unit, on the side the light leaves from
-  glm::vec3 radiance{0.0f};  // emitted from that side at the point (alpha coverage included)
-  float density = 0.0f;      // area density of the point, times the probability of the side
-  int mesh = -1, triangle = -1;
-};
-
-// Its random numbers.
-struct EmissionVariates {
-  float select = 0.5f;  // which cluster, then which triangle
-  glm::vec2 point{0.5f};
-  float side = 0.5f;    // which side of a double-sided emitter
-};
-
 class EmitterSampler {
  public:
   static constexpr int kMaxSpatialClusters = 64;
@@ -117,15 +100,6 @@ class EmitterSampler {
   // The probability that sample() (punctual = true) chooses punctual light `light` from
   // `reference`: its EmitterSample::pdf, without drawing one.
   float delta_pmf(const glm::vec3& reference, int light) const;
-
-  // Light-side sampling (emitter_emission.cpp): a point on an emissive triangle, its cluster
-  // chosen as sample() would from `choice_from` (punctual = false), the triangle by its power
-  // share of the cluster, the point uniform on its area, and a double-sided emitter's side
-  // with probability 1/2. False where nothing emits towards the chosen side.
-  bool sample_emission(const glm::vec3& choice_from, const EmissionVariates& u, EmissionSample* out) const;
-  // Its density (area measure, times the side's probability) of a point on (mesh, triangle)
-  // chosen from `choice_from`: 0 for triangles that are never sampled.
-  float emission_density(const glm::vec3& choice_from, int mesh, int triangle) const;
 
  private:
   struct EmissiveTriangle {
@@ -181,10 +155,6 @@ class EmitterSampler {
   // Whether points on `e` are sampled uniformly in solid angle from `reference` (step 2).
   static bool by_solid_angle(const EmissiveTriangle& e, const glm::vec3& reference);
   static glm::vec2 barycentrics_of(const EmissiveTriangle& e, const glm::vec3& point);
-  // The index in triangles_ of (mesh, triangle), -1 if it is never sampled.
-  int index_of(int mesh, int triangle) const;
-  // The probability sample_emission() chooses triangles_[index] from `choice_from`.
-  float emission_pmf(const glm::vec3& choice_from, int index) const;
   const scenes::Scene* scene_;
   std::vector<EmissiveTriangle> triangles_;
   // (mesh, triangle) -> index in triangles_: lookup_[first_of_mesh_[mesh] + triangle],

@@ -29,19 +29,6 @@
 // light strategy. A path draws one light subpath, at its first joining vertex, and joins it
 // at every vertex (as bidirectional path tracing joins one light subpath to every eye
 // vertex): one ray per path and one shadow ray per joined vertex.
-//
-// Glowing surfaces (emissive triangles) get a subpath of their own, drawn and joined the same
-// way (emissive_subpaths.cpp): a point z on an emitter by EmitterSampler::sample_emission
-// from x0 (density p_A(z), the side's probability included), a cosine direction from its
-// emitting side, traced to y. Light that reaches x from z through y is then sampled three
-// ways, weighted by the power heuristic over their densities of (y, z):
-//   next-event estimate at y:  p_x^A(y) p_nee(z | y) cos_z / |y - z|^2
-//   BRDF ray from y hits z:    p_x^A(y) p_y(y->z)    cos_z / |y - z|^2
-//   light subpath joined at x: p_A(z) (cos_z / pi) cos_y,z / |y - z|^2
-// (p_x^A(y) = p_x(x->y) cos_y,x / |x - y|^2). Divided by the eye's common factor, the
-// subpath competes with the two eye strategies in solid angle at y as
-//   p_sub = p_A(z) cos_y,z / (pi p_x^A(y)).
-// The next-event estimate and the BRDF hit at y need x (the vertex two back from z).
 #include <cstdint>
 #include <vector>
 
@@ -52,64 +39,39 @@
 #include "phyir/render/interaction.h"
 #include "phyir/render/path_counters.h"
 #include "phyir/render/render_scene.h"
-#include "phyir/render/rng.h"
 
 namespace phyir::render {
 
 // A light subpath: the light, where it was chosen from, and the surface its direction
 // found first.
 struct LightVertex {
-  int light = -1;               // a punctual light, or -1: an emissive triangle's point
+  int light = -1;
   glm::vec3 choice_from{0.0f};  // the vertex whose P(l | x) chose the light
   SurfaceInteraction hit;       // normals face the light
   // What every join of it weighs with, the same at each: the light strategy's density of
-  // `hit` (area measure) and, for a punctual light, the probability that a next-event estimate
-  // there chooses it; for an emissive point, the next-event estimate's solid-angle density of
-  // it from `hit`.
+  // `hit` and the probability that a next-event estimate there chooses `light`.
   float density = 0.0f;
   float nee_pmf = 0.0f;
-  EmissionSample origin;        // an emissive subpath's point on the emitter
-  GuideMixture hit_guide;       // what the eye's ray from `hit` would be drawn from
 };
 
-// The subpaths a path draws at its first joining vertex: one from the punctual lights, one
-// from the emissive triangles, each where the scene has them and its ray found a joinable
-// surface.
-struct DrawnSubpaths {
-  LightVertex punctual, emissive;
-  bool has_punctual = false, has_emissive = false;
-};
-
-// The random numbers of one path's light subpaths, drawn in this order.
+// The random numbers of one light subpath.
 struct LightSubpathVariates {
-  float choice = 0.5f;     // which punctual light
+  float choice = 0.5f;     // which light
   glm::vec2 direction{0.5f};
-  EmissionVariates emission;         // the emissive subpath's point
-  glm::vec2 emission_direction{0.5f};
 };
-
-// A path's subpath numbers from its stream, in the order above.
-LightSubpathVariates draw_subpath_variates(Rng* rng);
 
 class LightSubpaths {
  public:
   LightSubpaths() = default;  // none
   explicit LightSubpaths(const RenderScene& scene);
 
-  // No point or spot light and no emissive triangle: nothing to join.
-  bool empty() const { return lights_.empty() && !emissive_; }
-  bool emissive() const { return emissive_; }
+  // No point or spot light: nothing to join.
+  bool empty() const { return lights_.empty(); }
 
-  // The path's subpaths, their lights chosen from `choice_from` (one ray each, counted).
-  void sample(const glm::vec3& choice_from, const LightSubpathVariates& u, DrawnSubpaths* out,
-              PathCounters* counters) const;
-  // One subpath from a punctual light; false where it leaves the scene or lands where it
-  // cannot be joined (joinable()).
+  // One light subpath, its light chosen from `choice_from` (one ray, counted); false where
+  // it leaves the scene or lands where it cannot be joined (joinable()).
   bool sample(const glm::vec3& choice_from, const LightSubpathVariates& u, LightVertex* out,
               PathCounters* counters) const;
-  // One subpath from an emissive triangle (emissive_subpaths.cpp).
-  bool sample_emissive(const glm::vec3& choice_from, const LightSubpathVariates& u, LightVertex* out,
-                       PathCounters* counters) const;
 
   // The light strategy's density (area measure) of a joinable point y, geometric normal
   // `ng_y` facing the joining vertex, for light `light` (a DeltaLights index) chosen from
@@ -122,19 +84,9 @@ class LightSubpaths {
   // `previous`; y must not be glass (the caller's check: ShadingPoint does not know).
   float eye_weight(const PreviousVertex& previous, const ShadingPoint& y, int light, float nee_pmf) const;
 
-  // The emissive subpath's density in the eye's next-event estimate and BRDF hit at y of the
-  // point on (mesh, triangle) in direction wi (unit, from y), on a path that came from
-  // `previous`, in solid angle at y (p_sub above); 0 where the emissive subpath cannot make
-  // that path. ng_y: y's geometric normal.
-  float emissive_competing_pdf(const PreviousVertex& previous, const glm::vec3& y, const glm::vec3& ng_y,
-                               const glm::vec3& wi, int mesh, int triangle) const;
-
   // Subpath `v` joined to x (its lobes `lobes`; the eye's ray from x is drawn from `guide`'s
   // mixture of them), MIS-weighted, times `throughput`. One shadow ray, counted.
   glm::vec3 join(const ShadingPoint& x, const LightVertex& v, Lobes lobes, const GuideMixture& guide,
-                 const glm::vec3& throughput, PathCounters* counters) const;
-  // Both of a path's subpaths joined to x.
-  glm::vec3 join(const ShadingPoint& x, const DrawnSubpaths& drawn, Lobes lobes, const GuideMixture& guide,
                  const glm::vec3& throughput, PathCounters* counters) const;
 
   // Whether a light subpath can end at this surface: neither a mirror nor glass.
@@ -157,15 +109,11 @@ class LightSubpaths {
   // The eye strategy's density of the subpath's hit from x (drawn from `guide`'s mixture).
   static float eye_density(const ShadingPoint& x, Lobes lobes, const GuideMixture& guide, const glm::vec3& wi_world,
                            const LightVertex& v, float distance2);
-  // An emissive subpath joined to x (emissive_subpaths.cpp).
-  glm::vec3 join_emissive(const ShadingPoint& x, const LightVertex& v, Lobes lobes, const GuideMixture& guide,
-                          const glm::vec3& throughput, PathCounters* counters) const;
 
   const RenderScene* scene_ = nullptr;
   std::vector<Light> lights_;
   std::vector<int> entry_;  // DeltaLights index -> index in lights_, -1 for directional
   float total_power_ = 0.0f;
-  bool emissive_ = false;  // the scene has emissive triangles to draw subpaths from
 };
 
 }  // namespace phyir::render

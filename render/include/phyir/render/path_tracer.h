@@ -67,8 +67,8 @@ struct PathStart {
   guiding::RecordBuffer* records = nullptr;  // training: each vertex's radiance record goes here
   const LightSubpaths* subpaths = nullptr;   // joined at every vertex where set
   const PreviousVertex* previous = nullptr;  // the vertex before `hit`, where the path came from one
-  // With `previous`: the light subpaths its path drew there (null: none).
-  const DrawnSubpaths* subpath = nullptr;
+  // With `previous`: the light subpath its path drew there (null: it drew one that failed).
+  const LightVertex* subpath = nullptr;
 };
 
 class PathTracer {
@@ -95,14 +95,14 @@ class PathTracer {
   glm::vec3 continue_from(const SurfaceInteraction& hit, const Ray& ray, uint64_t path_key, int max_bounces,
                           PathCounters* counters) const;
   // The same for a hit found by a ray drawn at a surface vertex `previous`, which drew the
-  // light subpaths `subpath` and joined them: the path joins the same subpaths at its
-  // vertices and weighs its next-event estimates (and its BRDF rays that hit emitters) against them.
+  // light subpath `subpath` (null where that failed) and joined it: the path joins the same
+  // subpath at its vertices and weighs the punctual lights' next-event estimates against it.
   glm::vec3 continue_from(const SurfaceInteraction& hit, const Ray& ray, const PreviousVertex& previous,
-                          const DrawnSubpaths* subpath, uint64_t path_key, int max_bounces,
+                          const LightVertex* subpath, uint64_t path_key, int max_bounces,
                           PathCounters* counters) const;
 
   // The light subpaths every vertex joins; null where they are off or the scene has no
-  // point or spot light and no emissive triangle.
+  // point or spot light.
   const LightSubpaths* light_subpaths() const { return subpaths_.empty() ? nullptr : &subpaths_; }
 
   const Effects& effects() const { return effects_; }
