@@ -126,6 +126,7 @@ void refine_to_error(const ProbeSettings& settings, const std::vector<int>& subs
   std::vector<int> passes = first_passes(out, subset);
   ProbeErrorTarget& record = out.stats.error;
   record.target = settings.target_error;
+  std::vector<uint8_t> choices = out.texel_choices;
   for (int k = 1; settings.target_error > 0.0f && k < kMaxErrorPasses; ++k) {
     const double reached = estimated_grid_error(out, passes).relative();
     // The target is a float: a float's rounding is not a reason for another pass.
@@ -134,7 +135,9 @@ void refine_to_error(const ProbeSettings& settings, const std::vector<int>& subs
     if (refine.empty()) break;
     spdlog::info("probes: estimated error {:.4f} above the target {:.4f}: pass {} over {} probes", reached,
                  settings.target_error, k + 1, refine.size());
-    const ProbeOutput pass = render_pass(pass_settings(settings, k), refine);
+    const ProbeOutput pass = render_pass(pass_settings(settings, k), refine, choices);
+    for (size_t i = 0; i < choices.size() && i < pass.texel_choices.size(); ++i)
+      choices[i] = std::max(choices[i], pass.texel_choices[i]);
     merge_pass(pass, refine, &passes, &out);
     add_pass_stats(pass.stats, &out.stats);
     record.refined_probes += refine.size();

@@ -11,7 +11,11 @@
 // weights keep the mean's expectation that of one pass; weights from the estimated sigmas
 // would correlate with the values they weight (a pass that missed a bright path reports a
 // low sigma too) and bias it. Which probes are refined looks at sigma only, never at the
-// values a later pass adds, so it leaves each pass's expectation alone.
+// values a later pass adds, so it leaves each pass's expectation alone. Likewise which texels
+// a later pass supersamples comes from the earlier passes' choices (ProbeOutput::texel_choices),
+// not from its own first samples, which it then keeps whatever they hold: a first look keeps
+// its samples only where they missed a rare bright part, a loss that every pass choosing by
+// its own first look would repeat.
 //
 // What the target bounds: the noise the standard error sees. A bias is not in sigma; the
 // passes' schedule shrinks the part of it that comes from cache mode's kernels.
@@ -47,8 +51,10 @@ std::vector<int> probes_to_refine(const ProbeOutput& out, const std::vector<int>
 // counts it in `passes`.
 void merge_pass(const ProbeOutput& pass, const std::vector<int>& refined, std::vector<int>* passes, ProbeOutput* total);
 
-// Renders one independent pass of the given probes under the given settings.
-using ProbePass = std::function<ProbeOutput(const ProbeSettings& settings, const std::vector<int>& subset)>;
+// Renders one independent pass of the given probes under the given settings, each texel
+// supersampled by `choices` (the earlier passes' TexelChoice, the most any of them made).
+using ProbePass = std::function<ProbeOutput(const ProbeSettings& settings, const std::vector<int>& subset,
+                                            const std::vector<uint8_t>& choices)>;
 
 // Refines `first` (a pass of `settings` over `subset`, empty: every probe) until its estimated error is at most
 // settings.target_error (no refinement when it is 0) or kMaxErrorPasses passes were made; its statistics then include

@@ -66,8 +66,9 @@ ProbeOutput ProbeRenderer::render(const CameraModel& camera) const {
 ProbeOutput ProbeRenderer::render_at(std::vector<ProbeSite> sites, const std::vector<int>& subset) const {
   const std::vector<ProbeSite> pass_sites = settings_.target_error > 0.0f ? sites : std::vector<ProbeSite>();
   ProbeOutput out = ProbeView(scene_, effects_, settings_, std::move(sites), subset).run();
-  auto render_pass = [&](const ProbeSettings& settings, const std::vector<int>& probes) {
-    return ProbeView(scene_, effects_, settings, pass_sites, probes).run();
+  auto render_pass = [&](const ProbeSettings& settings, const std::vector<int>& probes,
+                         const std::vector<uint8_t>& choices) {
+    return ProbeView(scene_, effects_, settings, pass_sites, probes, &choices).run();
   };
   refine_to_error(settings_, subset, render_pass, &out);
   return out;

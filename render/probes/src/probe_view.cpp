@@ -50,7 +50,8 @@ ProbeTiles probe_tiles(const std::vector<int>& todo, int grid_width) {
 }  // namespace
 
 ProbeView::ProbeView(const RenderScene& scene, const Effects& effects, const ProbeSettings& settings,
-                     std::vector<ProbeSite> sites, const std::vector<int>& subset)
+                     std::vector<ProbeSite> sites, const std::vector<int>& subset,
+                     const std::vector<uint8_t>* earlier_choices)
     : scene_(scene),
       effects_(effects),
       settings_(settings),
@@ -71,6 +72,9 @@ ProbeView::ProbeView(const RenderScene& scene, const Effects& effects, const Pro
   out_.position = Image(layout_.grid_width, layout_.grid_height, 3);
   out_.normal = Image(layout_.grid_width, layout_.grid_height, 3);
   out_.mask = Image(layout_.grid_width, layout_.grid_height, 1);
+  if (settings.target_error > 0.0f) out_.texel_choices.assign(size_t(layout_.probe_count()) * size_t(texels_), kPlainTexel);
+  if (earlier_choices && earlier_choices->size() == size_t(layout_.probe_count()) * size_t(texels_))
+    earlier_ = earlier_choices;
   for (int p : subset)
     if (p < 0 || p >= layout_.probe_count())
       fail("probe index {} outside the {}x{} grid", p, layout_.grid_height, layout_.grid_width);

@@ -31,8 +31,11 @@ namespace phyir::render {
 
 class ProbeView {
  public:
+  // `earlier_choices`: the texel choices of earlier passes over these probes (their
+  // maximum); where given, every texel takes its choice from them, not from its own samples.
   ProbeView(const RenderScene& scene, const Effects& effects, const ProbeSettings& settings,
-            std::vector<ProbeSite> sites, const std::vector<int>& subset);
+            std::vector<ProbeSite> sites, const std::vector<int>& subset,
+            const std::vector<uint8_t>* earlier_choices = nullptr);
   ProbeOutput run();
 
  private:
@@ -113,6 +116,9 @@ class ProbeView {
   void share_between_neighbours();
 
   bool in_pass(const TileProbe& probe, int t, int pass) const;
+  // The choice a texel's own samples make, kept for later passes; and the earlier passes'.
+  void note_choice(const Texel& x, TexelChoice choice);
+  TexelChoice earlier_choice(const Texel& x) const;
   uint64_t texel_id(int probe, int texel) const { return uint64_t(probe) * uint64_t(texels_) + uint64_t(texel); }
 
   const RenderScene& scene_;
@@ -131,6 +137,7 @@ class ProbeView {
   std::vector<FootCorrection> feet_;
   glm::vec3 common_difference_{0.0f};
   tbb::enumerable_thread_specific<Worker> workers_;
+  const std::vector<uint8_t>* earlier_ = nullptr;
   Progress* progress_ = nullptr;  // during run()
 };
 

@@ -89,7 +89,11 @@ glm::vec3 ProbeView::settle(TileProbe& probe, int t, Worker* w) {
   // emission seen directly, estimated apart) makes the same spread matter less.
   const float limit = settings_.spread_threshold * (luminance(s.first) + luminance(s.exact) + transport_.dark_floor());
   const float step = s.part == Part::kAll ? neighbour_step(probe, t) : 0.0f;
-  const bool hard = s.hard || (spp > 1 && s.spread > limit) || step > limit;
+  const bool own = s.hard || (spp > 1 && s.spread > limit) || step > limit;
+  if (own) note_choice(s.x, kHardTexel);
+  // A later pass keeps or replaces its first samples by the earlier passes' choice, which
+  // does not depend on them: its value is unbiased (docs/probes.md, "Accuracy as a target").
+  const bool hard = earlier_ ? earlier_choice(s.x) >= kHardTexel : own;
   if (!hard || !adaptive_) return s.first;
   ++w->stats.supersampled_texels;
   return hard_estimate(s, w);
@@ -98,11 +102,15 @@ glm::vec3 ProbeView::settle(TileProbe& probe, int t, Worker* w) {
 glm::vec3 ProbeView::hard_estimate(TexelState& s, Worker* w) {
   const int spp = settings_.spp, hard_spp = spp * settings_.hard_spp_factor;
   bool unused = false;
-  s.x.samples = hard_spp;
-  float hard_spread = 0.0f;
-  const glm::vec3 value = estimate(s.x, spp, hard_spp, s.part, &unused, &hard_spread, w);
-  if (!(hard_spread > kDeepSpreadRatio * (luminance(value) + luminance(s.exact) + transport_.dark_floor())))
-    return value;
+  const bool deep_before = earlier_ && earlier_choice(s.x) >= kDeepTexel;
+  if (!deep_before) {
+    s.x.samples = hard_spp;
+    float hard_spread = 0.0f;
+    const glm::vec3 value = estimate(s.x, spp, hard_spp, s.part, &unused, &hard_spread, w);
+    const bool own = hard_spread > kDeepSpreadRatio * (luminance(value) + luminance(s.exact) + transport_.dark_floor());
+    if (own) note_choice(s.x, kDeepTexel);
+    if (!own || earlier_) return value;
+  }
   // A rare bright part (a sun patch's rim, a lamp's halo on the ceiling) that few of the
   // hard samples found: its share of the texel is still a guess. Fresh samples again, more,
   // numbered after every other batch of the texel (its light's emission included).
@@ -110,6 +118,16 @@ glm::vec3 ProbeView::hard_estimate(TexelState& s, Worker* w) {
   s.x.samples = hard_spp * kDeepSppFactor;
   return estimate(s.x, spp * (1 + settings_.hard_spp_factor + kEmissionEdgeSppFactor), s.x.samples, s.part, &unused,
                   nullptr, w);
+}
+
+void ProbeView::note_choice(const Texel& x, TexelChoice choice) {
+  if (out_.texel_choices.empty()) return;
+  uint8_t& noted = out_.texel_choices[size_t(texel_id(x.probe->p, x.t))];
+  noted = std::max(noted, uint8_t(choice));
+}
+
+TexelChoice ProbeView::earlier_choice(const Texel& x) const {
+  return earlier_ ? TexelChoice((*earlier_)[size_t(texel_id(x.probe->p, x.t))]) : kPlainTexel;
 }
 
 float ProbeView::neighbour_step(const TileProbe& probe, int t) const {

@@ -76,6 +76,9 @@ struct ProbeStats {
   nlohmann::json cache_json() const;   // its "cache": cells, fill samples, fallbacks
 };
 
+// A texel's supersampling choice in one render (docs/probes-estimator.md, "Hard texels").
+enum TexelChoice : uint8_t { kPlainTexel = 0, kHardTexel = 1, kDeepTexel = 2 };
+
 struct ProbeOutput {
   ProbeLayout layout;
   std::vector<ProbeSite> sites;  // row-major, H x W
@@ -89,6 +92,9 @@ struct ProbeOutput {
   Image normal;                  // H x W, X,Y,Z: the normal each origin is offset along
   Image mask;                    // H x W, Y: 1 for valid probes
   ProbeStats stats;
+  // With an error target: each texel's TexelChoice in this render as its own samples would
+  // make it (probe x texels + texel); the later passes take theirs from the earlier ones.
+  std::vector<uint8_t> texel_choices;
 };
 
 class ProbeRenderer {
