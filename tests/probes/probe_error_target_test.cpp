@@ -71,6 +71,21 @@ TEST(ProbeErrorTarget, MergeIsTheEqualWeightMeanOfThePasses) {
   EXPECT_EQ(passes, (std::vector<int>{3, 1}));
 }
 
+// With the directions behind each texel, each pass weighs by them: 4 held, 24 added.
+TEST(ProbeErrorTarget, MergeWeighsEachPassByItsDirections) {
+  ProbeOutput total = constant_probes({1.0f, 2.0f}, {0.4f, 0.2f});
+  ProbeOutput pass = constant_probes({4.0f, 100.0f}, {0.2f, 9.0f});
+  total.texel_samples.assign(16, 4.0f);
+  pass.texel_samples.assign(16, 24.0f);
+  std::vector<int> passes{1, 1};
+  merge_pass(pass, {0}, &passes, &total);
+  EXPECT_NEAR(texel(total, 0), (4.0 * 1.0 + 24.0 * 4.0) / 28.0, 1e-6);
+  EXPECT_NEAR(sigma_of(total, 0), std::sqrt(16.0 * 0.16 + 576.0 * 0.04) / 28.0, 1e-6);
+  EXPECT_EQ(total.texel_samples[0], 28.0f);
+  EXPECT_EQ(total.texel_samples[8], 4.0f);  // probe 1, not refined
+  EXPECT_EQ(texel(total, 1), 2.0f);
+}
+
 TEST(ProbeErrorTarget, RefinesTheProbesHoldingTheVariance) {
   const ProbeOutput out = constant_probes({1.0f, 1.0f, 1.0f}, {0.05f, 0.5f, 0.01f});
   const std::vector<int> passes = first_passes(out, {});

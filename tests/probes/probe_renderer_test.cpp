@@ -608,10 +608,10 @@ TEST(ProbeDeepTexels, WhatTheFirstLookMissesShrinksAsItsDirectionsGrow) {
   EXPECT_NEAR(more.cache, more.path, 3.0 * more.standard_error + 0.15 * more.path);
 }
 
-// The same 3 cm disc under an error target out of reach (16 passes): the later passes take
-// their texels' choices from the earlier ones, not from their own first directions, so their
-// values are unbiased and the mean of the passes leaves the first look's loss behind (each
-// pass choosing by its own first look kept it: the ratio stayed where one pass has it).
+// The same 3 cm disc under an error target out of reach (16 passes): a later pass also
+// supersamples what an earlier pass found, and the passes weigh by their directions, so the
+// mean of the passes leaves the first look's loss behind (each pass choosing by its own first
+// look alone, equally weighted, kept it: 0.16, where one pass has it).
 TEST(ProbeDeepTexels, PassesToAnErrorTargetLeaveTheFirstLooksLossBehind) {
   const SeedMean m = disc_over_seeds(0.02f, 4, 0, 12, 1e-6f);
   EXPECT_NEAR(m.cache, m.path, 3.0 * m.standard_error + 0.1 * m.path);

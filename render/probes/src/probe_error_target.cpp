@@ -86,15 +86,24 @@ std::vector<int> probes_to_refine(const ProbeOutput& out, const std::vector<int>
 
 void merge_pass(const ProbeOutput& pass, const std::vector<int>& refined, std::vector<int>* passes, ProbeOutput* total) {
   const int texels = total->layout.texels_per_probe();
+  const bool weighted = !pass.texel_samples.empty() && pass.texel_samples.size() == total->texel_samples.size();
   for (int p : refined) {
     const double n = double((*passes)[size_t(p)]);
     for (int t = 0; t < texels; ++t) {
+      const size_t id = size_t(p) * size_t(texels) + size_t(t);
+      // Each pass weighted by its directions (equal weights without them).
+      double held = n, added = 1.0;
+      if (weighted && total->texel_samples[id] > 0.0f && pass.texel_samples[id] > 0.0f)
+        held = total->texel_samples[id], added = pass.texel_samples[id];
+      const double sum = held + added;
       const glm::ivec2 at = total->layout.mosaic_pixel(p, t);
       for (int c = 0; c < 3; ++c)
-        total->mosaic.at(at.x, at.y, c) = float((n * total->mosaic.at(at.x, at.y, c) + pass.mosaic.at(at.x, at.y, c)) / (n + 1.0));
+        total->mosaic.at(at.x, at.y, c) =
+            float((held * total->mosaic.at(at.x, at.y, c) + added * pass.mosaic.at(at.x, at.y, c)) / sum);
       const double old_sigma = total->standard_error.at(at.x, at.y, 0), new_sigma = pass.standard_error.at(at.x, at.y, 0);
       total->standard_error.at(at.x, at.y, 0) =
-          float(std::sqrt(n * n * old_sigma * old_sigma + new_sigma * new_sigma) / (n + 1.0));
+          float(std::sqrt(held * held * old_sigma * old_sigma + added * added * new_sigma * new_sigma) / sum);
+      if (weighted) total->texel_samples[id] = float(sum);
     }
     ++(*passes)[size_t(p)];
   }

@@ -6,16 +6,15 @@
 // probes' texels as a relative RMSE, sqrt(mean sigma^2) / mean luminance. While it is above
 // the target, the probes that hold most of the variance are rendered again as an independent
 // pass (a fresh seed: its own directions and, in cache mode, its own cache, its reuse kernels
-// shrunk: probe_pass_schedule.h), and each texel
-// becomes the equal-weight mean of its probe's passes, sigma^2 the passes' sum over n^2. Equal
-// weights keep the mean's expectation that of one pass; weights from the estimated sigmas
-// would correlate with the values they weight (a pass that missed a bright path reports a
-// low sigma too) and bias it. Which probes are refined looks at sigma only, never at the
-// values a later pass adds, so it leaves each pass's expectation alone. Likewise which texels
-// a later pass supersamples comes from the earlier passes' choices (ProbeOutput::texel_choices),
-// not from its own first samples, which it then keeps whatever they hold: a first look keeps
-// its samples only where they missed a rare bright part, a loss that every pass choosing by
-// its own first look would repeat.
+// shrunk: probe_pass_schedule.h), and each texel becomes the mean of its probe's passes
+// weighted by the directions each spent on it (ProbeOutput::texel_samples; equal weights
+// without them), sigma^2 likewise. Weights from the estimated sigmas would correlate with
+// the values they weight (a pass that missed a bright path reports a low sigma too) and
+// bias it. Which probes are refined looks at sigma only, never at the
+// values a later pass adds. A later pass supersamples the texels its own first look or any
+// earlier pass chose (ProbeOutput::texel_choices): a first look keeps its samples only where
+// they missed a rare bright part, a loss every pass would repeat; once one pass found it,
+// every later pass takes it, and the weights leave the passes that missed it behind.
 //
 // What the target bounds: the noise the standard error sees. A bias is not in sigma; the
 // passes' schedule shrinks the part of it that comes from cache mode's kernels.
@@ -47,8 +46,8 @@ GridError estimated_grid_error(const ProbeOutput& out, const std::vector<int>& p
 // reach. `passes`: each probe's pass count so far (first_passes, then merge_pass).
 std::vector<int> probes_to_refine(const ProbeOutput& out, const std::vector<int>& passes, double target);
 
-// Folds a pass over `refined` into `total` (equal-weight means, sigma^2 summed over n^2) and
-// counts it in `passes`.
+// Folds a pass over `refined` into `total` (means weighted by each texel's directions where
+// both hold them, else equal weights; sigma^2 likewise) and counts it in `passes`.
 void merge_pass(const ProbeOutput& pass, const std::vector<int>& refined, std::vector<int>* passes, ProbeOutput* total);
 
 // Renders one independent pass of the given probes under the given settings, each texel

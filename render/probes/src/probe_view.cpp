@@ -72,7 +72,10 @@ ProbeView::ProbeView(const RenderScene& scene, const Effects& effects, const Pro
   out_.position = Image(layout_.grid_width, layout_.grid_height, 3);
   out_.normal = Image(layout_.grid_width, layout_.grid_height, 3);
   out_.mask = Image(layout_.grid_width, layout_.grid_height, 1);
-  if (settings.target_error > 0.0f) out_.texel_choices.assign(size_t(layout_.probe_count()) * size_t(texels_), kPlainTexel);
+  if (settings.target_error > 0.0f) {
+    out_.texel_choices.assign(size_t(layout_.probe_count()) * size_t(texels_), kPlainTexel);
+    out_.texel_samples.assign(size_t(layout_.probe_count()) * size_t(texels_), 0.0f);
+  }
   if (earlier_choices && earlier_choices->size() == size_t(layout_.probe_count()) * size_t(texels_))
     earlier_ = earlier_choices;
   for (int p : subset)

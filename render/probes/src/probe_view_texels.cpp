@@ -91,9 +91,9 @@ glm::vec3 ProbeView::settle(TileProbe& probe, int t, Worker* w) {
   const float step = s.part == Part::kAll ? neighbour_step(probe, t) : 0.0f;
   const bool own = s.hard || (spp > 1 && s.spread > limit) || step > limit;
   if (own) note_choice(s.x, kHardTexel);
-  // A later pass keeps or replaces its first samples by the earlier passes' choice, which
-  // does not depend on them: its value is unbiased (docs/probes.md, "Accuracy as a target").
-  const bool hard = earlier_ ? earlier_choice(s.x) >= kHardTexel : own;
+  // A later pass also supersamples what an earlier one found (docs/probes.md, "Accuracy as a
+  // target"): once a pass has found a rare bright part, every pass after takes it.
+  const bool hard = own || earlier_choice(s.x) >= kHardTexel;
   if (!hard || !adaptive_) return s.first;
   ++w->stats.supersampled_texels;
   return hard_estimate(s, w);
@@ -109,7 +109,7 @@ glm::vec3 ProbeView::hard_estimate(TexelState& s, Worker* w) {
     const glm::vec3 value = estimate(s.x, spp, hard_spp, s.part, &unused, &hard_spread, w);
     const bool own = hard_spread > kDeepSpreadRatio * (luminance(value) + luminance(s.exact) + transport_.dark_floor());
     if (own) note_choice(s.x, kDeepTexel);
-    if (!own || earlier_) return value;
+    if (!own) return value;
   }
   // A rare bright part (a sun patch's rim, a lamp's halo on the ceiling) that few of the
   // hard samples found: its share of the texel is still a guess. Fresh samples again, more,
@@ -239,6 +239,7 @@ void ProbeView::store_texel(const Texel& x, glm::vec3 value, const glm::vec3& se
   }
   const int p = x.probe->p;
   const uint64_t id = texel_id(p, x.t);
+  if (!out_.texel_samples.empty()) out_.texel_samples[size_t(id)] = float(x.samples);
   if (share_) {
     records_.distance[size_t(id)] = x.distance;
     records_.samples[size_t(id)] = float(x.samples);

@@ -95,6 +95,9 @@ struct ProbeOutput {
   // With an error target: each texel's TexelChoice in this render as its own samples would
   // make it (probe x texels + texel); the later passes take theirs from the earlier ones.
   std::vector<uint8_t> texel_choices;
+  // With an error target: the directions behind each texel's value, its weight when passes
+  // are merged (probe_error_target.h).
+  std::vector<float> texel_samples;
 };
 
 class ProbeRenderer {
