@@ -499,11 +499,8 @@ TEST(ProbeLights, PunctualLightsLightTheTexelsAsInThePathMode) {
   }
 }
 
-// A narrow spot's small, bright disc on the ceiling of a dim room: the texels that hold a
-// small part of it spread over their hard samples by far more than their mean, and are
-// estimated again from 4 x as many fresh directions (stats.deep_texels); the probe still
-// agrees with path mode texel by texel where the disc is.
-TEST(ProbeDeepTexels, ARareBrightPartIsSampledDeeperAndTheProbeStillMatchesThePathMode) {
+// A dim 4 x 2.5 x 4 m room whose ceiling a narrow spot 1.5 m under it lights in a small disc.
+scenes::Scene spot_disc_room(float inner_cone, float outer_cone) {
   scenes::Scene scene = test::make_box_room({-2.0f, 0.0f, -2.0f}, {2.0f, 2.5f, 2.0f},
                                             test::make_material(glm::vec3(0.3f)));
   scenes::PunctualLight spot;
@@ -511,9 +508,18 @@ TEST(ProbeDeepTexels, ARareBrightPartIsSampledDeeperAndTheProbeStillMatchesThePa
   spot.intensity = 50.0f * scenes::PunctualLight::kLumensPerWatt;
   spot.position = glm::vec3(0.8f, 1.0f, 0.4f);
   spot.direction = glm::vec3(0.0f, 1.0f, 0.0f);
-  spot.inner_cone_angle = 0.05f;
-  spot.outer_cone_angle = 0.06f;  // a disc of about 9 cm on the ceiling
+  spot.inner_cone_angle = inner_cone;
+  spot.outer_cone_angle = outer_cone;
   scene.lights = {spot};
+  return scene;
+}
+
+// A narrow spot's small, bright disc on the ceiling of a dim room: the texels that hold a
+// small part of it spread over their hard samples by far more than their mean, and are
+// estimated again from 4 x as many fresh directions (stats.deep_texels); the probe still
+// agrees with path mode texel by texel where the disc is.
+TEST(ProbeDeepTexels, ARareBrightPartIsSampledDeeperAndTheProbeStillMatchesThePathMode) {
+  const scenes::Scene scene = spot_disc_room(0.05f, 0.06f);  // a disc of about 9 cm on the ceiling
   const glm::vec3 origin(0.0f, 1.0f, 0.0f);
   const int h = 16, w = 32;
   ProbeSettings cache = settings_for(ProbeMode::kCache, 4, h, w, 2);
@@ -546,16 +552,7 @@ struct SeedMean {
 };
 
 SeedMean disc_over_seeds(float cone, int spp, int photons, int seeds, float target_error = 0.0f) {
-  scenes::Scene scene = test::make_box_room({-2.0f, 0.0f, -2.0f}, {2.0f, 2.5f, 2.0f},
-                                            test::make_material(glm::vec3(0.3f)));
-  scenes::PunctualLight spot;
-  spot.type = scenes::PunctualLight::Type::Spot;
-  spot.intensity = 50.0f * scenes::PunctualLight::kLumensPerWatt;
-  spot.position = glm::vec3(0.8f, 1.0f, 0.4f);
-  spot.direction = glm::vec3(0.0f, 1.0f, 0.0f);
-  spot.inner_cone_angle = 0.8f * cone;
-  spot.outer_cone_angle = cone;
-  scene.lights = {spot};
+  const scenes::Scene scene = spot_disc_room(0.8f * cone, cone);
   const glm::vec3 origin(0.0f, 1.0f, 0.0f);
   const int h = 16, w = 32;
   ProbeSettings path = settings_for(ProbeMode::kPath, 4096, h, w, 2);

@@ -31,8 +31,8 @@ namespace phyir::render {
 
 class ProbeView {
  public:
-  // `earlier_choices`: the texel choices of earlier passes over these probes (their
-  // maximum); where given, every texel takes its choice from them, not from its own samples.
+  // `earlier_choices`: the texel choices of earlier passes over these probes (the most any
+  // made); a texel is supersampled where its own first look or they chose it.
   ProbeView(const RenderScene& scene, const Effects& effects, const ProbeSettings& settings,
             std::vector<ProbeSite> sites, const std::vector<int>& subset,
             const std::vector<uint8_t>* earlier_choices = nullptr);

@@ -92,8 +92,8 @@ struct ProbeOutput {
   Image normal;                  // H x W, X,Y,Z: the normal each origin is offset along
   Image mask;                    // H x W, Y: 1 for valid probes
   ProbeStats stats;
-  // With an error target: each texel's TexelChoice in this render as its own samples would
-  // make it (probe x texels + texel); the later passes take theirs from the earlier ones.
+  // With an error target: each texel's TexelChoice in this render as its own samples made it
+  // (probe x texels + texel); a later pass also supersamples what an earlier one chose.
   std::vector<uint8_t> texel_choices;
   // With an error target: the directions behind each texel's value, its weight when passes
   // are merged (probe_error_target.h).
