@@ -544,54 +544,68 @@ TEST(ProbeDeepTexels, ARareBrightPartIsSampledDeeperAndTheProbeStillMatchesThePa
   EXPECT_NEAR(disc_cache / disc_ref, 1.0, 0.1);
 }
 
-// The texels of a spot's disc on the ceiling of a dim room (outer cone `cone`) seen from its
-// middle: their path-mode value, and the cache mode's mean over `seeds` seeds and its
-// standard error.
+// A spot's disc on the ceiling of a dim room (outer cone `cone`) seen from the room's middle:
+// the texels that hold it (the path mode's, above twice the probe's mean) and their value.
+struct DiscTexels {
+  float cone = 0.0f;
+  std::vector<glm::ivec2> texels;
+  double path = 0.0;
+};
+
+constexpr int kDiscH = 16, kDiscW = 32;
+const glm::vec3 kDiscOrigin(0.0f, 1.0f, 0.0f);
+
+DiscTexels disc_texels(float cone) {
+  ProbeSettings path = settings_for(ProbeMode::kPath, 4096, kDiscH, kDiscW, 2);
+  path.punctual_lights = false;
+  const Image reference = render_single(spot_disc_room(0.8f * cone, cone), kDiscOrigin, path);
+  double mean = 0.0;
+  for (int r = 0; r < kDiscH; ++r)
+    for (int c = 0; c < kDiscW; ++c) mean += reference.at(c, r, 0) / double(kDiscH * kDiscW);
+  DiscTexels disc;
+  disc.cone = cone;
+  for (int r = 0; r < kDiscH; ++r)
+    for (int c = 0; c < kDiscW; ++c)
+      if (reference.at(c, r, 0) > 2.0 * mean) disc.texels.push_back({c, r}), disc.path += reference.at(c, r, 0);
+  EXPECT_GE(disc.texels.size(), 1u);
+  return disc;
+}
+
+// The cache mode's mean of the disc's texels over `seeds` seeds and its standard error.
 struct SeedMean {
   double cache = 0.0, standard_error = 0.0, path = 0.0;
 };
 
-SeedMean disc_over_seeds(float cone, int spp, int photons, int seeds, float target_error = 0.0f) {
-  const scenes::Scene scene = spot_disc_room(0.8f * cone, cone);
-  const glm::vec3 origin(0.0f, 1.0f, 0.0f);
-  const int h = 16, w = 32;
-  ProbeSettings path = settings_for(ProbeMode::kPath, 4096, h, w, 2);
-  path.punctual_lights = false;
-  const Image reference = render_single(scene, origin, path);
-  double mean = 0.0;
-  for (int r = 0; r < h; ++r)
-    for (int c = 0; c < w; ++c) mean += reference.at(c, r, 0) / double(h * w);
-  SeedMean out;
-  std::vector<glm::ivec2> disc;
-  for (int r = 0; r < h; ++r)
-    for (int c = 0; c < w; ++c)
-      if (reference.at(c, r, 0) > 2.0 * mean) disc.push_back({c, r}), out.path += reference.at(c, r, 0);
-  EXPECT_GE(disc.size(), 1u);
+SeedMean disc_over_seeds(const DiscTexels& disc, int spp, int photons, int seeds, float target_error = 0.0f) {
+  const scenes::Scene scene = spot_disc_room(0.8f * disc.cone, disc.cone);
   const RenderScene rs(scene);
   double sum = 0.0, sum2 = 0.0;
   for (int seed = 0; seed < seeds; ++seed) {
-    ProbeSettings cache = settings_for(ProbeMode::kCache, spp, h, w, 2);
+    ProbeSettings cache = settings_for(ProbeMode::kCache, spp, kDiscH, kDiscW, 2);
     cache.punctual_lights = false;
     cache.photons_per_light = photons;
     cache.target_error = target_error;
     cache.seed = uint64_t(100 + seed);
-    const ProbeOutput probe = ProbeRenderer(rs, analyse_effects(scene, false), cache).render_at(single_site(origin));
+    const ProbeOutput probe = ProbeRenderer(rs, analyse_effects(scene, false), cache).render_at(single_site(kDiscOrigin));
     double total = 0.0;
-    for (const glm::ivec2& t : disc) total += probe.mosaic.at(t.x, t.y, 0);
+    for (const glm::ivec2& t : disc.texels) total += probe.mosaic.at(t.x, t.y, 0);
     sum += total, sum2 += total * total;
   }
+  SeedMean out;
+  out.path = disc.path;
   out.cache = sum / seeds;
   out.standard_error = std::sqrt(std::max(0.0, sum2 / seeds - out.cache * out.cache) / (seeds - 1));
   std::printf("[ spot disc, cone %.3f, %d spp, %d photons, target %g ] cache over %d seeds %.5f +- %.5f, path %.5f "
               "(ratio %.3f)\n",
-              cone, spp, photons, target_error, seeds, out.cache, out.standard_error, out.path, out.cache / out.path);
+              disc.cone, spp, photons, target_error, seeds, out.cache, out.standard_error, out.path,
+              out.cache / out.path);
   return out;
 }
 
 // The 9 cm disc, which many of a texel's hard samples miss: averaged over seeds the probe's
 // value there is the path mode's (the spot's photons take most of it, the directions the rest).
 TEST(ProbeDeepTexels, ARareBrightPartIsUnbiasedOverSeeds) {
-  const SeedMean m = disc_over_seeds(0.06f, 4, 4096, 24);
+  const SeedMean m = disc_over_seeds(disc_texels(0.06f), 4, 4096, 24);
   EXPECT_NEAR(m.cache, m.path, 3.0 * m.standard_error + 0.03 * m.path);
 }
 
@@ -600,7 +614,8 @@ TEST(ProbeDeepTexels, ARareBrightPartIsUnbiasedOverSeeds) {
 // is estimated again from fresh ones, so the disc's light is lost where the first look missed
 // it (docs/probes-estimator.md, "Hard texels"). The loss shrinks as the directions grow.
 TEST(ProbeDeepTexels, WhatTheFirstLookMissesShrinksAsItsDirectionsGrow) {
-  const SeedMean few = disc_over_seeds(0.02f, 4, 0, 24), more = disc_over_seeds(0.02f, 32, 0, 24);
+  const DiscTexels disc = disc_texels(0.02f);
+  const SeedMean few = disc_over_seeds(disc, 4, 0, 24), more = disc_over_seeds(disc, 32, 0, 24);
   EXPECT_GT(more.cache / more.path, few.cache / few.path + 0.3);
   EXPECT_NEAR(more.cache, more.path, 3.0 * more.standard_error + 0.15 * more.path);
 }
@@ -610,7 +625,7 @@ TEST(ProbeDeepTexels, WhatTheFirstLookMissesShrinksAsItsDirectionsGrow) {
 // mean of the passes leaves the first look's loss behind (each pass choosing by its own first
 // look alone, equally weighted, kept it: 0.16, where one pass has it).
 TEST(ProbeDeepTexels, PassesToAnErrorTargetLeaveTheFirstLooksLossBehind) {
-  const SeedMean m = disc_over_seeds(0.02f, 4, 0, 12, 1e-6f);
+  const SeedMean m = disc_over_seeds(disc_texels(0.02f), 4, 0, 12, 1e-6f);
   EXPECT_NEAR(m.cache, m.path, 3.0 * m.standard_error + 0.1 * m.path);
 }
 

@@ -202,7 +202,7 @@ RenderReport run_render_job(const RenderJob& job) {
                   render_scene.emitters().twin_triangle_count(),
                   scene.warnings};
   report.scene.emitter_clusters = render_scene.emitters().cluster_count();
-  report.scene.emitters_by_power = render_scene.emitters().chosen_by_power();
+  report.scene.emitters_chosen_by_power = render_scene.emitters().chosen_by_power();
   const DeltaLights& lights = render_scene.emitters().delta_lights();
   report.scene.point_lights = lights.count(scenes::PunctualLight::Type::Point);
   report.scene.spot_lights = lights.count(scenes::PunctualLight::Type::Spot);
@@ -253,7 +253,7 @@ nlohmann::json RenderReport::to_json() const {
                      {"enclosed_emissive_triangles", scene.enclosed_emissive_triangles},
                      {"twin_emissive_triangles", scene.twin_emissive_triangles},
                      {"emitter_clusters", scene.emitter_clusters},
-                     {"emitters_chosen_by_power", scene.emitters_by_power},
+                     {"emitters_chosen_by_power", scene.emitters_chosen_by_power},
                      {"punctual_lights",
                       {{"point", scene.point_lights},
                        {"spot", scene.spot_lights},

@@ -57,7 +57,7 @@ struct RenderReport {
     std::vector<std::string> warnings;       // what the loader skipped or approximated
     int point_lights = 0, spot_lights = 0, directional_lights = 0;  // KHR_lights_punctual
     size_t emitter_clusters = 0;             // what light sampling chooses among first (EmitterSampler)
-    bool emitters_by_power = false;          // too many clusters and punctual lights: chosen by power alone
+    bool emitters_chosen_by_power = false;   // too many clusters and punctual lights: chosen by power alone
   };
   struct Timings {
     double load_seconds = 0.0, build_seconds = 0.0, write_seconds = 0.0, total_seconds = 0.0;
