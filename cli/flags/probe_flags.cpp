@@ -64,6 +64,9 @@ void add_cache(const ProbeFlagAdder& add, render::ProbeSettings& probe) {
              fmt::format("cache mode: a texel whose first samples spread over more than this times their mean gets "
                          "{}x the samples (hard-texel sampling)",
                          probe.hard_spp_factor));
+  add.option("probe.balance", "--probe-balance", probe.balance,
+             "cache mode: extra directions for each probe's noisiest texels, as a fraction of those its texels took, "
+             "shared out by each texel's noise per direction (0: none)");
   add.option("probe.sharing.radius", "--probe-share-radius", probe.sharing.radius,
              "cache mode: average each texel with the probes up to this many grid cells away on the same surface "
              "where parallax is small (0: off)");

@@ -14,6 +14,7 @@ nlohmann::json ProbeStats::to_json() const {
           {"counts", counts_json()},
           {"supersampled_texels", supersampled_texels},
           {"deep_texels", deep_texels},
+          {"balanced_texels", balanced_texels},
           {"shared_texels", shared_texels},
           {"light_texels", light_texels},
           {"light_edge_texels", light_edge_texels},
@@ -86,6 +87,7 @@ ProbeStats& ProbeStats::operator+=(const ProbeStats& o) {
   computed_probes += o.computed_probes;
   supersampled_texels += o.supersampled_texels;
   deep_texels += o.deep_texels;
+  balanced_texels += o.balanced_texels;
   shared_texels += o.shared_texels;
   light_texels += o.light_texels;
   light_edge_texels += o.light_edge_texels;

@@ -28,6 +28,8 @@ void ProbeSettings::validate() const {
                  cache.direct_distance_cells);
   if (hard_spp_factor < 1 || hard_spp_factor > 1024)
     fail_setting("probe.hard_spp_factor", "{} must be between 1 and 1024", hard_spp_factor);
+  if (!(balance >= 0.0f && balance <= 64.0f))
+    fail_setting("probe.balance", "{} must be between 0 and 64", balance);
   if (!(spread_threshold > 0.0f && spread_threshold <= 1e6f))
     fail_setting("probe.spread_threshold", "{} must be above 0 (and at most 1e6, i.e. never)", spread_threshold);
   // A 9x9 window is already ~20 cm across at the paper's grid: beyond it parallax rejects most texels.
@@ -66,6 +68,7 @@ nlohmann::json ProbeSettings::to_json() const {
     j["hard_spp_factor"] = hard_spp_factor;
     j["glossy_roughness"] = glossy_roughness;
     j["spread_threshold"] = spread_threshold;
+    j["balance"] = balance;
     j["share_radius"] = sharing.radius;
     j["share_parallax_texels"] = sharing.parallax_texels;
     j["correct_foot"] = correct_foot;

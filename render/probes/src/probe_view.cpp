@@ -171,6 +171,13 @@ void ProbeView::shade_tile(const std::vector<size_t>& tile, int pass, Worker* w)
   for (int t = 0; t < texels_; ++t)
     for (TileProbe& probe : w->tile)
       if (in_pass(probe, t, pass)) finish_texel(probe, t, w);
+  for (TileProbe& probe : w->tile) {
+    balance(probe, pass, w);
+    for (int t = 0; t < texels_; ++t) {
+      const TexelState& s = probe.texels[size_t(t)];
+      if (s.looked) store_texel(s.x, s.value, s.exact, w);
+    }
+  }
   if (pass == 0 && correct_foot_)
     for (const TileProbe& probe : w->tile)
       feet_[probe.k] = FootCorrection::measure(*transport_.cache(), out_.sites[size_t(probe.p)], probe.measured);

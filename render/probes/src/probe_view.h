@@ -13,6 +13,7 @@
 //     shade_tile          a tile's probes texel by texel across the tile, twice:
 //       first_look        every texel's first samples (and a lit texel's emission seen directly)
 //       finish_texel      its value: hard texels (by their samples or their neighbours') resampled
+//     balance             a probe's extra directions to its noisiest texels
 //   correct_feet          the cache's error at each probe's foot, less the common part
 //   share_between_neighbours  texels averaged with neighbouring probes' on one surface
 #include <memory>
@@ -86,6 +87,7 @@ class ProbeView {
     bool done = false;         // a light's outline: supersampled from the start
     glm::vec3 exact{0.0f};     // the emission seen directly, estimated apart
     glm::vec3 exact_cos{0.0f}; // its cosine-weighted mean (FootIrradiance)
+    glm::vec3 value{0.0f};     // its final value but the emission seen directly (finish_texel)
   };
 
   void select_probes();
@@ -96,6 +98,10 @@ class ProbeView {
   // texel of the probe has them, its final value: hard texels from fresh samples.
   void first_look(TileProbe& probe, int t, int pass, Worker* w);
   void finish_texel(TileProbe& probe, int t, Worker* w);
+  // The probe's extra directions (probe.balance) to the pass's texels with the most noise
+  // per direction, in proportion to it: those whose share is at least twice the directions
+  // they took are estimated again from their share alone.
+  void balance(TileProbe& probe, int pass, Worker* w);
   // The value of a texel whose first samples are in: them, or hard_spp fresh ones.
   glm::vec3 settle(TileProbe& probe, int t, Worker* w);
   // A hard texel's value from hard_spp fresh samples, or from kDeepSppFactor x as many more

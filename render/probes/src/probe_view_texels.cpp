@@ -38,6 +38,13 @@ constexpr int kLightPartEdgeSppFactor = 64;
 constexpr int kEmissionSppFactor = 16;
 constexpr int kEmissionEdgeSppFactor = 256;
 
+// A probe's extra directions (probe.balance) go to a texel only where its share is at least
+// kBalanceGain x the directions it took (they replace its own), at most kMostBalanceSppFactor
+// x spp of them, numbered after every other batch of the texel.
+constexpr double kBalanceGain = 2.0;
+constexpr int kMostBalanceSppFactor = 256;
+constexpr int kBalanceFirstSppFactor = 1 << 16;
+
 // A texel's variance (what sharing tests its neighbours' values against) comes from its
 // strata's differences where its samples make at least this many pairs of cells (the hard
 // batches, spp x hard_spp_factor and more), else from their spread: at the window's edge
@@ -79,7 +86,7 @@ void ProbeView::finish_texel(TileProbe& probe, int t, Worker* w) {
   }
   if (x.measure)
     x.measure->add_texel(x.cos_all, x.cos_emitted, equirect_texel_solid_angle(x.row, layout_.res_width, layout_.res_height));
-  store_texel(x, value, s.exact, w);
+  s.value = value;
 }
 
 glm::vec3 ProbeView::settle(TileProbe& probe, int t, Worker* w) {
@@ -118,6 +125,33 @@ glm::vec3 ProbeView::hard_estimate(TexelState& s, Worker* w) {
   s.x.samples = hard_spp * kDeepSppFactor;
   return estimate(s.x, spp * (1 + settings_.hard_spp_factor + kEmissionEdgeSppFactor), s.x.samples, s.part, &unused,
                   nullptr, w);
+}
+
+void ProbeView::balance(TileProbe& probe, int pass, Worker* w) {
+  if (!adaptive_ || !(settings_.balance > 0.0f)) return;
+  // Each texel's noise per direction, s = sqrt(variance of its mean x its directions). The
+  // probe's error sum s^2 / n is least for a number of directions n in proportion to s
+  // (Neyman's allocation): the extra directions go to the texels in that proportion.
+  auto per_direction = [](const Texel& x) { return std::sqrt(std::max(x.variance, 0.0f) * float(x.samples)); };
+  double noise = 0.0, spent = 0.0;
+  for (const TexelState& s : probe.texels)
+    if (s.looked) noise += per_direction(s.x), spent += s.x.samples;
+  if (!(noise > 0.0)) return;
+  const double extra = double(settings_.balance) * spent;
+  const int most = settings_.spp * kMostBalanceSppFactor;
+  for (int t = 0; t < texels_; ++t) {
+    TexelState& s = probe.texels[size_t(t)];
+    if (!s.looked || !in_pass(probe, t, pass)) continue;
+    const double share = extra * per_direction(s.x) / noise;
+    // Fresh directions replace the texel's own (its own chose it: kept with them, a texel
+    // whose samples found a bright part would weigh less than one whose samples missed it).
+    if (share < kBalanceGain * s.x.samples) continue;
+    s.x.measure = nullptr;  // the foot's measure has the texel's first value
+    s.x.samples = std::min(int(std::ceil(share)), most);
+    bool unused = false;
+    s.value = estimate(s.x, kBalanceFirstSppFactor * settings_.spp, s.x.samples, s.part, &unused, nullptr, w);
+    ++w->stats.balanced_texels;
+  }
 }
 
 void ProbeView::note_choice(const Texel& x, TexelChoice choice) {

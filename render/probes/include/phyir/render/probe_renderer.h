@@ -53,6 +53,7 @@ struct ProbeStats {
   uint64_t probes = 0, valid = 0, nothing = 0, emitter = 0, transparent = 0;
   uint64_t computed_probes = 0;   // probes actually rendered (all but kNothing, or a subset)
   uint64_t supersampled_texels = 0;
+  uint64_t balanced_texels = 0;  // texels given a probe's extra directions by their noise (probe.balance)
   uint64_t deep_texels = 0;  // hard texels whose hard samples still held a rare bright part: sampled again, deeper
   uint64_t shared_texels = 0;     // texels averaged with at least one neighbour's
   uint64_t light_texels = 0;      // texels a light may cover (emission estimated apart)

@@ -55,6 +55,10 @@ struct ProbeSettings {
   // A texel whose first spp samples' luminances spread over more than this times their
   // mean (plus a small floor) is hard: an edge, a highlight or a shadow boundary in it.
   float spread_threshold = 0.75f;
+  // Extra directions for a probe's noisiest texels, as a fraction of those its texels took:
+  // shared out in proportion to each texel's noise per direction (docs/probes-estimator.md,
+  // "Balancing the texels' noise"); 0: none.
+  float balance = 1.0f;
   float glossy_roughness = 0.3f;  // secondary hits smoother than this are traced on
   // The probability that a specular chain's end is path traced instead of ending in the cache
   // as a uniformly lit lobe (docs/probes-estimator.md, "The texel estimator", 5). Set by the passes'
