@@ -314,7 +314,7 @@ void add_bench_probes_command(CLI::App& bench) {
   add_light_subpaths_flag(cmd, f->base.path.light_subpaths);
   add_seed_flag(cmd, f->base.seed);
   // The grid the times are measured on, and what every configuration shares.
-  add_probe_flags(cmd, f->base, kProbeGrid | kProbeOffset | kProbePhotons,
+  add_probe_flags(cmd, f->base, kProbeGrid | kProbeOffset | kProbePhotons | kProbeBalance,
                   {{"--probe-grid", "--grid"}, {"--probe-offset", "--offset"}});
   cmd->callback([f] {
     const int threads = f->threads > 0 ? f->threads : tbb::info::default_concurrency();

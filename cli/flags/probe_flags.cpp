@@ -64,9 +64,6 @@ void add_cache(const ProbeFlagAdder& add, render::ProbeSettings& probe) {
              fmt::format("cache mode: a texel whose first samples spread over more than this times their mean gets "
                          "{}x the samples (hard-texel sampling)",
                          probe.hard_spp_factor));
-  add.option("probe.balance", "--probe-balance", probe.balance,
-             "cache mode: extra directions for each probe's noisiest texels, as a fraction of those its texels took, "
-             "shared out by each texel's noise per direction (0: none)");
   add.option("probe.sharing.radius", "--probe-share-radius", probe.sharing.radius,
              "cache mode: average each texel with the probes up to this many grid cells away on the same surface "
              "where parallax is small (0: off)");
@@ -94,6 +91,10 @@ void add_probe_flags(CLI::App* cmd, render::ProbeSettings& probe, unsigned which
     add.option("probe.photons_per_light", "--probe-photons", probe.photons_per_light,
                "cache mode: photons from each point and spot light, and per square metre of the sun's beam where it "
                "reaches the probes, which take the light they reflect where they land densely (0: none)");
+  if (which & kProbeBalance)
+    add.option("probe.balance", "--probe-balance", probe.balance,
+               "cache mode: extra directions for each probe's noisiest texels, as a fraction of those its texels "
+               "took, shared out by each texel's noise per direction (0: none)");
   if (which & kProbePunctual)
     cmd->add_flag_callback(
            "--no-probe-punctual-lights", [&probe] { probe.punctual_lights = false; },

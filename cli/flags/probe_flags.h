@@ -24,7 +24,8 @@ enum ProbeFlags : unsigned {
                                // --probe-spread-threshold, --probe-share-radius, --probe-share-parallax
   kProbePhotons = 1u << 5,     // --probe-photons
   kProbePunctual = 1u << 6,    // --no-probe-punctual-lights
-  kAllProbeFlags = (1u << 7) - 1,
+  kProbeBalance = 1u << 7,     // --probe-balance
+  kAllProbeFlags = (1u << 8) - 1,
 };
 
 // Registers the flags `which` on `cmd`, writing into `probe` (which must outlive `cmd`).
