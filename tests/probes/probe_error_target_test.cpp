@@ -219,6 +219,7 @@ PassErrors pass_errors(const scenes::Scene& scene, const glm::vec3& origin, floa
     for (int x = 0; x < reflected.width; ++x) reflected.at(x, y) = reference.mosaic.at(x, y, 0) < light_seen ? 1.0f : 0.0f;
   ProbeSettings s = settings_for(ProbeMode::kCache, 16, 16, 32, 3);
   s.cache.samples_per_cell = 256;
+  s.balance = 0.0f;  // the kernels alone: balancing takes much of the mirror's noise in every mode
   auto error = [&](float target, bool progressive) {
     s.target_error = target;
     s.progressive = progressive;
