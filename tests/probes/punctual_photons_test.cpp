@@ -188,6 +188,10 @@ ProbeSettings cache_settings(int photons, uint64_t seed) {
   s.cache.samples_per_cell = 128;
   s.punctual_lights = false;
   s.photons_per_light = photons;
+  // The photons against the texels' own directions. Balancing gives the halo's texels many
+  // more directions where the photons are off; with them on their noise is not the texels'
+  // own and stays (docs/probes-estimator.md, "Balancing the texels' noise").
+  s.balance = 0.0f;
   return s;
 }
 

@@ -101,7 +101,6 @@ ProbeOutput ProbeView::run() {
     records_.variance.assign(size_t(layout_.probe_count()) * size_t(texels_), 0.0f);
   }
   feet_.assign(correct_foot_ ? todo_.size() : 0, FootCorrection());
-  photon_variance_.assign(todo_.size(), {});
   Progress progress("probes", todo_.size() * (correct_foot_ ? 2 : 1), correct_foot_ ? "probe halves" : "probes",
                     settings_.progress);
   progress_ = &progress;
@@ -116,7 +115,7 @@ ProbeOutput ProbeView::run() {
   if (transport_.cache()) stats.cache_fallbacks = transport_.cache()->fallbacks();
   stats.shade_seconds = shade_watch.seconds();
   if (share_) share_between_neighbours();
-  add_after_sharing(&Worker::photon_light, &Worker::without_photons);
+  add_after_sharing(&Worker::photon_light);
   if (effects_.punctual_lights && settings_.punctual_lights)
     stats.counters.rays += deposit_punctual_lights(scene_, layout_, out_.sites, todo_, &out_.mosaic);
   out_.standard_error = pooled_standard_error(out_.standard_error, layout_);
@@ -220,13 +219,12 @@ void ProbeView::gather_photons(TileProbe& probe, Worker* w) {
   uint64_t rays = 0;
   transport_.photons().gather(site.origin, site.normal, layout_.res_height, layout_.res_width,
                   item_stream_key(probe_seed_, uint64_t(probe.p), Purpose::kProbePhotonRoulette), &w->photon_radiance,
-                  &w->photon_radiance_cos, &rays, &w->photon_variance);
+                  &w->photon_radiance_cos, &rays);
   w->stats.counters.rays += rays;
   w->stats.photon_rays += rays;
   for (int t = 0; t < texels_; ++t) {
     const glm::vec3& value = w->photon_radiance[size_t(t)];
     if (!(max_component(value) > 0.0f)) continue;
-    if (photon_variance_[probe.k].empty()) photon_variance_[probe.k] = w->photon_variance;
     w->photon_light.push_back({texel_id(probe.p, t), value});
     ++w->stats.photon_texels;
     if (correct_foot_ && in_pass(probe, t, 0))
@@ -235,15 +233,9 @@ void ProbeView::gather_photons(TileProbe& probe, Worker* w) {
   }
 }
 
-void ProbeView::add_after_sharing(const std::vector<std::pair<uint64_t, glm::vec3>> Worker::*list,
-                                  const std::vector<uint64_t> Worker::*skip) {
-  std::vector<uint64_t> skipped;
-  if (skip)
-    for (const Worker& w : workers_) skipped.insert(skipped.end(), (w.*skip).begin(), (w.*skip).end());
-  std::sort(skipped.begin(), skipped.end());
+void ProbeView::add_after_sharing(const std::vector<std::pair<uint64_t, glm::vec3>> Worker::*list) {
   for (const Worker& w : workers_) {
     for (const auto& [id, value] : w.*list) {
-      if (std::binary_search(skipped.begin(), skipped.end(), id)) continue;
       const glm::ivec2 at = layout_.mosaic_pixel(int(id / uint64_t(texels_)), int(id % uint64_t(texels_)));
       for (int ch = 0; ch < 3; ++ch) out_.mosaic.at(at.x, at.y, ch) += value[ch];
     }

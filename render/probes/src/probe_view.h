@@ -62,9 +62,7 @@ class ProbeView {
     std::vector<TileProbe> tile;
     std::vector<std::pair<uint64_t, glm::vec3>> emission_seen;  // added after sharing
     std::vector<std::pair<uint64_t, glm::vec3>> photon_light;   // the photons' estimates, added after sharing
-    std::vector<uint64_t> without_photons;  // texels balanced: their directions took the photons' share too
     std::vector<glm::vec3> photon_radiance, photon_radiance_cos;  // one probe's, PunctualPhotons::gather
-    std::vector<float> photon_variance;                          // of their luminance, per texel
   };
   // A texel being shaded.
   struct Texel {
@@ -76,7 +74,6 @@ class ProbeView {
     glm::vec3 cos_all{0.0f}, cos_emitted{0.0f};
     int samples = 0;          // directions its value (apart from the emission seen directly) took
     float variance = 0.0f;    // of that value's luminance (ProbeView::estimate)
-    bool photons = true;      // the photons take their share of its first hits
   };
   using Part = TexelEstimator::Part;
   // A texel between its first samples and its final value.
@@ -120,9 +117,7 @@ class ProbeView {
   // The photons' estimate of a probe's texels (punctual_photons.h), kept to be added after
   // sharing; the texels of pass 0 go into the foot correction's measure now.
   void gather_photons(TileProbe& probe, Worker* w);
-  // Adds each worker's `list` to the mosaic, but the texels some worker lists in `skip`.
-  void add_after_sharing(const std::vector<std::pair<uint64_t, glm::vec3>> Worker::*list,
-                         const std::vector<uint64_t> Worker::*skip = nullptr);
+  void add_after_sharing(const std::vector<std::pair<uint64_t, glm::vec3>> Worker::*list);
   void correct_feet();
   void share_between_neighbours();
 
@@ -146,9 +141,6 @@ class ProbeView {
   TexelCones cones_;
   TexelRecords records_;
   std::vector<FootCorrection> feet_;
-  // Per probe (index into todo_), the variance of the photons' estimate per texel; empty
-  // where they add nothing.
-  std::vector<std::vector<float>> photon_variance_;
   glm::vec3 common_difference_{0.0f};
   tbb::enumerable_thread_specific<Worker> workers_;
   const std::vector<uint8_t>* earlier_ = nullptr;

@@ -132,12 +132,7 @@ void ProbeView::balance(TileProbe& probe, int pass, Worker* w) {
   // Each texel's noise per direction, s = sqrt(variance of its mean x its directions). The
   // probe's error sum s^2 / n is least for a number of directions n in proportion to s
   // (Neyman's allocation): the extra directions go to the texels in that proportion.
-  // The photons' noise counts too: a texel given its share drops them.
-  const std::vector<float>& photons = photon_variance_[probe.k];
-  auto per_direction = [&](const Texel& x) {
-    const float variance = std::max(x.variance, 0.0f) + (photons.empty() ? 0.0f : photons[size_t(x.t)]);
-    return std::sqrt(variance * float(x.samples));
-  };
+  auto per_direction = [](const Texel& x) { return std::sqrt(std::max(x.variance, 0.0f) * float(x.samples)); };
   double noise = 0.0, spent = 0.0;
   for (const TexelState& s : probe.texels)
     if (s.looked) noise += per_direction(s.x), spent += s.x.samples;
@@ -152,12 +147,6 @@ void ProbeView::balance(TileProbe& probe, int pass, Worker* w) {
     // whose samples found a bright part would weigh less than one whose samples missed it).
     if (share < kBalanceGain * s.x.samples) continue;
     s.x.measure = nullptr;  // the foot's measure has the texel's first value
-    // Its many directions take the photons' share too (their weight would be small against
-    // them), and the photons' own noise leaves the texel.
-    if (!transport_.photons().empty()) {
-      s.x.photons = false;
-      w->without_photons.push_back(texel_id(probe.p, t));
-    }
     s.x.samples = std::min(int(std::ceil(share)), most);
     bool unused = false;
     s.value = estimate(s.x, kBalanceFirstSppFactor * settings_.spp, s.x.samples, s.part, &unused, nullptr, w);
@@ -248,8 +237,7 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* s
     const uint64_t key = sample_key(probe_seed_, id, uint64_t(first + s));
     const Ray ray{origin, x.cone.direction(w->strata[size_t(s)])};
     glm::vec3 emitted;
-    glm::vec3 L = transport_.estimator().sample(ray, key, part, probe.foot, x.photons ? solid_angle : 0.0f, saw_hard,
-                                                &x.distance, &emitted,
+    glm::vec3 L = transport_.estimator().sample(ray, key, part, probe.foot, solid_angle, saw_hard, &x.distance, &emitted,
                                      &w->stats.counters);
     if (!is_finite(L) || !is_finite(emitted)) {
       ++w->stats.counters.nonfinite_samples;

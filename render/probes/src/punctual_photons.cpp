@@ -214,11 +214,10 @@ bool PunctualPhotons::shares(const glm::vec3& origin, const glm::vec3& position,
 
 void PunctualPhotons::gather(const glm::vec3& origin, const glm::vec3& normal, int height, int width, uint64_t key,
                              std::vector<glm::vec3>* radiance, std::vector<glm::vec3>* radiance_cos,
-                             uint64_t* rays, std::vector<float>* variance) const {
+                             uint64_t* rays) const {
   const size_t texels = size_t(height * width);
   radiance->assign(texels, glm::vec3(0.0f));
   radiance_cos->assign(texels, glm::vec3(0.0f));
-  if (variance) variance->assign(texels, 0.0f);
   // The photons this probe takes, each with what it adds if nothing hides it, and their sum
   // per texel (luminance).
   struct Candidate {
@@ -235,7 +234,6 @@ void PunctualPhotons::gather(const glm::vec3& origin, const glm::vec3& normal, i
     if (!(luminance(value) > 0.0f)) continue;
     candidates.push_back({uint32_t(j), t, value});
     total[t] += luminance(value);
-    if (variance) (*variance)[t] += luminance(value) * luminance(value);
   }
   // Systematic sampling in proportion to the values: a texel's candidates laid end to end,
   // each as long as kPhotonsKeptPerTexel x its share of the texel's total, and cut at the

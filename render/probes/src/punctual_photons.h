@@ -45,12 +45,9 @@ class PunctualPhotons {
   // The photons' estimate for one probe of h x w texels: radiance per texel (row-major) into
   // `radiance`, and the same times max(0, d . normal) into `radiance_cos`; both are resized
   // and zeroed first. About kPhotonsKeptPerTexel photons of a texel are joined to the probe,
-  // chosen by `key`. Shadow rays counted in *rays. `variance` (if given): per texel, the
-  // variance of its radiance's luminance as the photons landing there (unoccluded) tell it,
-  // the sum of their values squared: theirs are a Poisson process's.
+  // chosen by `key`. Shadow rays counted in *rays.
   void gather(const glm::vec3& origin, const glm::vec3& normal, int height, int width, uint64_t key,
-              std::vector<glm::vec3>* radiance, std::vector<glm::vec3>* radiance_cos, uint64_t* rays,
-              std::vector<float>* variance = nullptr) const;
+              std::vector<glm::vec3>* radiance, std::vector<glm::vec3>* radiance_cos, uint64_t* rays) const;
 
  private:
   // The sun's beam: a square across it over region_, upstream of the scene, in cells, and
