@@ -162,7 +162,6 @@ void ProbeView::shade_tile(const std::vector<size_t>& tile, int pass, Worker* w)
     w->tile[m].k = tile[m];
     w->tile[m].p = todo_[tile[m]];
     prepare_probe(&w->tile[m], pass);
-    if (pass == 0 && !transport_.photons().empty()) gather_photons(w->tile[m], w);
   }
   for (TileProbe& probe : w->tile) probe.texels.assign(size_t(texels_), TexelState());
   for (int t = 0; t < texels_; ++t)
@@ -171,11 +170,15 @@ void ProbeView::shade_tile(const std::vector<size_t>& tile, int pass, Worker* w)
   for (int t = 0; t < texels_; ++t)
     for (TileProbe& probe : w->tile)
       if (in_pass(probe, t, pass)) finish_texel(probe, t, w);
+  const bool tile_wide = getenv("PHYIR_TILEBAL") != nullptr;
+  if (tile_wide) balance_tile(pass, w);
   for (TileProbe& probe : w->tile) {
-    balance(probe, pass, w);
-    for (int t = 0; t < texels_; ++t) {
-      const TexelState& s = probe.texels[size_t(t)];
-      if (s.looked) store_texel(s.x, s.value, s.exact, w);
+    if (!tile_wide) balance(probe, pass, w);
+    if (!transport_.photons().empty()) gather_photons(probe, pass, w);
+    for (TexelState& s : probe.texels) {
+      if (!s.looked) continue;
+      measure_texel(s);
+      store_texel(s.x, s.value, s.exact, w);
     }
   }
   if (pass == 0 && correct_foot_)
@@ -214,12 +217,15 @@ void ProbeView::prepare_probe(TileProbe* probe, int pass) const {
   probe->foot = pass == 1 ? feet_[probe->k].less(common_difference_) : FootCorrection();
 }
 
-void ProbeView::gather_photons(TileProbe& probe, Worker* w) {
+void ProbeView::gather_photons(TileProbe& probe, int pass, Worker* w) {
   const ProbeSite& site = out_.sites[size_t(probe.p)];
+  w->photon_scale.assign(size_t(texels_), 0.0f);
+  for (int t = 0; t < texels_; ++t)
+    if (probe.texels[size_t(t)].looked) w->photon_scale[size_t(t)] = probe.texels[size_t(t)].x.photon_scale;
   uint64_t rays = 0;
   transport_.photons().gather(site.origin, site.normal, layout_.res_height, layout_.res_width,
-                  item_stream_key(probe_seed_, uint64_t(probe.p), Purpose::kProbePhotonRoulette), &w->photon_radiance,
-                  &w->photon_radiance_cos, &rays);
+                              item_stream_key(probe_seed_, uint64_t(probe.p), Purpose::kProbePhotonRoulette, uint64_t(pass)),
+                              &w->photon_radiance, &w->photon_radiance_cos, &rays, &w->photon_scale);
   w->stats.counters.rays += rays;
   w->stats.photon_rays += rays;
   for (int t = 0; t < texels_; ++t) {
@@ -227,7 +233,7 @@ void ProbeView::gather_photons(TileProbe& probe, Worker* w) {
     if (!(max_component(value) > 0.0f)) continue;
     w->photon_light.push_back({texel_id(probe.p, t), value});
     ++w->stats.photon_texels;
-    if (correct_foot_ && in_pass(probe, t, 0))
+    if (probe.texels[size_t(t)].x.measure)
       probe.measured.add_texel(w->photon_radiance_cos[size_t(t)], glm::vec3(0.0f),
                                equirect_texel_solid_angle(t / layout_.res_width, layout_.res_width, layout_.res_height));
   }

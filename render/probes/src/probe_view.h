@@ -63,6 +63,7 @@ class ProbeView {
     std::vector<std::pair<uint64_t, glm::vec3>> emission_seen;  // added after sharing
     std::vector<std::pair<uint64_t, glm::vec3>> photon_light;   // the photons' estimates, added after sharing
     std::vector<glm::vec3> photon_radiance, photon_radiance_cos;  // one probe's, PunctualPhotons::gather
+    std::vector<float> photon_scale;                             // its texels' (0: not in the pass)
   };
   // A texel being shaded.
   struct Texel {
@@ -74,6 +75,7 @@ class ProbeView {
     glm::vec3 cos_all{0.0f}, cos_emitted{0.0f};
     int samples = 0;          // directions its value (apart from the emission seen directly) took
     float variance = 0.0f;    // of that value's luminance (ProbeView::estimate)
+    float photon_scale = 1.0f;  // the photons counted as this x their number for their share: spp / directions where balanced
   };
   using Part = TexelEstimator::Part;
   // A texel between its first samples and its final value.
@@ -102,6 +104,8 @@ class ProbeView {
   // per direction, in proportion to it: those whose share is at least twice the directions
   // they took are estimated again from their share alone.
   void balance(TileProbe& probe, int pass, Worker* w);
+  void balance_tile(int pass, Worker* w);
+  void rebalance(TexelState& s, double share, Worker* w);
   // The value of a texel whose first samples are in: them, or hard_spp fresh ones.
   glm::vec3 settle(TileProbe& probe, int t, Worker* w);
   // A hard texel's value from hard_spp fresh samples, or from kDeepSppFactor x as many more
@@ -114,9 +118,11 @@ class ProbeView {
   bool look_at_light(TexelState& s, Worker* w);
   glm::vec3 estimate(Texel& x, int first, int count, Part part, bool* saw_hard, float* spread, Worker* w);
   void store_texel(const Texel& x, glm::vec3 value, const glm::vec3& seen_emission, Worker* w);
-  // The photons' estimate of a probe's texels (punctual_photons.h), kept to be added after
-  // sharing; the texels of pass 0 go into the foot correction's measure now.
-  void gather_photons(TileProbe& probe, Worker* w);
+  // The photons' estimate of the pass's texels of a probe (punctual_photons.h), kept to be
+  // added after sharing; those of pass 0 go into the foot correction's measure now.
+  void gather_photons(TileProbe& probe, int pass, Worker* w);
+  // A texel's cosine-weighted light into its probe's foot measure (pass 0 of the correction).
+  void measure_texel(TexelState& s) const;
   void add_after_sharing(const std::vector<std::pair<uint64_t, glm::vec3>> Worker::*list);
   void correct_feet();
   void share_between_neighbours();

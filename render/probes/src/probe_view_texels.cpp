@@ -78,15 +78,17 @@ void ProbeView::first_look(TileProbe& probe, int t, int pass, Worker* w) {
 
 void ProbeView::finish_texel(TileProbe& probe, int t, Worker* w) {
   TexelState& s = probe.texels[size_t(t)];
-  glm::vec3 value = s.done ? s.first : settle(probe, t, w);
+  s.value = s.done ? s.first : settle(probe, t, w);
+}
+
+void ProbeView::measure_texel(TexelState& s) const {
   Texel& x = s.x;
+  if (!x.measure) return;
   if (s.part == Part::kRest) {  // the texel's whole light: its rest and its emission
     x.cos_all += s.exact_cos;
     x.cos_emitted = s.exact_cos;
   }
-  if (x.measure)
-    x.measure->add_texel(x.cos_all, x.cos_emitted, equirect_texel_solid_angle(x.row, layout_.res_width, layout_.res_height));
-  s.value = value;
+  x.measure->add_texel(x.cos_all, x.cos_emitted, equirect_texel_solid_angle(x.row, layout_.res_width, layout_.res_height));
 }
 
 glm::vec3 ProbeView::settle(TileProbe& probe, int t, Worker* w) {
@@ -138,20 +140,46 @@ void ProbeView::balance(TileProbe& probe, int pass, Worker* w) {
     if (s.looked) noise += per_direction(s.x), spent += s.x.samples;
   if (!(noise > 0.0)) return;
   const double extra = double(settings_.balance) * spent;
-  const int most = settings_.spp * kMostBalanceSppFactor;
   for (int t = 0; t < texels_; ++t) {
     TexelState& s = probe.texels[size_t(t)];
-    if (!s.looked || !in_pass(probe, t, pass)) continue;
-    const double share = extra * per_direction(s.x) / noise;
-    // Fresh directions replace the texel's own (its own chose it: kept with them, a texel
-    // whose samples found a bright part would weigh less than one whose samples missed it).
-    if (share < kBalanceGain * s.x.samples) continue;
-    s.x.measure = nullptr;  // the foot's measure has the texel's first value
-    s.x.samples = std::min(int(std::ceil(share)), most);
-    bool unused = false;
-    s.value = estimate(s.x, kBalanceFirstSppFactor * settings_.spp, s.x.samples, s.part, &unused, nullptr, w);
-    ++w->stats.balanced_texels;
+    if (s.looked && in_pass(probe, t, pass)) rebalance(s, extra * per_direction(s.x) / noise, w);
   }
+}
+
+void ProbeView::balance_tile(int pass, Worker* w) {
+  if (!adaptive_ || !(settings_.balance > 0.0f)) return;
+  auto per_direction = [](const Texel& x) { return std::sqrt(std::max(x.variance, 0.0f) * float(x.samples)); };
+  std::vector<double> scale(w->tile.size(), 0.0);
+  double noise = 0.0, spent = 0.0;
+  for (size_t m = 0; m < w->tile.size(); ++m) {
+    double sum = 0.0;
+    int count = 0;
+    for (const TexelState& s : w->tile[m].texels)
+      if (s.looked) sum += luminance(s.value) + luminance(s.exact), ++count;
+    scale[m] = 1.0 / (sum / std::max(count, 1) + transport_.dark_floor());
+    for (const TexelState& s : w->tile[m].texels)
+      if (s.looked) noise += per_direction(s.x) * scale[m], spent += s.x.samples;
+  }
+  if (!(noise > 0.0)) return;
+  const double extra = double(settings_.balance) * spent;
+  for (size_t m = 0; m < w->tile.size(); ++m)
+    for (int t = 0; t < texels_; ++t) {
+      TexelState& s = w->tile[m].texels[size_t(t)];
+      if (s.looked && in_pass(w->tile[m], t, pass)) rebalance(s, extra * per_direction(s.x) * scale[m] / noise, w);
+    }
+}
+
+void ProbeView::rebalance(TexelState& s, double share, Worker* w) {
+  // Fresh directions replace the texel's own (its own chose it: kept with them, a texel
+  // whose samples found a bright part would weigh less than one whose samples missed it).
+  if (share < kBalanceGain * s.x.samples) return;
+  s.x.samples = std::min(int(std::ceil(share)), settings_.spp * kMostBalanceSppFactor);
+  // The photons' share of its hits is as against its directions (the balance heuristic, a
+  // photon a 16th of a direction): their count as spp / directions of it.
+  s.x.photon_scale = float(settings_.spp) / float(s.x.samples);
+  bool unused = false;
+  s.value = estimate(s.x, kBalanceFirstSppFactor * settings_.spp, s.x.samples, s.part, &unused, nullptr, w);
+  ++w->stats.balanced_texels;
 }
 
 void ProbeView::note_choice(const Texel& x, TexelChoice choice) {
@@ -237,7 +265,8 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* s
     const uint64_t key = sample_key(probe_seed_, id, uint64_t(first + s));
     const Ray ray{origin, x.cone.direction(w->strata[size_t(s)])};
     glm::vec3 emitted;
-    glm::vec3 L = transport_.estimator().sample(ray, key, part, probe.foot, solid_angle, saw_hard, &x.distance, &emitted,
+    glm::vec3 L = transport_.estimator().sample(ray, key, part, probe.foot, solid_angle * x.photon_scale, saw_hard,
+                                                &x.distance, &emitted,
                                      &w->stats.counters);
     if (!is_finite(L) || !is_finite(emitted)) {
       ++w->stats.counters.nonfinite_samples;

@@ -214,7 +214,7 @@ bool PunctualPhotons::shares(const glm::vec3& origin, const glm::vec3& position,
 
 void PunctualPhotons::gather(const glm::vec3& origin, const glm::vec3& normal, int height, int width, uint64_t key,
                              std::vector<glm::vec3>* radiance, std::vector<glm::vec3>* radiance_cos,
-                             uint64_t* rays) const {
+                             uint64_t* rays, const std::vector<float>* scale) const {
   const size_t texels = size_t(height * width);
   radiance->assign(texels, glm::vec3(0.0f));
   radiance_cos->assign(texels, glm::vec3(0.0f));
@@ -230,7 +230,7 @@ void PunctualPhotons::gather(const glm::vec3& origin, const glm::vec3& normal, i
   total.assign(texels, 0.0f);
   for (size_t j = 0; j < photons_.size(); ++j) {
     uint32_t t = 0;
-    const glm::vec3 value = unoccluded(photons_[j], origin, height, width, &t);
+    const glm::vec3 value = unoccluded(photons_[j], origin, height, width, scale, &t);
     if (!(luminance(value) > 0.0f)) continue;
     candidates.push_back({uint32_t(j), t, value});
     total[t] += luminance(value);
@@ -259,7 +259,7 @@ void PunctualPhotons::gather(const glm::vec3& origin, const glm::vec3& normal, i
 }
 
 glm::vec3 PunctualPhotons::unoccluded(const Photon& p, const glm::vec3& origin, int height, int width,
-                                      uint32_t* texel_index) const {
+                                      const std::vector<float>* scale, uint32_t* texel_index) const {
   const SurfaceInteraction& hit = p.hit;
   const glm::vec3 to_origin = origin - hit.position;
   const float d = std::sqrt(glm::dot(to_origin, to_origin));
@@ -269,7 +269,8 @@ glm::vec3 PunctualPhotons::unoccluded(const Photon& p, const glm::vec3& origin, 
   const glm::ivec2 texel = probe_texel_of(-wo, height, width);
   const float per_texel = photons_per_steradian(sources_[size_t(p.source)], origin, hit.position, hit.geometric_normal) *
                           equirect_texel_solid_angle(texel.x, width, height);
-  const float taken = share(per_texel);
+  const float counted = scale ? (*scale)[size_t(texel.x * width + texel.y)] : 1.0f;
+  const float taken = share(per_texel * counted);
   if (!(taken > 0.0f)) return glm::vec3(0.0f);  // the texel's directions take it all
   // What the texel's directions would have added there (TexelEstimator's punctual_light:
   // f_d E cos, at a hit that faces the viewer and the light). Diffuse light only: a glossy

@@ -45,9 +45,12 @@ class PunctualPhotons {
   // The photons' estimate for one probe of h x w texels: radiance per texel (row-major) into
   // `radiance`, and the same times max(0, d . normal) into `radiance_cos`; both are resized
   // and zeroed first. About kPhotonsKeptPerTexel photons of a texel are joined to the probe,
-  // chosen by `key`. Shadow rays counted in *rays.
+  // chosen by `key`. Shadow rays counted in *rays. `scale` (if given, one per texel): the
+  // texel's photons counted as scale x their number for their share, as the texel's
+  // directions counted them (TexelEstimator::sample's solid angle); 0: the texel is skipped.
   void gather(const glm::vec3& origin, const glm::vec3& normal, int height, int width, uint64_t key,
-              std::vector<glm::vec3>* radiance, std::vector<glm::vec3>* radiance_cos, uint64_t* rays) const;
+              std::vector<glm::vec3>* radiance, std::vector<glm::vec3>* radiance_cos, uint64_t* rays,
+              const std::vector<float>* scale = nullptr) const;
 
  private:
   // The sun's beam: a square across it over region_, upstream of the scene, in cells, and
@@ -87,7 +90,8 @@ class PunctualPhotons {
   void trace_photon(const Ray& ray, int source, uint64_t* rays);
   // A photon's estimate of its texel's radiance if nothing hides it from `origin` (0 where
   // the texel's directions take its hit), and that texel (row-major).
-  glm::vec3 unoccluded(const Photon& p, const glm::vec3& origin, int height, int width, uint32_t* texel) const;
+  glm::vec3 unoccluded(const Photon& p, const glm::vec3& origin, int height, int width, const std::vector<float>* scale,
+                       uint32_t* texel) const;
   // Whether nothing hides the photon's hit from `origin` (one shadow ray, counted).
   bool visible(const Photon& p, const glm::vec3& origin, uint64_t* rays) const;
   // The photons' share of a hit where they land at this density times the texel's solid angle.
