@@ -170,10 +170,8 @@ void ProbeView::shade_tile(const std::vector<size_t>& tile, int pass, Worker* w)
   for (int t = 0; t < texels_; ++t)
     for (TileProbe& probe : w->tile)
       if (in_pass(probe, t, pass)) finish_texel(probe, t, w);
-  const bool tile_wide = getenv("PHYIR_TILEBAL") != nullptr;
-  if (tile_wide) balance_tile(pass, w);
   for (TileProbe& probe : w->tile) {
-    if (!tile_wide) balance(probe, pass, w);
+    balance(probe, w);
     if (!transport_.photons().empty()) gather_photons(probe, pass, w);
     for (TexelState& s : probe.texels) {
       if (!s.looked) continue;

@@ -103,8 +103,8 @@ class ProbeView {
   // The probe's extra directions (probe.balance) to the pass's texels with the most noise
   // per direction, in proportion to it: those whose share is at least twice the directions
   // they took are estimated again from their share alone.
-  void balance(TileProbe& probe, int pass, Worker* w);
-  void balance_tile(int pass, Worker* w);
+  void balance(TileProbe& probe, Worker* w);
+  // A texel estimated again from `share` fresh directions where that is at least twice its own.
   void rebalance(TexelState& s, double share, Worker* w);
   // The value of a texel whose first samples are in: them, or hard_spp fresh ones.
   glm::vec3 settle(TileProbe& probe, int t, Worker* w);

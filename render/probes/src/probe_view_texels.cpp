@@ -129,7 +129,7 @@ glm::vec3 ProbeView::hard_estimate(TexelState& s, Worker* w) {
                   nullptr, w);
 }
 
-void ProbeView::balance(TileProbe& probe, int pass, Worker* w) {
+void ProbeView::balance(TileProbe& probe, Worker* w) {
   if (!adaptive_ || !(settings_.balance > 0.0f)) return;
   // Each texel's noise per direction, s = sqrt(variance of its mean x its directions). The
   // probe's error sum s^2 / n is least for a number of directions n in proportion to s
@@ -140,33 +140,8 @@ void ProbeView::balance(TileProbe& probe, int pass, Worker* w) {
     if (s.looked) noise += per_direction(s.x), spent += s.x.samples;
   if (!(noise > 0.0)) return;
   const double extra = double(settings_.balance) * spent;
-  for (int t = 0; t < texels_; ++t) {
-    TexelState& s = probe.texels[size_t(t)];
-    if (s.looked && in_pass(probe, t, pass)) rebalance(s, extra * per_direction(s.x) / noise, w);
-  }
-}
-
-void ProbeView::balance_tile(int pass, Worker* w) {
-  if (!adaptive_ || !(settings_.balance > 0.0f)) return;
-  auto per_direction = [](const Texel& x) { return std::sqrt(std::max(x.variance, 0.0f) * float(x.samples)); };
-  std::vector<double> scale(w->tile.size(), 0.0);
-  double noise = 0.0, spent = 0.0;
-  for (size_t m = 0; m < w->tile.size(); ++m) {
-    double sum = 0.0;
-    int count = 0;
-    for (const TexelState& s : w->tile[m].texels)
-      if (s.looked) sum += luminance(s.value) + luminance(s.exact), ++count;
-    scale[m] = 1.0 / (sum / std::max(count, 1) + transport_.dark_floor());
-    for (const TexelState& s : w->tile[m].texels)
-      if (s.looked) noise += per_direction(s.x) * scale[m], spent += s.x.samples;
-  }
-  if (!(noise > 0.0)) return;
-  const double extra = double(settings_.balance) * spent;
-  for (size_t m = 0; m < w->tile.size(); ++m)
-    for (int t = 0; t < texels_; ++t) {
-      TexelState& s = w->tile[m].texels[size_t(t)];
-      if (s.looked && in_pass(w->tile[m], t, pass)) rebalance(s, extra * per_direction(s.x) * scale[m] / noise, w);
-    }
+  for (TexelState& s : probe.texels)  // the looked ones are this pass's
+    if (s.looked) rebalance(s, extra * per_direction(s.x) / noise, w);
 }
 
 void ProbeView::rebalance(TexelState& s, double share, Worker* w) {
