@@ -221,9 +221,9 @@ void ProbeView::gather_photons(TileProbe& probe, int pass, Worker* w) {
   for (int t = 0; t < texels_; ++t)
     if (probe.texels[size_t(t)].looked) w->photon_scale[size_t(t)] = probe.texels[size_t(t)].x.photon_scale;
   uint64_t rays = 0;
-  transport_.photons().gather(site.origin, site.normal, layout_.res_height, layout_.res_width,
-                              item_stream_key(probe_seed_, uint64_t(probe.p), Purpose::kProbePhotonRoulette, uint64_t(pass)),
-                              &w->photon_radiance, &w->photon_radiance_cos, &rays, &w->photon_scale);
+  const uint64_t key = item_stream_key(probe_seed_, uint64_t(probe.p), Purpose::kProbePhotonRoulette, uint64_t(pass));
+  transport_.photons().gather(site.origin, site.normal, layout_.res_height, layout_.res_width, key, &w->photon_radiance,
+                              &w->photon_radiance_cos, &rays, &w->photon_scale);
   w->stats.counters.rays += rays;
   w->stats.photon_rays += rays;
   for (int t = 0; t < texels_; ++t) {

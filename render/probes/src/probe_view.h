@@ -14,6 +14,7 @@
 //       first_look        every texel's first samples (and a lit texel's emission seen directly)
 //       finish_texel      its value: hard texels (by their samples or their neighbours') resampled
 //     balance             a probe's extra directions to its noisiest texels
+//     gather_photons      the photons' share of the pass's texels, weighed against their directions
 //   correct_feet          the cache's error at each probe's foot, less the common part
 //   share_between_neighbours  texels averaged with neighbouring probes' on one surface
 #include <memory>
@@ -75,7 +76,9 @@ class ProbeView {
     glm::vec3 cos_all{0.0f}, cos_emitted{0.0f};
     int samples = 0;          // directions its value (apart from the emission seen directly) took
     float variance = 0.0f;    // of that value's luminance (ProbeView::estimate)
-    float photon_scale = 1.0f;  // the photons counted as this x their number for their share: spp / directions where balanced
+    // The photons counted as this x their number for their share of its hits: spp / its
+    // directions where it was balanced, else 1.
+    float photon_scale = 1.0f;
   };
   using Part = TexelEstimator::Part;
   // A texel between its first samples and its final value.

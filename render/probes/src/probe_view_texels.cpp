@@ -241,8 +241,7 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* s
     const Ray ray{origin, x.cone.direction(w->strata[size_t(s)])};
     glm::vec3 emitted;
     glm::vec3 L = transport_.estimator().sample(ray, key, part, probe.foot, solid_angle * x.photon_scale, saw_hard,
-                                                &x.distance, &emitted,
-                                     &w->stats.counters);
+                                                &x.distance, &emitted, &w->stats.counters);
     if (!is_finite(L) || !is_finite(emitted)) {
       ++w->stats.counters.nonfinite_samples;
       L = emitted = glm::vec3(0.0f);
