@@ -41,7 +41,9 @@ class TexelEstimator {
   // *distance is lowered to the first hit's distance (cache mode; unchanged on a miss).
   // *emitted receives the part of the result a light seen first emits (cache mode; not the
   // environment's). Lookups at the first hit go through `foot` (foot_correction.h).
-  // `texel_solid_angle`: the texel's, for the photons' share of its first hits.
+  // `texel_solid_angle`: the texel's, for the photons' share of its first hits, times the
+  // scale their count is taken at (spp / the texel's directions where it was balanced, as in
+  // PunctualPhotons::gather's `scale`); 0: they take none.
   glm::vec3 sample(const Ray& ray, uint64_t key, Part part, const FootCorrection& foot, float texel_solid_angle,
                    bool* saw_hard, float* distance, glm::vec3* emitted, PathCounters* c) const;
 

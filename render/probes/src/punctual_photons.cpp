@@ -267,9 +267,11 @@ glm::vec3 PunctualPhotons::unoccluded(const Photon& p, const glm::vec3& origin, 
   const glm::vec3 wo = to_origin / d;
   if (!(glm::dot(hit.geometric_normal, wo) > 0.0f)) return glm::vec3(0.0f);  // the probe sees the other side
   const glm::ivec2 texel = probe_texel_of(-wo, height, width);
+  // A texel outside the pass being shaded (scale 0) is skipped before its density is worked out.
+  const float counted = scale ? (*scale)[size_t(texel.x * width + texel.y)] : 1.0f;
+  if (!(counted > 0.0f)) return glm::vec3(0.0f);
   const float per_texel = photons_per_steradian(sources_[size_t(p.source)], origin, hit.position, hit.geometric_normal) *
                           equirect_texel_solid_angle(texel.x, width, height);
-  const float counted = scale ? (*scale)[size_t(texel.x * width + texel.y)] : 1.0f;
   const float taken = share(per_texel * counted);
   if (!(taken > 0.0f)) return glm::vec3(0.0f);  // the texel's directions take it all
   // What the texel's directions would have added there (TexelEstimator's punctual_light:
