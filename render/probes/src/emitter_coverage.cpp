@@ -9,35 +9,25 @@ namespace phyir::render {
 
 namespace {
 
-// Points on the traced outline of a triangle edge spanning pi: the chords between them put
-// the light's total solid angle within ~1e-4 of the exact value (emitter_coverage_test.cpp).
-// A chord's area error relative to the triangle's goes as (edge angle) / points^2 times the
-// map's distortion, which grows as 1 / sin(theta) towards the poles; so an edge of angle a
-// takes kArcPoints x sqrt(a / pi) / sin(theta) points (theta: its end nearer a pole), at
-// least kMinArcPoints, at most kArcPoints: a lamp's 2-degree triangle on the horizon gets
-// 11 (the outline's length sets the cost of every texel the light touches).
+// Outline points of an edge spanning pi (a light's solid angle within ~1e-4). A chord's error
+// goes as angle / points^2 times the map's 1 / sin(theta) stretch, hence sqrt(a / pi) / sin(theta)
+// (theta at the end nearer a pole); docs/probes-estimator.md, "Lights seen directly".
 constexpr int kArcPoints = 96;
 constexpr int kMinArcPoints = 4;
-// Largest phi step between two outline points: near a pole an arc turns fast in phi, and
-// its steps are halved until they are below this (unwrapping stays unambiguous).
+// Largest phi step between outline points (steps halved near a pole): keeps unwrapping unambiguous.
 constexpr double kMaxPhiStep = 0.05;
 constexpr int kMaxHalvings = 30;
-// An outline longer than this gives up (the probe keeps the plain estimate): an arc passing
-// close to, not through, a pole turns fast in phi all along, and 30 halvings per step could
-// otherwise make 2^30 points (a probe inside a lamp shade of thousands of triangles).
+// Longer outlines give up (plain estimate): an arc skirting a pole could make 2^30 points.
 constexpr size_t kMaxOutlinePoints = 4096;
-// Scenes with more light triangles than this (glowing lamp shades of real furniture) do not
-// trace coverage: one probe would trace every triangle it sees.
+// More light triangles (real furniture's lamp shades) trace no coverage: a probe sees them all.
 constexpr size_t kMaxTracedTriangles = 4096;
 
 // phi of the equirectangular map (equirect.cpp): 0 towards -Z, increasing towards +X.
 double phi_of(const glm::dvec3& d) { return std::atan2(d.x, -d.z); }
 
-// Whether unit u is off the poles' axis, where phi is defined (squared: hypot's overflow
-// guards took 8% of the hard room's probe time here).
+// Whether unit u is off the poles' axis, where phi is defined (squared: hypot is slow here).
 bool off_pole_axis(const glm::dvec3& u) { return u.x * u.x + u.z * u.z > 1e-24; }
 
-// Outline points for the arc from a to b (kArcPoints).
 int arc_points(const glm::dvec3& a, const glm::dvec3& b) {
   const double angle = std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
   const glm::dvec3 ua = glm::normalize(a), ub = glm::normalize(b);
@@ -46,9 +36,8 @@ int arc_points(const glm::dvec3& a, const glm::dvec3& b) {
   return int(std::clamp(std::ceil(points), double(kMinArcPoints), double(kArcPoints)));
 }
 
-// Appends the outline points of the arc from a (already in `out`, at unwrapped `phi_a`) to
-// b, b included, halving steps that turn more than kMaxPhiStep. False if the arc passes
-// through a pole (phi undefined there).
+// Appends the arc from a (already in `out`, at unwrapped `phi_a`) to b, b included, halving
+// steps that turn more than kMaxPhiStep. False through a pole (phi undefined there).
 bool append_arc(const glm::dvec3& a, double phi_a, const glm::dvec3& b, int depth, std::vector<glm::dvec2>* out,
                 double* phi_end) {
   const glm::dvec3 u = glm::normalize(b);
@@ -67,10 +56,8 @@ bool append_arc(const glm::dvec3& a, double phi_a, const glm::dvec3& b, int dept
   return true;
 }
 
-// Area of the part of the closed polygon `poly` inside [x0, x1] x [y0, y1]
-// (Sutherland-Hodgman against each side in turn, then the shoelace formula; a concave
-// polygon may leave zero-width bridges along the window's sides, which add no area), and
-// that part's bounding box.
+// Area and bounding box of closed polygon `poly` clipped to [x0, x1] x [y0, y1] (Sutherland-
+// Hodgman, then shoelace; a concave polygon's zero-width bridges along the sides add no area).
 double clipped_area(const std::vector<glm::dvec2>& poly, double x0, double x1, double y0, double y1, glm::dvec2* lo,
                     glm::dvec2* hi) {
   thread_local std::vector<glm::dvec2> a, b;

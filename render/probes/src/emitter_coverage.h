@@ -1,16 +1,8 @@
 #pragma once
 // How much of a probe texel each light covers, exactly and occlusion ignored, and where:
-// the probe renderer draws the directions for the emission a texel sees inside those parts
-// only (probe_renderer.cpp, visible_emission). A texel's partial coverage of a light is the
-// largest error of a stratified estimate over the texel (it converges only as N^-3/4); with
-// the coverage exact, the directions estimate only the part an occluder hides.
-//
-// Why it is exact: (phi, cos theta) is an equal-area map of the sphere (Lambert's
-// cylindrical projection), and an equirectangular texel is a rectangle in it, so a texel's
-// covered solid angle is the planar area of the light's image clipped to that rectangle.
-// The image of a triangle is bounded by great-circle arcs, traced as polylines (the light's
-// total solid angle comes out within ~1e-4 of the exact value), and closed along the
-// pole's line when the triangle surrounds a pole.
+// visible_emission's directions then estimate only what an occluder hides (partial coverage,
+// converging as N^-3/4, is a stratified texel's largest error). Exact: (phi, cos theta) is an
+// equal-area map, a texel a rectangle in it; docs/probes-estimator.md, "Lights seen directly".
 #include <glm/glm.hpp>
 
 #include <vector>
@@ -24,15 +16,13 @@ class EmitterCoverage {
  public:
   explicit EmitterCoverage(const scenes::Scene& scene);
 
-  // False when a light's emission is textured (not one value per triangle), when there are
-  // no lights or more than 4096 light triangles: then no texel gets the control variate.
+  // False (texels keep the plain estimate) with no lights, a textured light or > 4096 light triangles.
   bool usable() const { return usable_; }
 
   // The lights as seen from one probe origin.
   class View {
    public:
-    // False when an arc passes too close to a pole to be traced reliably (the probe's
-    // texels keep the plain estimate).
+    // False when an arc passes too close to a pole to trace (texels keep the plain estimate).
     bool valid() const { return valid_; }
     // Mean over texel (row, col) of an h x w probe of the emission arriving with no occluder.
     glm::vec3 texel_mean(int row, int col, int h, int w) const;
@@ -45,8 +35,7 @@ class EmitterCoverage {
     };
     // The parts of texel (row, col) of an h x w probe that lights cover (fraction > 0).
     void texel_pieces(int row, int col, int h, int w, std::vector<Piece>* pieces) const;
-    // Whether unit direction d points into triangle `light`; if so, *distance is how far
-    // along d its plane is.
+    // Whether unit d points into triangle `light`; if so *distance is how far along d its plane is.
     bool hits(int light, const glm::vec3& d, float* distance) const;
 
    private:

@@ -19,8 +19,7 @@ EmitterFootprints::EmitterFootprints(const scenes::Scene& scene) {
 }
 
 void EmitterFootprints::find_outlines() {
-  // Edges are matched by their end points' positions within a mesh: exporters split vertices
-  // where normals or texture coordinates change, along a box light's creases and seams.
+  // Edges matched by position within a mesh: exporters split vertices along creases and seams.
   using Point = std::tuple<float, float, float>;
   using Edge = std::tuple<int, Point, Point>;
   auto edge = [](const Triangle& t, int e) {
@@ -38,10 +37,8 @@ void EmitterFootprints::find_outlines() {
       if (s.size() != 2) continue;  // an open edge, or more than two sides: always the outline
       const int other = s[0] == int(k) ? s[1] : s[0];
       const Triangle& o = triangles_[size_t(other)];
-      // Two coplanar triangles (a panel's diagonal): inside the light. A crease (a box
-      // light's corner, the corner of an emitting room) between consistently wound sides
-      // (the edge runs the other way in the other triangle): inside the light's image where
-      // the probe sees both sides from the same side, its outline where not (mark_outline).
+      // Coplanar (a panel's diagonal): inside the light. A crease between consistently wound
+      // sides (the edge reversed in the other): outline only where seen from opposite sides.
       bool consistent = false;
       for (int f = 0; f < 3; ++f)
         consistent |= o.p[f] == tri.p[(e + 1) % 3] && o.p[(f + 1) % 3] == tri.p[e];
@@ -117,8 +114,7 @@ void EmitterFootprints::mark_outline(const Triangle& tri, const glm::vec3& origi
   // Points every 1/8 of a texel's height.
   for (int e = 0; e < 3; ++e) {
     if (!tri.outline[e]) continue;
-    // A crease whose two sides the probe sees from the same side (their fronts, or both
-    // backs of a two-sided light): the same light continues across it.
+    // Both sides of a crease seen from the same side (fronts, or backs of a two-sided light).
     if (tri.across[e] >= 0) {
       const Triangle& o = triangles_[size_t(tri.across[e])];
       const float a = glm::dot(tri.normal, origin - tri.p[0]), b = glm::dot(o.normal, origin - o.p[0]);

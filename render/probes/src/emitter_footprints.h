@@ -1,9 +1,6 @@
 #pragma once
-// The emissive triangles of a scene, to find the texels of a light probe in which a light
-// can appear before any sample is taken: those texels are the ones whose partial coverage
-// of a very bright surface dominates a probe's error, and a few stratified samples can miss
-// a sliver of light entirely (a ceiling panel seen edge-on from a probe on the ceiling).
-// Used by the probe renderer's cache mode (probe_renderer.h, docs/probes-estimator.md).
+// The texels of a probe in which a light may appear, found before any sample (stratified
+// samples can miss a sliver of light); docs/probes-estimator.md, "Lights seen directly".
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -21,19 +18,12 @@ class EmitterFootprints {
   static constexpr uint8_t kCovered = 1;  // a light may cover the texel
   static constexpr uint8_t kEdge = 2;     // ... and a light's outline may cross it
 
-  // Raises flags[row * w + col] to kCovered for every texel of an h x w probe at `origin`
-  // that a front-facing emissive triangle may cover, occlusion ignored: the texel box of
-  // points sampled densely along its edges, grown by one texel, or the whole cap when the
-  // triangle surrounds a pole. Texels that a point of the light's outline (the triangle
-  // edges not shared with a coplanar emissive triangle of its mesh, sampled at 1/8 of a texel) falls
-  // in are raised to kEdge: there coverage is partial. A crease between two triangles of one
-  // light (edges matched by position, sides wound consistently) is on its outline only where
-  // `origin` sees one side from the front and the other from behind: from inside an emitting
-  // box, or in front of two faces of a box light, the light continues across it. A cluster of nearby light triangles
-  // (a lamp shade of real furniture has thousands) that subtends less than a texel is marked
-  // as the cap of its bounding sphere, all kEdge: a per-probe cost in clusters, not triangles.
-  // A light of at most 32 triangles (a panel, a box) is marked triangle by triangle: as cheap,
-  // and tighter.
+  // Raises flags[row * w + col] of an h x w probe at `origin` to kCovered where a front-facing
+  // emissive triangle may cover the texel, occlusion ignored (its edges' texel box grown by one
+  // texel; the whole cap round a pole it surrounds), and to kEdge where its outline, sampled at
+  // 1/8 of a texel, falls: edges shared with no coplanar triangle of its mesh, less creases
+  // whose two sides `origin` sees from the same side. A cluster subtending less than a texel is
+  // marked as its bounding sphere's cap, all kEdge: the cost goes by clusters, not triangles.
   void mark(const glm::vec3& origin, int h, int w, std::vector<uint8_t>* flags) const;
 
  private:
@@ -50,11 +40,10 @@ class EmitterFootprints {
     uint32_t first = 0, count = 0;
     bool whole_light = false;  // all the light triangles of its mesh (at most kClusterSize)
   };
-  static constexpr uint32_t kClusterSize = 32;
+  static constexpr uint32_t kClusterSize = 32;  // lights this small go per triangle: as cheap, tighter
   // Sorts triangles_ into clusters (median splits along the longest axis, per mesh).
   void build_clusters();
-  // Marks the cap of the cluster's bounding sphere (kEdge) when it is smaller than a texel
-  // seen from `origin`; false (nothing marked) when it is not.
+  // Marks the cluster's bounding-sphere cap (kEdge) if under a texel; else false, marks nothing.
   bool mark_small_cluster(const Cluster& c, const glm::vec3& origin, int h, int w, std::vector<uint8_t>* flags) const;
   // The two steps of marking a triangle: the texel box (kCovered), the outline's texels (kEdge).
   void mark_box(const Triangle& tri, const glm::vec3& origin, int h, int w, std::vector<uint8_t>* flags) const;

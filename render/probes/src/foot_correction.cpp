@@ -9,9 +9,8 @@ namespace phyir::render {
 
 namespace {
 
-// A lookup counts as on the foot's surface when its normal is within ~25 degrees of the
-// foot's and it lies within half a cell of the foot's plane (a shelf 3 cm in front of a wall
-// is another surface).
+// On the foot's surface: normal within ~25 degrees and within half a cell of its plane (a shelf
+// 3 cm in front of a wall is another surface).
 constexpr float kSameSurfaceCos = 0.9f;
 constexpr float kPlaneCells = 0.5f;
 // The correction holds in full within one cell of the foot and fades to none at three: the
@@ -39,8 +38,7 @@ TexelCones::TexelCones(int height, int width) {
 }
 
 bool TexelCones::faces_away(int texel, const glm::vec3& normal) const {
-  // Every direction within `radius` of the axis is below the plane iff the axis is at least
-  // 90 degrees + radius from the normal.
+  // The whole cone is below the plane iff its axis is at least 90 degrees + radius from the normal.
   const Cone& cone = cones_[size_t(texel)];
   return glm::dot(cone.axis, normal) < -cone.sin_radius;
 }
@@ -54,8 +52,7 @@ FootCorrection FootCorrection::measure(const RadianceCache& cache, const ProbeSi
   FootCorrection out;
   CachedIrradiance E;
   if (!cache.interpolate(CachePoint{site.surface, site.normal, site.normal}, &E)) return out;
-  // Both sides leave the punctual lights out: no texel can hold them, and the cache keeps them
-  // apart from its direct light (CachedIrradiance::punctual).
+  // Both leave the punctual lights out: no texel holds them, and the cache keeps them apart.
   const glm::vec3 cached = E.has_direct ? E.indirect + E.direct : E.indirect;
   const glm::vec3 probe = E.has_direct ? measured.indirect() + measured.direct() : measured.indirect();
   const float cached_y = luminance(cached), probe_y = luminance(probe);

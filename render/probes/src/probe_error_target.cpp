@@ -111,8 +111,7 @@ void merge_pass(const ProbeOutput& pass, const std::vector<int>& refined, std::v
 
 namespace {
 
-// The statistics of `pass` added to `total`'s: its counts, and its seconds (a later pass's
-// time is the view's too).
+// `pass`'s statistics added to `total`'s, its seconds included (a later pass's time is the view's).
 void add_pass_stats(const ProbeStats& pass, ProbeStats* total) {
   const uint64_t probes = total->probes, valid = total->valid, nothing = total->nothing, emitter = total->emitter,
                  transparent = total->transparent;

@@ -30,16 +30,14 @@ std::vector<ProbeSite> place_probes(const RenderScene& scene, const CameraModel&
         const Ray ray = camera.generate_ray(probe_pixel_position(layout, camera, i, j));
         SurfaceInteraction si;
         if (!scene.trace(ray, &si, Coverage::kBlendSolid)) continue;  // kNothing, all zeros
-        // The G-buffer's own flags, so the probe mask agrees with mask_emissive and
-        // mask_transparent for a grid of the panorama's resolution.
+        // The G-buffer's flags: at full resolution the mask agrees with mask_emissive, mask_transparent.
         const GBufferSample g = GBufferSample::from_hit(si);
         site.status = g.emissive > 0.0f      ? ProbeStatus::kEmitter
                       : g.transparent > 0.0f ? ProbeStatus::kTransparent
                                              : ProbeStatus::kValid;
         site.surface = si.position;
         site.normal = si.shading_normal;
-        // Anything between the surface and the intended origin (a gap narrower than the
-        // offset, e.g. a panel 2 mm off a wall)? Then stop half way to it.
+        // Something nearer than the offset (a panel 2 mm off a wall): stop half way to it.
         site.offset = offset;
         if (offset > 0.0f) {
           Ray up{spawn_origin(si.position, si.geometric_normal, si.shading_normal), si.shading_normal};

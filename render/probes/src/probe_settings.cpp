@@ -16,8 +16,8 @@ std::string probe_mode_name(ProbeMode mode) { return mode == ProbeMode::kPath ? 
 void ProbeSettings::validate() const {
   layout.validate();
   if (spp <= 0 || spp > 1 << 20) fail_setting("probe.spp", "{} must be between 1 and 2^20", spp);
-  // Below 0.1 mm the origin is within a few float ulps (and ray offsets) of room-scale
-  // geometry; above 1 m it is no longer "at" the surface.
+  // Below 0.1 mm the origin is within a few ulps and ray offsets of room-scale geometry;
+  // above 1 m it is no longer "at" the surface.
   if (!(offset >= 1e-4f && offset <= 1.0f)) fail_setting("probe.offset", "{} must be between 1e-4 and 1 metre", offset);
   if (!(cache.cell_size >= 1e-3f && cache.cell_size <= 10.0f))
     fail_setting("probe.cache.cell_size", "{} must be between 1e-3 and 10 metres", cache.cell_size);

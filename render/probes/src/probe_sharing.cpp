@@ -29,9 +29,8 @@ bool one_surface(const ProbeSite& a, const ProbeSite& b, float max_baseline) {
   return std::abs(glm::dot(a.normal, d)) <= slack && std::abs(glm::dot(b.normal, d)) <= slack;
 }
 
-// Two texels' values further apart than this many standard errors of their difference
-// see different light: parallax has moved an edge or a halo across one of them, and
-// averaging would blur it.
+// Values further apart than this many standard errors of their difference see different light
+// (parallax moved an edge or a halo); 2 refuses neighbours that differ by noise.
 constexpr double kConsistentErrors = 3.0;
 
 bool consistent(const glm::dvec3& a, const glm::dvec3& b, float variance_a, float variance_b) {
@@ -44,8 +43,7 @@ bool similar_distances(float a, float b) {
   return std::max(a, b) <= kMaxDistanceRatio * std::min(a, b);
 }
 
-// Per texel of a probe: its centre direction and the largest parallax angle accepted there,
-// a fraction of the texel's smaller extent (texels narrow towards the poles).
+// Per texel: its centre direction and the largest parallax angle there (texels narrow at the poles).
 struct TexelParallax {
   std::vector<glm::vec3> centre;
   std::vector<float> max_angle;
@@ -70,8 +68,7 @@ void check_records(const ProbeLayout& layout, const TexelRecords& records) {
     fail("sharing needs texel records of {} texels, {} given", records_needed, records.samples.size());
 }
 
-// What every probe's average reads: the mosaic before sharing, the grid and its sites,
-// the texel records and the parallax limits.
+// What every probe's average reads.
 struct SharingInputs {
   const Image& mosaic;
   const ProbeLayout& layout;
@@ -88,8 +85,7 @@ struct SharingInputs {
   }
 };
 
-// One probe's texels averaged with its window's, sample-count weighted; one per thread, its
-// buffers reused from probe to probe.
+// One probe's texels averaged with its window's; one per thread, buffers reused.
 class WindowAverage {
  public:
   explicit WindowAverage(const SharingInputs& in)
@@ -160,9 +156,8 @@ class WindowAverage {
     }
   }
 
-  // The weighted mean of independent estimates has variance sum n^2 var / (sum n)^2: each
-  // texel's own directions are independent of its neighbours' (interleaved strata, streams
-  // of their own); what they share through the cache is in neither term.
+  // Variance of a weighted mean of independent estimates, sum n^2 var / (sum n)^2: own streams and
+  // interleaved strata; what the texels share through the cache is in neither term.
   uint64_t write_shared(int p, Image& out, Image* error) const {
     uint64_t shared = 0;
     for (int t = 0; t < texels_; ++t) {

@@ -14,31 +14,23 @@ namespace phyir::render {
 
 namespace {
 
-// The light reflected at a BRDF-sampled ray's hit is needed for the specular part of the
-// sample's weight only (the diffuse part of the indirect light is the cache's); it is
-// evaluated with probability min(1, kSpecularKeepScale x that part's share of the weight),
-// weighted by the inverse: a wall's cosine-lobe sample (specular share ~2%) evaluates it in
-// 1/8 of the samples (the floor, so no sample is weighted by more than 8), a glossy or
-// metal lobe in every sample.
+// A BRDF-sampled ray's hit is followed with probability min(1, kSpecularKeepScale x the
+// specular share of its weight), weighted by the inverse: a glossy or metal lobe always, a
+// wall's in 1/8 of the samples (the floor: no sample weighted by more than 8).
 constexpr float kSpecularKeepScale = 4.0f;
 constexpr float kMinSpecularKeep = 0.125f;
 
-// Light samples of the next-event estimate at a probe ray's own hit near a light (where
-// direct light is not cached): there the direct light of a thin or nearby emitter varies
-// most from one direction to the next (measured: the ceiling beside a light fixture). At a
-// hit that emits, scaled by its albedo (near_light_samples).
+// Light samples at a probe ray's own hit near a light, where a thin or nearby emitter's light
+// varies most (docs/probes-estimator.md, step 4); scaled by albedo where the hit emits.
 constexpr int kNearLightSamples = 8;
 
-// Where the cache holds the direct light, the punctual lights' diffuse light is evaluated at
-// the hit itself, one shadow ray per light (exact: no blur of their hard shadows, no fill
-// noise), in scenes of up to this many punctual lights; with more, the cost per direction
-// would grow with them, and the cache's value at the cell's points is used.
+// Punctual lights evaluated exactly at each hit (one shadow ray each) in scenes of up to this
+// many; beyond, the cost per direction would grow with them, and the cache's value is used.
 constexpr int kMaxExactPunctualLights = 8;
 
-// Where the cache holds the direct light, a specular next-event sample adding less than this
-// fraction of the diffuse light traces its shadow ray with probability (its share / this)
-// (direct_light). Measured: 0.05 saves 86 M of 371 M rays on the bench for 1% more error;
-// 0.15 only 13 M more, for 6% more error.
+// A specular next-event sample adding less than this fraction of the diffuse light traces
+// its shadow ray with probability share / this (docs/probes-estimator.md, step 3: 23% fewer
+// rays for 1% more error).
 constexpr float kWeakShadowFraction = 0.05f;
 
 }  // namespace
@@ -76,9 +68,7 @@ glm::vec3 TexelEstimator::sample(const Ray& ray, uint64_t key, Part part, const 
   if (!scene_.trace(ray, &si)) return part == Part::kRest ? glm::vec3(0.0f) : miss(ray.direction);
   *distance = std::min(*distance, si.distance);
   const glm::vec3 Le = si.emits ? si.emission : glm::vec3(0.0f);
-  // The texel sees something small and bright or hard to sample: a light (unless its
-  // emission is estimated apart), glass, or a glossy surface (whose highlights are small
-  // images of the lights).
+  // Hard to sample: a light (unless estimated apart), glass, a glossy surface's highlights.
   if ((si.emits && part == Part::kAll) || si.transmission > 0.0f || si.brdf.roughness < settings_.glossy_roughness)
     *saw_hard = true;
   const glm::vec3 L = part == Part::kAll ? Le : glm::vec3(0.0f);
@@ -112,28 +102,25 @@ glm::vec3 TexelEstimator::reflected(const SurfaceInteraction& si, const glm::vec
   glm::vec3 L(0.0f);
   if (max_component(fd) > 0.0f) L += fd * E.indirect;
 
-  // Next-event estimation on the emitters, full BRDF: several samples at a probe ray's own
-  // hit (near a light the texel's noise is mostly this estimate's), one deeper.
+  // Several light samples at a probe ray's own hit (near a light, most of the noise), one deeper.
   DirectLightOptions nee;
   nee.light_samples = depth == 0 ? near_light_samples(si, x) : 1;
   L += near_light(x, &nee, depth, key, c, photon_shares);
 
-  // The control variate of reflected_split(), for every sample of a rough surface (the
-  // roulette below depends on the sample, so it cannot be the condition).
+  // reflected_split()'s control variate on every rough surface (the roulette below depends on
+  // the sample, so it cannot be the condition).
   const int next = depth + 1;
   const bool controlled = next < settings_.path.max_bounces && p.roughness >= settings_.glossy_roughness;
   const glm::vec3 uniform = controlled ? E.indirect * kInvPi : glm::vec3(0.0f);
   if (controlled) L += specular_albedo(p, x.wo.z) * uniform;
 
-  // One direction from the BRDF.
   Rng rng = stream(key, Purpose::kTexelBrdf, uint64_t(depth));
   const float u_lobe = rng.next_float();
   BrdfSample bs;
   if (!brdf_sample(p, x.wo, u_lobe, rng.next_2d(), &bs)) return L;
   const glm::vec3 wi_world = x.frame.to_world(bs.wi);
   if (glm::dot(wi_world, x.geometric_normal) <= 0.0f) return L;  // leaks below the surface: dropped, as the integrator does
-  // The part of the sample's weight that belongs to the specular lobe (the diffuse part of
-  // the indirect light comes from the cache).
+  // The specular lobe's part of the weight (the diffuse part is the cache's).
   const glm::vec3 weight_specular = bs.delta ? bs.weight : specular_eval(p, x.wo, bs.wi) * safe_div(bs.wi.z, bs.pdf);
   const Ray ray{spawn_origin(si.position, x.geometric_normal, wi_world), wi_world};
   SurfaceInteraction y;
@@ -164,10 +151,9 @@ glm::vec3 TexelEstimator::reflected_at(const Ray& ray, const SurfaceInteraction&
   }
   if (from_glossy && y.brdf.roughness < settings_.glossy_roughness && next < kMaxSpecularDepth)
     return reflected(y, -ray.direction, next, key, c);
-  // The chain's end: in the cache, the lobe as if lit uniformly, or (progressive passes), on a
-  // glossy y, with probability chain_end_paths the path tracer's own light: there the uniform
-  // lobe misses the sharp images y reflects. A rough y's lobe is nearly uniform, and a path
-  // from it would cost a full path for a few percent of its light.
+  // The chain's end: the cache's uniformly lit lobe, or on a glossy y with probability
+  // chain_end_paths (progressive passes) the path tracer's light, for the sharp images the
+  // uniform lobe misses; a rough y's lobe is nearly uniform, not worth a path.
   if (settings_.chain_end_paths > 0.0f && glossy(y.brdf) &&
       stream(key, Purpose::kTexelChainEnd, uint64_t(depth)).next_float() < settings_.chain_end_paths) {
     const int budget = std::max(settings_.path.max_bounces - std::min(next, kMaxSpecularDepth), 0);
@@ -187,17 +173,15 @@ glm::vec3 TexelEstimator::reflected_split(const ShadingPoint& x, const glm::vec3
   if (!(share > 0.0f)) return L;
   const float keep = std::clamp(kSpecularKeepScale * share, kMinSpecularKeep, 1.0f);
   const bool emitters = has_lights(scene_);
-  // Its shadow ray is rouletted where the sample adds less than a small fraction of the
-  // diffuse light (a rough wall away from the lights' highlights).
+  // Shadow ray rouletted where the sample adds little to the diffuse light (kWeakShadowFraction).
   DirectLightOptions nee;
   nee.lobes = Lobes::kSpecular;
   nee.brdf_strategy_probability = keep;
   nee.weak = kWeakShadowFraction * luminance(L);
   if (emitters) L += direct_light(x, nee, depth, key, c);
   const int next = depth + 1;
-  // Control variate (rouletted rays only): the specular lobe under uniform light of the
-  // cached mean radiance E.indirect / pi is known exactly; the ray estimates only the
-  // difference between the light it finds and that mean, so a skipped ray costs far less.
+  // Control variate (rouletted rays only): the lobe under uniform light E.indirect / pi is
+  // exact; the ray estimates only the difference, so a skipped ray costs far less.
   const glm::vec3 uniform = (keep < 1.0f && next < settings_.path.max_bounces) ? E.indirect * kInvPi : glm::vec3(0.0f);
   L += albedo * uniform;
   if (keep < 1.0f && !(stream(key, Purpose::kTexelSpecularRoulette, uint64_t(depth)).next_float() < keep)) return L;
@@ -229,9 +213,8 @@ glm::vec3 TexelEstimator::terminal(const SurfaceInteraction& si, const glm::vec3
   glm::vec3 L(0.0f);
   const glm::vec3 lobe = mean_brdf(p, x.wo.z);
   const CachedIrradiance E = lookup(si, x, depth, key, c);
-  // The whole lobe as if lit uniformly, the punctual lights' irradiance taken at y itself:
-  // their hard shadows (a window's frame in the sun), blurred by the cache, are what a
-  // polished surface reflects sharply.
+  // The lobe lit uniformly, punctual lights taken at y itself: the cache blurs their hard
+  // shadows, which a polished surface reflects sharply.
   if (E.has_direct) return lobe * (E.indirect + E.direct + punctual_at(x, E, c, nullptr));
   // Light sampling alone: no BRDF-sampled ray at a chain's end competes for the emitters.
   DirectLightOptions nee;

@@ -19,20 +19,16 @@ namespace phyir::render {
 
 namespace {
 
-// The foot correction needs this many probes to tell the difference common to all of them
-// (the last bounce) from each one's own (foot_correction.h).
+// Fewer probes cannot tell the difference common to all (the last bounce) from each one's
+// own (foot_correction.h).
 constexpr size_t kMinFootCorrections = 64;
 
-// Probes are shaded in tiles of kTileRows x kTileCols neighbours on the grid, texel by texel
-// across the tile: neighbouring probes see the same scene in the same direction from points
-// a few centimetres apart, so one probe's texel finds the cache cells, BVH nodes and texture
-// texels of the previous probe's still in the processor's caches (probe by probe, a probe's
-// 512 texels cover the whole room first).
+// Tiles of neighbours, shaded texel by texel across the tile: the next probe's texel finds the
+// same cells, BVH nodes and textures still in the processor's caches (docs/probes-estimator.md, "Tiles").
 constexpr int kTileRows = 8;
 constexpr int kTileCols = 8;
 
-// The indices into `todo` of each tile's probes, tiles in grid order, each tile's probes in
-// todo's order.
+// The indices into `todo` of each tile's probes; tiles in grid order, probes in todo's order.
 ProbeTiles probe_tiles(const std::vector<int>& todo, int grid_width) {
   const int tiles_across = (grid_width + kTileCols - 1) / kTileCols;
   auto tile_of = [&](int p) { return (p / grid_width / kTileRows) * tiles_across + (p % grid_width) / kTileCols; };
@@ -185,8 +181,7 @@ void ProbeView::shade_tile(const std::vector<size_t>& tile, int pass, Worker* w)
   progress_->advance(tile.size());
 }
 
-// The texels a pass shades: all of them, or with the foot correction those that may look to
-// the front (pass 0) and those facing the probe's own surface (pass 1).
+// All texels, or with the foot correction those that may look to the front (pass 0), then the rest.
 bool ProbeView::in_pass(const TileProbe& probe, int t, int pass) const {
   return !correct_foot_ || (pass == 1) == cones_.faces_away(t, out_.sites[size_t(probe.p)].normal);
 }
@@ -201,8 +196,7 @@ void ProbeView::prepare_probe(TileProbe* probe, int pass) const {
   }
   probe->lit.assign(size_t(texels_), uint8_t(0));
   if (adaptive_) transport_.footprints().mark(site.origin, layout_.res_height, layout_.res_width, &probe->lit);
-  // The lights' exact coverage of each texel, where the emission a texel sees is the
-  // lights' alone (no environment).
+  // The lights' exact coverage, where the emission a texel sees is theirs alone (no environment).
   probe->lights = EmitterCoverage::View();
   probe->analytic = false;
   bool any_lit = false;
@@ -247,8 +241,7 @@ void ProbeView::add_after_sharing(const std::vector<std::pair<uint64_t, glm::vec
 }
 
 void ProbeView::correct_feet() {
-  // The common difference is a mean over the probes: with few of them it would take most of
-  // each probe's own difference with it, so then none is corrected.
+  // The common difference is a mean over the probes: with few, it takes each one's own with it.
   const size_t active =
       size_t(std::count_if(feet_.begin(), feet_.end(), [](const FootCorrection& f) { return f.active(); }));
   if (active < kMinFootCorrections) std::fill(feet_.begin(), feet_.end(), FootCorrection());

@@ -1,22 +1,10 @@
 #pragma once
-// One view's probes being rendered: the steps of ProbeRenderer::render_at (docs/probes.md,
-// "The two modes"). Internal to the probe renderer. The light transport the probes share
-// (cache, photons, lights' coverage, estimator) is its ViewTransport's
-// (probe_view_transport.h); the view keeps its passes' bookkeeping: which probes, in which
-// tiles, the foot corrections, the records sharing needs and the outputs. Its passes and
-// sharing are in probe_view.cpp, its texels (first_look and after) in probe_view_texels.cpp.
-//
-//   select_probes         which probes are computed; their position, normal and mask images
-//   transport_            the shared transport, built before the first pass
-//   shade_pass            every tile in parallel (twice with the foot correction: the texels
-//                         that may look to the front, then those facing the probe's surface)
-//     shade_tile          a tile's probes texel by texel across the tile, twice:
-//       first_look        every texel's first samples (and a lit texel's emission seen directly)
-//       finish_texel      its value: hard texels (by their samples or their neighbours') resampled
-//     balance             a probe's extra directions to its noisiest texels
-//     gather_photons      the photons' share of the pass's texels, weighed against their directions
-//   correct_feet          the cache's error at each probe's foot, less the common part
-//   share_between_neighbours  texels averaged with neighbouring probes' on one surface
+// One view's probes being rendered: the steps of ProbeRenderer::render_at. Internal to the
+// probe renderer. The light transport the probes share is its ViewTransport
+// (probe_view_transport.h); the view keeps its passes' bookkeeping. Passes and sharing in
+// probe_view.cpp, texels in probe_view_texels.cpp (docs/probes-estimator.md, "Code map"):
+//   select_probes; shade_pass (twice with the foot correction): shade_tile's first_look and
+//   finish_texel, then per probe balance and gather_photons; correct_feet; share_between_neighbours
 #include <memory>
 #include <utility>
 #include <vector>
@@ -76,8 +64,7 @@ class ProbeView {
     glm::vec3 cos_all{0.0f}, cos_emitted{0.0f};
     int samples = 0;          // directions its value (apart from the emission seen directly) took
     float variance = 0.0f;    // of that value's luminance (ProbeView::estimate)
-    // The photons counted as this x their number for their share of its hits: spp / its
-    // directions where it was balanced, else 1.
+    // Photons counted as this x their number: spp / its directions where balanced, else 1.
     float photon_scale = 1.0f;
   };
   using Part = TexelEstimator::Part;
@@ -99,30 +86,25 @@ class ProbeView {
   void shade_pass(int pass);
   void shade_tile(const std::vector<size_t>& tile, int pass, Worker* w);
   void prepare_probe(TileProbe* probe, int pass) const;
-  // A texel's first spp samples (and a lit texel's emission seen directly), then, once every
-  // texel of the probe has them, its final value: hard texels from fresh samples.
+  // A texel's first spp samples (and a lit texel's emission seen directly), then its value.
   void first_look(TileProbe& probe, int t, int pass, Worker* w);
   void finish_texel(TileProbe& probe, int t, Worker* w);
-  // The probe's extra directions (probe.balance) to the pass's texels with the most noise
-  // per direction, in proportion to it: those whose share is at least twice the directions
-  // they took are estimated again from their share alone.
+  // The probe's extra directions to its texels in proportion to their noise per direction.
   void balance(TileProbe& probe, Worker* w);
   // A texel estimated again from `share` fresh directions where that is at least twice its own.
   void rebalance(TexelState& s, double share, Worker* w);
   // The value of a texel whose first samples are in: them, or hard_spp fresh ones.
   glm::vec3 settle(TileProbe& probe, int t, Worker* w);
-  // A hard texel's value from hard_spp fresh samples, or from kDeepSppFactor x as many more
-  // where those still spread very widely (a rare bright part).
+  // A hard texel from hard_spp fresh samples, or kDeepSppFactor x as many where those spread widely.
   glm::vec3 hard_estimate(TexelState& s, Worker* w);
   // The largest difference between a plain texel's first value and its neighbours' (luminance).
   float neighbour_step(const TileProbe& probe, int t) const;
-  // A lit texel's emission seen directly; true (and its value final) where a light's
-  // outline crosses it.
+  // A lit texel's emission seen directly; true (value final) where a light's outline crosses it.
   bool look_at_light(TexelState& s, Worker* w);
   glm::vec3 estimate(Texel& x, int first, int count, Part part, bool* saw_hard, float* spread, Worker* w);
   void store_texel(const Texel& x, glm::vec3 value, const glm::vec3& seen_emission, Worker* w);
-  // The photons' estimate of the pass's texels of a probe (punctual_photons.h), kept to be
-  // added after sharing; those of pass 0 go into the foot correction's measure now.
+  // The photons' estimate of the pass's texels (punctual_photons.h), kept to be added after
+  // sharing; pass 0's also go into the foot correction's measure now.
   void gather_photons(TileProbe& probe, int pass, Worker* w);
   // A texel's cosine-weighted light into its probe's foot measure (pass 0 of the correction).
   void measure_texel(TexelState& s) const;

@@ -8,60 +8,39 @@
 #include "phyir/render/streams.h"
 #include "visible_emission.h"
 
-// ProbeView's texels: each texel's first samples, its final value (hard texels supersampled,
-// a light's emission seen directly estimated apart), its estimate from a batch of
-// directions, and where it is stored (docs/probes-estimator.md, "The texel estimator" and "Hard
-// texels"). The view's passes, cache, photons and sharing are in probe_view.cpp.
+// ProbeView's texels: first samples, final value, batch estimates and storage
+// (docs/probes-estimator.md, "The texel estimator" and "Hard texels"). Passes in probe_view.cpp.
 
 namespace phyir::render {
 
 namespace {
-// Directions per texel for the emission seen in texels a light may cover, in units of spp.
-// Where the lights' exact coverage is known (EmitterCoverage) they are drawn inside the
-// covered parts and ask only whether an occluder hides the light (visible_emission): 4 x 4
-// = 16 at the default spp, 64 x 4 = 256 where a light's outline crosses the texel
-// (EmitterFootprints::kEdge), where an occluder's edge may too (a housing's rim in front of
-// a panel). Measured on the bench (docs/probes-estimator.md): 2 and 32 x spp raise the error by 3%;
-// 16 and 256 x spp over the whole texel change nothing. Otherwise (textured lights, an
-// environment) they are spread over the texel, one ray each: 16 and 256 x spp.
-// A hard texel whose hard samples spread over more than kDeepSpreadRatio x (their mean + the
-// floor) holds a part far brighter than the rest that only some of them found (a lamp's halo
-// on the ceiling, the sun in a polished surface): it is estimated once more from
-// kDeepSppFactor x hard_spp fresh samples. Measured on the suite, 32x64 grid (docs/probes-estimator.md): the night
-// apartment's error 0.55 -> 0.41-0.50 for 20% more CPU, the hard room's 7.5% -> 6.8%, the
-// others within their seed-to-seed noise for 1-11% more CPU.
+// Deep texels: hard samples spread over kDeepSpreadRatio x (their mean + the floor) found a rare
+// bright part; kDeepSppFactor x hard_spp fresh samples then (docs/probes-estimator.md, "Hard texels").
 constexpr int kDeepSppFactor = 4;
 constexpr float kDeepSpreadRatio = 4.0f;
 
+// A lit texel's emission seen directly, in spp: occlusion rays inside the parts a light covers
+// where that is known, else directions over the texel; the Edge ones where an outline crosses it.
+// Fewer raise the bench's error (docs/probes-estimator.md, "Lights seen directly: exact coverage").
 constexpr int kLightPartSppFactor = 4;
 constexpr int kLightPartEdgeSppFactor = 64;
 constexpr int kEmissionSppFactor = 16;
 constexpr int kEmissionEdgeSppFactor = 256;
 
-// A probe's extra directions (probe.balance) go to a texel only where its share is at least
-// kBalanceGain x the directions it took (they replace its own), at most kMostBalanceSppFactor
-// x spp of them, numbered after every other batch of the texel.
+// Balancing: a texel's share replaces its own directions where it is at least kBalanceGain x
+// them, at most kMostBalanceSppFactor x spp, numbered after every other batch of the texel.
 constexpr double kBalanceGain = 2.0;
 constexpr int kMostBalanceSppFactor = 256;
 constexpr int kBalanceFirstSppFactor = 1 << 16;
 
-// A texel's variance (what sharing tests its neighbours' values against) comes from its
-// strata's differences where its samples make at least this many pairs of cells (the hard
-// batches, spp x hard_spp_factor and more), else from their spread: at the window's edge
-// seen from a sofa the spread counted the sill-to-sky step that stratification resolves,
-// and let neighbours whose sill sits a fifth of a texel away average in.
+// Strata pairs for a texel's variance from their differences (hard batches), else its samples'
+// spread, which counts an edge the strata resolve (docs/probes-estimator.md, "Sharing between neighbours").
 constexpr int kMinStrataPairs = 8;
 
 }  // namespace
 
-// A texel's first samples, then its final value: hard texels (the first samples met glass,
-// a glossy surface or a light whose emission is not estimated apart; or they spread over
-// more than spread_threshold x (their mean + a floor); or the texel's first value steps by
-// as much from a neighbour's: an edge, a highlight, a shadow boundary or a sun patch runs
-// through it) are estimated again from hard_spp_factor x spp fresh samples. The neighbours'
-// test finds the texels whose few first samples all fell on one side of an edge: a sun
-// patch's rim seen from a ceiling probe, a lamp shade lit from inside seen from the floor.
-// No decision looks at the samples it selects, so none biases the value.
+// A texel's first samples. settle gives hard ones (glass, a glossy surface or a light met; a spread
+// or a step from a neighbour over the threshold) fresh samples: no choice looks at those it keeps.
 void ProbeView::first_look(TileProbe& probe, int t, int pass, Worker* w) {
   const int row = t / layout_.res_width, col = t % layout_.res_width;
   TexelState& s = probe.texels[size_t(t)];
@@ -94,14 +73,12 @@ void ProbeView::measure_texel(TexelState& s) const {
 glm::vec3 ProbeView::settle(TileProbe& probe, int t, Worker* w) {
   TexelState& s = probe.texels[size_t(t)];
   const int spp = settings_.spp;
-  // The spread is judged against the texel's whole value: light it has exactly (the
-  // emission seen directly, estimated apart) makes the same spread matter less.
+  // Judged against the whole value: light known exactly makes the same spread matter less.
   const float limit = settings_.spread_threshold * (luminance(s.first) + luminance(s.exact) + transport_.dark_floor());
   const float step = s.part == Part::kAll ? neighbour_step(probe, t) : 0.0f;
   const bool own = s.hard || (spp > 1 && s.spread > limit) || step > limit;
   if (own) note_choice(s.x, kHardTexel);
-  // A later pass also supersamples what an earlier one found (docs/probes.md, "Accuracy as a
-  // target"): once a pass has found a rare bright part, every pass after takes it.
+  // A later pass also supersamples what an earlier one found (docs/probes.md, "Accuracy as a target").
   const bool hard = own || earlier_choice(s.x) >= kHardTexel;
   if (!hard || !adaptive_) return s.first;
   ++w->stats.supersampled_texels;
@@ -120,9 +97,7 @@ glm::vec3 ProbeView::hard_estimate(TexelState& s, Worker* w) {
     if (own) note_choice(s.x, kDeepTexel);
     if (!own) return value;
   }
-  // A rare bright part (a sun patch's rim, a lamp's halo on the ceiling) that few of the
-  // hard samples found: its share of the texel is still a guess. Fresh samples again, more,
-  // numbered after every other batch of the texel (its light's emission included).
+  // A rare bright part: more fresh samples, numbered after every other batch (emission's included).
   ++w->stats.deep_texels;
   s.x.samples = hard_spp * kDeepSppFactor;
   return estimate(s.x, spp * (1 + settings_.hard_spp_factor + kEmissionEdgeSppFactor), s.x.samples, s.part, &unused,
@@ -131,9 +106,7 @@ glm::vec3 ProbeView::hard_estimate(TexelState& s, Worker* w) {
 
 void ProbeView::balance(TileProbe& probe, Worker* w) {
   if (!adaptive_ || !(settings_.balance > 0.0f)) return;
-  // Each texel's noise per direction, s = sqrt(variance of its mean x its directions). The
-  // probe's error sum s^2 / n is least for a number of directions n in proportion to s
-  // (Neyman's allocation): the extra directions go to the texels in that proportion.
+  // Neyman's allocation: the extra directions in proportion to each texel's noise per direction.
   auto per_direction = [](const Texel& x) { return std::sqrt(std::max(x.variance, 0.0f) * float(x.samples)); };
   double noise = 0.0, spent = 0.0;
   for (const TexelState& s : probe.texels)
@@ -145,12 +118,10 @@ void ProbeView::balance(TileProbe& probe, Worker* w) {
 }
 
 void ProbeView::rebalance(TexelState& s, double share, Worker* w) {
-  // Fresh directions replace the texel's own (its own chose it: kept with them, a texel
-  // whose samples found a bright part would weigh less than one whose samples missed it).
+  // Fresh directions replace its own: these chose it, and kept they would bias its value.
   if (share < kBalanceGain * s.x.samples) return;
   s.x.samples = std::min(int(std::ceil(share)), settings_.spp * kMostBalanceSppFactor);
-  // The photons' share of its hits is as against its directions (the balance heuristic, a
-  // photon a 16th of a direction): their count as spp / directions of it.
+  // The photons' count as spp / its directions (balance heuristic, a photon a 16th of a direction).
   s.x.photon_scale = float(settings_.spp) / float(s.x.samples);
   bool unused = false;
   s.value = estimate(s.x, kBalanceFirstSppFactor * settings_.spp, s.x.samples, s.part, &unused, nullptr, w);
@@ -168,8 +139,7 @@ TexelChoice ProbeView::earlier_choice(const Texel& x) const {
 }
 
 float ProbeView::neighbour_step(const TileProbe& probe, int t) const {
-  // The 8 neighbours in the probe's image (columns wrap round), those of the same pass whose
-  // first value is plain (no light estimated apart).
+  // The 8 neighbours (columns wrap) of the same pass whose first value is plain.
   const int row = t / layout_.res_width, col = t % layout_.res_width;
   const float own = luminance(probe.texels[size_t(t)].first);
   float step = 0.0f;
@@ -186,12 +156,8 @@ float ProbeView::neighbour_step(const TileProbe& probe, int t) const {
   return step;
 }
 
-// A texel a light may cover (EmitterFootprints): the emission seen first is estimated apart
-// (partial coverage of a light is the largest error otherwise), the rest from its own
-// samples. Where a light's outline crosses the texel the rest straddles it (the light's
-// reflection on one side, what lies beyond on the other) and is supersampled from the
-// start (returns true); elsewhere the light covers the texel wholly or not at all, and the
-// rest is hard only by its own first samples, as in any texel.
+// A texel a light may cover: its emission seen first estimated apart. Where a light's outline
+// crosses it the rest is supersampled from the start (returns true); elsewhere judged as any texel.
 bool ProbeView::look_at_light(TexelState& s, Worker* w) {
   const int spp = settings_.spp, hard_spp = spp * settings_.hard_spp_factor;
   Texel& x = s.x;
@@ -220,9 +186,8 @@ bool ProbeView::look_at_light(TexelState& s, Worker* w) {
   return true;
 }
 
-// `spread` (if given) receives the range of the samples' luminances; x.cos_all and
-// x.cos_emitted the sample means of the radiance and its emitted part times the cosine to
-// the probe's normal when the texel is measured (FootIrradiance), else 0.
+// `spread` (if given): the samples' luminance range. x.cos_all, x.cos_emitted: the mean radiance
+// and its emitted part x the cosine to the probe's normal where the texel is measured, else 0.
 glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* saw_hard, float* spread, Worker* w) {
   TileProbe& probe = *x.probe;
   const uint64_t id = texel_id(probe.p, x.t);
@@ -268,8 +233,7 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* s
 }
 
 void ProbeView::store_texel(const Texel& x, glm::vec3 value, const glm::vec3& seen_emission, Worker* w) {
-  // The specular control variate's corrections can be negative on their own; a texel whose
-  // mean still is (dark, grazing, few directions) is clamped to 0, and counted.
+  // The control variate can make a dark texel's mean negative: clamped to 0, and counted.
   if (glm::min(value.x, glm::min(value.y, value.z)) < 0.0f) {
     value = glm::max(value, glm::vec3(0.0f));
     ++w->stats.negative_texels;
@@ -281,8 +245,7 @@ void ProbeView::store_texel(const Texel& x, glm::vec3 value, const glm::vec3& se
     records_.distance[size_t(id)] = x.distance;
     records_.samples[size_t(id)] = float(x.samples);
     records_.variance[size_t(id)] = x.variance;
-    // Emission seen directly is not shared: a light's edge moves across a texel with the
-    // slightest parallax, and its own directions already resolve it.
+    // Emission seen directly is not shared: a light's edge moves with the slightest parallax.
     if (x.probe->lit[size_t(x.t)]) w->emission_seen.push_back({id, seen_emission});
   } else {
     value += seen_emission;

@@ -11,10 +11,8 @@ namespace phyir::render {
 
 namespace {
 
-// A texel's spread is judged against its mean plus a floor, so that the noise of nearly
-// black texels does not flag them: this fraction of the mean radiance a diffuse white
-// surface would reflect under the cache's mean irradiance (a scale of the view's brightness
-// that exists before any probe is shaded).
+// The floor added to a texel's mean in its spread test, as a fraction of a white diffuse surface's
+// radiance under the cache's mean irradiance: nearly black texels' noise does not make them hard.
 constexpr float kDarkFloorFraction = 0.1f;
 
 }  // namespace

@@ -1,13 +1,8 @@
 #pragma once
-// The light transport the probes of one view share (docs/probes.md, "cache"): built once
-// before any probe is shaded, read-only while they are. Internal to the probe renderer;
-// ProbeView owns one and keeps the bookkeeping of its passes apart from it.
-//
-//   radiance cache    its cells discovered by one direction per texel of the view's probes
-//   photons           the punctual lights' and the sun's, round the probes
-//   footprints        which texels a light may cover, per probe
-//   coverage          the exact part of a texel each light covers
-//   estimator         a texel direction's radiance from all of the above
+// The light transport the probes of one view share: radiance cache, photons, the lights'
+// footprints and exact coverage, and the texel estimator over them (docs/probes-estimator.md,
+// "Code map"). Built once before any probe is shaded, read-only while they are. Internal;
+// ProbeView owns one.
 #include <memory>
 #include <vector>
 
@@ -20,17 +15,15 @@
 
 namespace phyir::render {
 
-// The probes to shade, by index into the view's list of probes to compute, in tiles of
-// neighbours on the grid.
+// The probes to shade in tiles of grid neighbours, as indices into the view's list to compute.
 using ProbeTiles = std::vector<std::vector<size_t>>;
 
 class ViewTransport {
  public:
   ViewTransport(const RenderScene& scene, const Effects& effects, const ProbeSettings& settings);
 
-  // Cache mode: the cache's cells discovered from one direction per texel of the probes
-  // (`todo` indexes `sites`; tile by tile, texel by texel across a tile, as the shading
-  // goes), then filled. Its rays, cells and seconds go into *stats.
+  // Cache mode: the cells discovered from one direction per texel of the probes (`todo` indexes
+  // `sites`; in shading order), then filled. Its rays, cells and seconds go into *stats.
   void build_cache(const std::vector<ProbeSite>& sites, const std::vector<int>& todo, const ProbeTiles& tiles,
                    ProbeStats* stats);
   // The photons round the computed probes (cache mode, with punctual lights), then the
@@ -42,8 +35,7 @@ class ViewTransport {
   const PunctualPhotons& photons() const { return photons_; }
   const EmitterFootprints& footprints() const { return footprints_; }
   const EmitterCoverage& coverage() const { return coverage_; }
-  // The radiance below which a texel's spread is not judged against its own mean: a tenth of
-  // what a white diffuse surface reflects under the cache's mean irradiance (0 without one).
+  // The floor added to a texel's mean in its spread test (0 without a cache).
   float dark_floor() const { return dark_floor_; }
 
  private:

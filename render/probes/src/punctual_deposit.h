@@ -1,6 +1,5 @@
 #pragma once
-// Punctual lights in the probes. Internal to the probe renderer (docs/probes.md, "What a
-// texel is").
+// Punctual lights in the probes (docs/probes.md, "What a texel is"). Internal.
 #include <cstdint>
 #include <vector>
 
@@ -10,21 +9,15 @@
 
 namespace phyir::render {
 
-// A point, spot or directional light has no extent, so no probe direction ever hits it, yet
-// its light reaches a probe's origin along one direction. Each light the origin sees is
-// added to the texel that direction falls in, as the radiance that spreads its irradiance
-// over the texel's solid angle: a probe's sum of L x solid angle then gives the light's
-// irradiance back exactly, which is how the network's rendering layer integrates a probe.
-// Exact and noise-free (one shadow ray per probe and light, no random numbers), so it is
-// added after the texels are estimated and shared. Returns the shadow rays traced.
+// Adds each punctual light a probe's origin sees to the texel its direction falls in, as the
+// radiance spreading its irradiance over the texel (sum of L x solid angle gives it exactly);
+// noise-free, so added after estimating and sharing. Returns the shadow rays (one per light).
 uint64_t deposit_punctual_lights(const RenderScene& scene, const ProbeLayout& layout,
                                  const std::vector<ProbeSite>& sites, const std::vector<int>& probes, Image* mosaic);
 
-// The irradiance the punctual lights give a point, occlusion included: sum over the lights it
-// sees of E max(0, n . wi), n its unit shading normal, lights below its geometric normal `ng`
-// left out; one shadow ray per light that faces it (counted in *rays). Exact, no random
-// numbers: at a probe's origin, what its texels can never hold of the light its foot gets;
-// at a surface, the diffuse light of the punctual lights without the cache's blur.
+// The punctual lights' irradiance at a point, occlusion included: sum over lights it sees of
+// E max(0, n . wi), n its unit shading normal, lights below its geometric normal `ng` left
+// out; one shadow ray per light facing it (counted in *rays). Exact, no random numbers.
 glm::vec3 punctual_irradiance(const RenderScene& scene, const glm::vec3& position, const glm::vec3& n,
                               const glm::vec3& ng, uint64_t* rays);
 

@@ -17,26 +17,19 @@ namespace phyir::render {
 
 namespace {
 
-// In the balance heuristic's weights a photon counts for 1/kPhotonsPerDirection of one of a
-// texel's directions: how many land in a texel's footprint moves with their jitter, so a
-// few per texel are far noisier than a few directions (measured on the suite: taking the
-// light outright wherever 4 landed per texel, the photons took the lit room's error from
-// 0.064 to 0.098). Below kMinPhotonsPerTexel the directions take a hit's light alone: the
-// photons' share would be small, and joining each probe to every photon it sees would cost a
-// shadow ray each.
+// A photon weighs 1/kPhotonsPerDirection of a direction: how many land in a texel moves with
+// their jitter, so a few are far noisier than a few directions. Below kMinPhotonsPerTexel the
+// directions take the light alone: a small share, at a shadow ray per photon.
 constexpr float kPhotonsPerDirection = 16.0f;
 constexpr float kMinPhotonsPerTexel = 16.0f;
-// Where more land in a texel, about this many are joined to the probe (systematic sampling,
-// gather()): next to a bulb tens of thousands would, each a shadow ray.
+// About this many joined per texel (gather()): next to a bulb tens of thousands land, each a shadow ray.
 constexpr float kPhotonsKeptPerTexel = 16.0f;
 // The sun's photons land within this of the probes' surfaces (which bound region_).
 constexpr float kRegionMargin = 0.01f;
-// The sun's beam across the region in kBeamCells^2 cells, kPilotsPerCell^2 pilot photons
-// each: its photons go to the cells whose pilots reached the region (through windows).
+// The sun's beam in kBeamCells^2 cells; photons go where a cell's kPilotsPerCell^2 pilots got in.
 constexpr int kBeamCells = 128;
 constexpr int kPilotsPerCell = 2;
-// At most this many photons from the sun, as from 16 bulbs: every probe considers every
-// photon, and a region tens of metres wide would want millions.
+// As many as 16 bulbs send: every probe considers every photon, and a wide region wants millions.
 constexpr double kMaxSunPhotons = double(1 << 16);
 
 }  // namespace
@@ -99,7 +92,6 @@ void PunctualPhotons::trace_from_sun(int i, int per_square_metre, uint64_t seed,
   Rng rng = item_stream(seed, uint64_t(i), Purpose::kProbePhoton);
   const std::vector<int> cells = cells_reaching_region(sources_.back(), &rng, rays);
   if (cells.empty()) return;
-  // As many per square metre of the beam as asked, fewer if that would be over kMaxSunPhotons.
   const float cell_width = 2.0f * beam.half_width / float(kBeamCells), cell_area = cell_width * cell_width;
   const double per_cell = std::min(double(per_square_metre) * cell_area, double(kMaxSunPhotons) / double(cells.size()));
   const int side = std::max(1, int(std::floor(std::sqrt(per_cell))));
@@ -114,8 +106,7 @@ void PunctualPhotons::trace_from_sun(int i, int per_square_metre, uint64_t seed,
 }
 
 std::vector<int> PunctualPhotons::cells_reaching_region(const Source& s, Rng* rng, uint64_t* rays) const {
-  // kPilotsPerCell^2 pilot photons per cell: those landing in region_ mark their cell, and the
-  // marks grow by a cell round them (a window's edge can fall between pilots).
+  // Pilots in region_ mark their cell, grown by one (a window's edge can fall between pilots).
   std::vector<char> reached(s.beam.density.size(), 0);
   for (int c = 0; c < kBeamCells * kBeamCells; ++c)
     for (int a = 0; a < kPilotsPerCell; ++a)
@@ -218,8 +209,7 @@ void PunctualPhotons::gather(const glm::vec3& origin, const glm::vec3& normal, i
   const size_t texels = size_t(height * width);
   radiance->assign(texels, glm::vec3(0.0f));
   radiance_cos->assign(texels, glm::vec3(0.0f));
-  // The photons this probe takes, each with what it adds if nothing hides it, and their sum
-  // per texel (luminance).
+  // The photons this probe takes, with what each adds unhidden, and their luminance per texel.
   struct Candidate {
     uint32_t photon, texel;
     glm::vec3 value;
@@ -235,12 +225,8 @@ void PunctualPhotons::gather(const glm::vec3& origin, const glm::vec3& normal, i
     candidates.push_back({uint32_t(j), t, value});
     total[t] += luminance(value);
   }
-  // Systematic sampling in proportion to the values: a texel's candidates laid end to end,
-  // each as long as kPhotonsKeptPerTexel x its share of the texel's total, and cut at the
-  // integers shifted by u (uniform per texel). A photon is cut `hits` times, on average its
-  // length: each cut stands for total / kPhotonsKeptPerTexel of the texel, so the texel's
-  // value is exact where nothing hides the photons, and needs about kPhotonsKeptPerTexel
-  // shadow rays however many photons land in it.
+  // Systematic sampling by value, kPhotonsKeptPerTexel cuts per texel at integers shifted by u:
+  // each cut stands for total / kPhotonsKeptPerTexel, exact where nothing hides the photons.
   start.resize(texels);
   reached.assign(texels, 0.0f);
   Rng rng = generator(key, Purpose::kProbePhotonRoulette);
@@ -274,17 +260,14 @@ glm::vec3 PunctualPhotons::unoccluded(const Photon& p, const glm::vec3& origin, 
                           equirect_texel_solid_angle(texel.x, width, height);
   const float taken = share(per_texel * counted);
   if (!(taken > 0.0f)) return glm::vec3(0.0f);  // the texel's directions take it all
-  // What the texel's directions would have added there (TexelEstimator's punctual_light:
-  // f_d E cos, at a hit that faces the viewer and the light). Diffuse light only: a glossy
-  // highlight is a small spot that a few photons find by chance, as the directions do.
+  // What the texel's directions would add there (TexelEstimator's punctual_light: f_d E cos,
+  // facing viewer and light). Diffuse only: photons find a glossy highlight by chance too.
   const ShadingPoint x = shading_point(hit, wo);
   if (!(x.wo.z >= kMinCosine)) return glm::vec3(0.0f);
   const BrdfParams brdf = clamped(hit.brdf);
   const glm::vec3 wi = x.frame.to_local(p.to_light);
   if (!(wi.z >= kMinCosine)) return glm::vec3(0.0f);
-  // Each photon stands for 1 / (their density in the probe's solid angle) of it, the
-  // texel's radiance is that integral over its solid angle, and the photons' share of it
-  // is `taken`.
+  // Each photon is 1 / per_texel of the texel's mean radiance; the photons take `taken` of it.
   const glm::vec3 value = Fd_Lambert(brdf.base_color, brdf.metalness) * p.irradiance * (wi.z * taken / per_texel);
   *texel_index = uint32_t(texel.x * width + texel.y);
   return is_finite(value) ? value : glm::vec3(0.0f);

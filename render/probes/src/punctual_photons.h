@@ -1,6 +1,5 @@
 #pragma once
-// The light point and spot lights throw on the surfaces close to them, and the sun on the
-// floors and walls it reaches through windows, in the probes.
+// Photons for the light of point, spot and directional lights on the surfaces the probes see.
 // Internal to the probe renderer (docs/probes-estimator.md, "Photons round punctual lights and the sun").
 #include <cstdint>
 #include <vector>
@@ -10,26 +9,17 @@
 
 namespace phyir::render {
 
-// A bulb 4 cm under a ceiling lights a disc of it round the fixture tens of times brighter
-// than anything else a floor probe sees, in a sliver of one texel: the texel's directions
-// find it by chance. Photons find it by construction: directions from the light, stratified
-// over its sphere (a spot's cone), traced to their first hit, each joined to a probe's
-// origin by one shadow ray. Both estimate the diffuse light reflected at the first hits of a
-// texel's directions (highlights stay with the directions), and are combined by multiple
-// importance sampling: at a hit where N photons land per texel solid angle, the photons take
-// N / (16 spp + N) of each light's diffuse light and the texel's spp directions the rest
-// (the balance heuristic, a photon counted as a 16th of a direction; below 16 photons per
-// texel the directions take it all).
+// Photons traced from each light to their first hit find by construction what a texel's
+// directions find by chance (a bulb's halo, a sun patch's rim). Where N land per texel they take
+// N / (16 spp + N) of a light's diffuse light (balance heuristic; none below 16), directions the rest.
 class PunctualPhotons {
  public:
   PunctualPhotons() = default;
   static constexpr int kMaxLights = 8;  // the scenes whose punctual lights TexelEstimator takes exactly
 
-  // `per_light` photons (rounded to a square) from each point and spot light, and from each
-  // directional light `per_light` per square metre of its beam where it reaches `region`
-  // (photons landing outside it are dropped, and there the directions take the sun's light
-  // alone); none with per_light = 0, or with more than kMaxLights punctual lights. `spp`: a
-  // texel's directions, for the weights. Traces them (counted in *rays).
+  // `per_light` photons (rounded to a square) from each point or spot light, per square metre of
+  // beam from the sun, kept inside `region`; none if per_light = 0 or over kMaxLights lights.
+  // `spp`: a texel's directions, for the weights. Rays counted in *rays.
   PunctualPhotons(const RenderScene& scene, int per_light, int spp, const scenes::Bounds& region, uint64_t seed,
                   uint64_t* rays);
 
@@ -42,19 +32,16 @@ class PunctualPhotons {
   bool shares(const glm::vec3& origin, const glm::vec3& position, const glm::vec3& ng, float texel_solid_angle,
               float* shares) const;
 
-  // The photons' estimate for one probe of h x w texels: radiance per texel (row-major) into
-  // `radiance`, and the same times max(0, d . normal) into `radiance_cos`; both are resized
-  // and zeroed first. About kPhotonsKeptPerTexel photons of a texel are joined to the probe,
-  // chosen by `key`. Shadow rays counted in *rays. `scale` (if given, one per texel): the
-  // texel's photons counted as scale x their number for their share, as the texel's
-  // directions counted them (TexelEstimator::sample's solid angle); 0: the texel is skipped.
+  // The photons' estimate for an h x w probe: radiance per texel (row-major) into `radiance`,
+  // times max(0, d . normal) into `radiance_cos` (both resized, zeroed); about kPhotonsKeptPerTexel
+  // per texel joined (chosen by `key`, shadow rays in *rays). `scale` (optional, per texel):
+  // multiplies the count for the share, as TexelEstimator::sample does; 0 skips the texel.
   void gather(const glm::vec3& origin, const glm::vec3& normal, int height, int width, uint64_t key,
               std::vector<glm::vec3>* radiance, std::vector<glm::vec3>* radiance_cos, uint64_t* rays,
               const std::vector<float>* scale = nullptr) const;
 
  private:
-  // The sun's beam: a square across it over region_, upstream of the scene, in cells, and
-  // each cell's photons per square metre (0 where its pilots found no way into the region).
+  // The sun's beam: a square of cells over region_, upstream; per cell photons/m^2 (0: none got in).
   struct Beam {
     glm::vec3 centre{0.0f}, t{1.0f, 0.0f, 0.0f}, b{0.0f, 1.0f, 0.0f};  // t, b: across the beam
     float half_width = 0.0f, upstream = 0.0f;
@@ -79,14 +66,12 @@ class PunctualPhotons {
     glm::vec3 irradiance{0.0f}; // on a surface facing the light (DeltaIllumination)
   };
 
-  // Photons from point or spot light i (stratified over its sphere or cone), or from the sun
-  // (stratified over the cells of its beam that reach region_).
+  // Stratified photons from point or spot light i (its sphere or cone) or the sun (its cells).
   void trace_from_light(int i, int per_light, uint64_t seed, uint64_t* rays);
   void trace_from_sun(int i, int per_square_metre, uint64_t seed, uint64_t* rays);
   // The sun's cells whose pilot photons land in region_, and their neighbours.
   std::vector<int> cells_reaching_region(const Source& s, Rng* rng, uint64_t* rays) const;
-  // Traces one photon of source `source` (light i) and keeps it where it lands on a surface
-  // the light reaches (the sun's inside region_ only).
+  // Traces one photon, kept where it lands on a surface the light reaches (the sun's in region_).
   void trace_photon(const Ray& ray, int source, uint64_t* rays);
   // A photon's estimate of its texel's radiance if nothing hides it from `origin` (0 where
   // the texel's directions take its hit), and that texel (row-major).

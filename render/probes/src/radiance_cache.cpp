@@ -28,9 +28,8 @@ constexpr int kCoordBits = 19;
 constexpr int64_t kCoordBias = int64_t(1) << (kCoordBits - 1);
 constexpr uint64_t kCoordMask = (uint64_t(1) << kCoordBits) - 1;
 
-// The grid is shifted by these fractions of a cell so that surfaces at round coordinates
-// (a floor at y = 0, walls at x = +-2 m) do not lie on cell boundaries, where rounding
-// would split them between two layers of cells.
+// Shift the grid off round coordinates: a floor at y = 0 or a wall at x = 2 m on a cell
+// boundary would be split between two layers of cells by rounding.
 constexpr float kGridShift[3] = {0.1234567f, 0.3456789f, 0.2345678f};
 
 // Dominant axis and sign pick a cube face; the other two components, divided by the
@@ -87,11 +86,9 @@ uint64_t RadianceCache::cell_key(const glm::vec3& position, const glm::vec3& nor
 }
 
 void RadianceCache::Collector::offer(const RadianceCache& cache, const CachePoint& point, uint64_t tie_break) {
-  // A cell's value is the mean irradiance over its points, and lookups interpolate between
-  // cell centres: points spread over the cell would put the value's true position up to a
-  // few millimetres off the centre, a first-order error of ~1% where irradiance falls 10%
-  // per cell (next to a light). So a cell keeps the points nearest its centre: distance in
-  // units of 2^-20 cells in the high 32 bits, the caller's hash below (ties, determinism).
+  // Nearest the centre, since lookups interpolate between centres (docs/probes-estimator.md,
+  // "The radiance cache"). Priority: distance in 2^-20 cells in the high 32 bits, the
+  // caller's hash below (ties, determinism).
   const glm::dvec3 c = cache.lattice(point.position);
   const glm::dvec3 offset = c - (glm::floor(c) + 0.5);  // within +-0.5 per axis
   const uint64_t distance = uint64_t(std::sqrt(glm::dot(offset, offset)) * double(1 << 20));
@@ -210,9 +207,8 @@ bool RadianceCache::interpolate(const CachePoint& point, CachedIrradiance* out) 
   const glm::dvec3 c = lattice(point.position);
   // Not finite, or beyond the grid's range: no cell holds the point.
   if (!glm::all(glm::lessThan(glm::abs(c), glm::dvec3(SparseCellGrid<Value>::kCoordLimit - 2)))) return false;
-  // Linear interpolation between the centres of the 8 cells round the point (its own
-  // included), same normal bucket; absent neighbours (off the surface, another bucket) left
-  // out.
+  // Linear between the centres of the 8 cells round the point, its own included; absent
+  // ones (off the surface) left out.
   const glm::dvec3 t = c - 0.5;  // exact: |c| < 2^20
   const glm::dvec3 base = glm::floor(t), f = t - base;
   const glm::ivec3 first(base);

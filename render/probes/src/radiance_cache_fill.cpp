@@ -19,8 +19,7 @@
 namespace phyir::render {
 
 void RadianceCache::fill(Cell* cell, PathCounters* counters) const {
-  // Direct light only far from every emitter (the header note); with no emitters at all the
-  // direct part is exactly 0 and needs no sampling.
+  // Direct light only far from every emitter; with no emitters it is 0, unsampled.
   const EmitterSampler& emitters = scene_->emitters();
   float nearest = std::numeric_limits<float>::infinity();
   for (int k = 0; k < cell->count; ++k) nearest = std::min(nearest, emitters.distance_bound(cell->points[k].position));
@@ -28,8 +27,7 @@ void RadianceCache::fill(Cell* cell, PathCounters* counters) const {
                      nearest >= settings_.direct_distance_cells * settings_.cell_size;
   const bool sample_direct = cell->has_direct && has_lights(*scene_) && max_bounces_ >= 1;
 
-  // samples_per_cell estimates shared out over the points, each point's own cosine
-  // directions and light points stratified over the unit square.
+  // samples_per_cell estimates shared out over the points, each point's stratified.
   const int total = std::max(settings_.samples_per_cell, 1);
   glm::dvec3 indirect(0.0), direct(0.0);
   std::vector<glm::vec2> directions, light_points;
@@ -68,11 +66,9 @@ void RadianceCache::fill(Cell* cell, PathCounters* counters) const {
 
 CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec2& u, bool direct, float u_select,
                                          const glm::vec2& u_light, uint64_t key, PathCounters* counters) const {
-  // Indirect: what arrives from surfaces after scattering at least once (the emission of
-  // the surface a direction hits is direct light), plus the environment. One
-  // cosine-distributed direction: cos / pdf = pi; the environment also by a sample of its
-  // own, power heuristic. Direct (if asked): one light sample and
-  // the same cosine direction's emission, power heuristic.
+  // Indirect: light scattered at least once, plus the environment (also sampled on its own);
+  // one cosine direction, cos / pdf = pi. Direct (if asked): one light sample and that
+  // direction's emission. Both pairs combined by the power heuristic.
   CachedIrradiance out;
   out.has_direct = direct;
   if (max_bounces_ < 1) return out;  // nothing is reflected at all
@@ -94,9 +90,8 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
   }
   const EnvironmentLight* environment = scene.environment();
   glm::vec3 E = environment ? environment_irradiance(x, key, counters) : glm::vec3(0.0f);
-  // The estimate's light subpath, joined here and at the vertices of the path from the
-  // cosine ray's hit, competes with their punctual lights' estimates (only where that path
-  // goes on: docs/light-subpaths.md).
+  // A light subpath, joined here and along the cosine ray's path, weighed against the
+  // punctual lights' estimates there (docs/light-subpaths.md).
   const LightSubpaths* subpaths = max_bounces_ >= 2 ? tracer_.light_subpaths() : nullptr;
   LightVertex subpath;
   bool has_subpath = false;
@@ -141,9 +136,8 @@ CachedIrradiance RadianceCache::finish_indirect(const glm::vec3& E, CachedIrradi
 }
 
 glm::vec3 RadianceCache::environment_irradiance(const ShadingPoint& x, uint64_t key, PathCounters* counters) const {
-  // The sky through a window is a small, bright part of a cell's hemisphere that cosine rays
-  // alone find a few times in a fill: one sample of the environment by its own density as
-  // well, both weighted by the power heuristic (the cosine ray's half is in estimate()).
+  // The sky through a window is a small bright patch cosine rays rarely find: sample the
+  // environment by its own density too (power heuristic; the cosine half is in estimate()).
   Rng rng = stream(key, Purpose::kCacheFillEnvironment);
   const glm::vec3 u(rng.next_float(), rng.next_float(), rng.next_float());
   glm::vec3 u_portal(0.0f);

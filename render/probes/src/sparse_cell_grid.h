@@ -1,16 +1,12 @@
 #pragma once
 // A read-only sparse map from (integer cell, normal bucket) to a value, laid out for the
-// radiance cache's lookups, which read the 2 x 2 x 2 cells round a point (radiance_cache.h).
+// radiance cache's lookups of the 2 x 2 x 2 cells round a point (docs/probes-estimator.md,
+// "The radiance cache": memory layout).
 //
-// Cells are grouped into bricks of 4 x 4 x 4 per bucket. A brick is one record in a small
-// open-addressing table (its key, a 64-bit mask of the cells present, where its values
-// start); values are stored densely, brick by brick, a cell's place being the count of
-// present cells before it in its brick. A lookup's 8 cells fall in 1 brick in 27 of 64
-// positions (2 or more otherwise), so it costs about 2 table probes instead of 8 and
-// reads values that sit next to each other in memory; neighbouring lookups share them.
-// On the bench the previous layout (a per-cell hash table, then a list of 27 neighbours
-// per cell, then the values) spent a fifth of all probe time waiting for memory, and a
-// per-cell table probed 8 times was no better (docs/probes-estimator.md, "The radiance cache").
+// Bricks of 4 x 4 x 4 cells per bucket, one record each in an open-addressing table (key,
+// 64-bit presence mask, first value); values stored densely brick by brick, a cell's place
+// the count of present cells before it. A lookup's 8 cells lie in one brick in 27 of 64
+// positions, so it costs about 2 table probes, not 8, and reads adjacent memory.
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -26,8 +22,7 @@ namespace phyir::render {
 template <typename Value>
 class SparseCellGrid {
  public:
-  // Cells farther than kCoordLimit from the origin on an axis are left out (bricks' keys
-  // are exact within it).
+  // Cells beyond kCoordLimit on any axis are left out, never wrapped (brick keys exact within).
   static constexpr int kCoordLimit = (1 << 20) - 4;
 
   struct Entry {
@@ -62,7 +57,7 @@ class SparseCellGrid {
     return {floor_div4(cell.x), floor_div4(cell.y), floor_div4(cell.z)};
   }
   static int local_index(const glm::ivec3& cell) { return (cell.x & 3) | (cell.y & 3) << 2 | (cell.z & 3) << 4; }
-  // 19 bits per brick coordinate (inside() keeps bricks within +-2^18), 6 for the bucket:
+  // 19 bits per brick coordinate (inside() keeps them within +-2^18), 6 for the bucket:
   // 63 bits, never kEmpty.
   static uint64_t brick_key(const glm::ivec3& brick, int bucket) {
     uint64_t key = 0;
@@ -86,8 +81,7 @@ class SparseCellGrid {
 
 template <typename Value>
 SparseCellGrid<Value>::SparseCellGrid(std::vector<Entry> entries) {
-  // Sorted by brick, then by place in the brick: each brick's values contiguous, in the
-  // order the presence mask counts them.
+  // By brick, then place: each brick's values contiguous, in its presence mask's order.
   struct Keyed {
     uint64_t brick;
     int local;

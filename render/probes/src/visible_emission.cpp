@@ -15,7 +15,7 @@ glm::vec3 visible_emission(const EmitterCoverage::View& lights, const std::vecto
                            uint64_t* rays) {
   // A part's box is tight, so most points fall inside; a sliver may need a few rounds.
   constexpr int kMaxRounds = 4;
-  // The occlusion test stops this fraction of the way short of the light's plane.
+  // Occlusion rays stop this fraction short of the light's plane, so the light hides nothing.
   constexpr float kShortOfTheLight = 1e-4f;
   double covered = 0.0;
   for (const auto& piece : pieces) covered += piece.fraction;

@@ -1,6 +1,5 @@
 #pragma once
-// The emission a probe texel sees directly, where the lights' exact coverage of the texel is
-// known (emitter_coverage.h). Internal to the probe renderer.
+// Emission a texel sees inside the lights' exact coverage (emitter_coverage.h). Internal.
 #include <cstdint>
 #include <vector>
 
@@ -13,14 +12,10 @@
 
 namespace phyir::render {
 
-// The emission a light texel sees, sampled only where the lights cover it. Each light
-// triangle's part of the texel is known exactly (EmitterCoverage); `count` directions, split
-// between the parts by their size, are drawn uniformly in solid angle inside them (stratified
-// points of a part's bounding box in the equal-area (phi, cos theta) map, kept where they fall
-// inside the triangle: the others cost no ray), and each asks only whether something hides
-// the light. Where a light is in full view the estimate is exact; elsewhere every direction
-// lands on the light, where an occluder's edge cuts it, none on the rest of the texel.
-// *emission_cos receives the same times the cosine to the probe's normal (FootIrradiance).
+// The emission a texel sees: `count` directions split between the lights' parts of it
+// (`pieces`) by size, stratified in each part's (phi, cos theta) box and kept inside its
+// triangle, each only asking whether something hides the light. *emission_cos: the same times
+// the cosine to the probe's normal (FootIrradiance); `strata`: scratch; rays counted in *rays.
 glm::vec3 visible_emission(const EmitterCoverage::View& lights, const std::vector<EmitterCoverage::View::Piece>& pieces,
                            const Accelerator& accelerator, const glm::vec3& origin, int count, Rng& rng,
                            const FootIrradiance& foot, glm::vec3* emission_cos, std::vector<glm::vec2>* strata,

@@ -1,17 +1,10 @@
 #pragma once
-// Where per-pixel light probes sit and how they are laid out (the SC lighting label of the
-// PhyIR paper, sec. 3.2 and C.1: a 16x32 probe per pixel of a 128x256 grid of a 256x512
-// panorama). docs/probes.md is the user-facing description.
-//
-// Layout: view/probe_layout.h (a grid of H x W probes, each an h x w equirectangular image,
-// probe (i, j) the block of rows [i h, (i+1) h) and columns [j w, (j+1) w) of the mosaic).
-//
-// Placement. Probe (i, j) belongs to the direction through the centre of grid cell (i, j),
-// i.e. the camera's continuous pixel position ((j + 0.5) width / W, (i + 0.5) height / H).
-// For a grid of half the panorama's resolution that is the corner shared by the 2x2 block of
-// pixels (2i, 2j) .. (2i+1, 2j+1); for a grid of the panorama's resolution it is the pixel
-// centre (the same ray as the AOVs). The probe's origin is the first surface seen along that
-// ray, moved off it along its shading normal (the side facing the camera) by the offset.
+// Where per-pixel light probes sit and how their texels are sampled (the PhyIR paper's SC
+// lighting label, sec. 3.2 and C.1; docs/probes.md, "What a probe is"). Layout: H x W probes of
+// h x w texels, view/probe_layout.h. Probe (i, j) belongs to the centre of grid cell (i, j):
+// at half the panorama's resolution the corner shared by pixels (2i, 2j) .. (2i+1, 2j+1), at
+// full resolution the pixel centre. Its origin is the first surface along that ray, moved
+// off it along the camera-facing shading normal by the offset.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -48,7 +41,7 @@ struct ProbeSite {
   bool valid() const { return status == ProbeStatus::kValid; }
 };
 
-// The camera's continuous pixel position of probe (i, j) (see the layout note above).
+// The camera's continuous pixel position of probe (i, j): ((j + 0.5) width / W, (i + 0.5) height / H).
 glm::vec2 probe_pixel_position(const ProbeLayout& layout, const CameraModel& camera, int i, int j);
 
 // One site per probe, row-major (index i * W + j), from one ray each (no random numbers).
@@ -62,8 +55,7 @@ std::vector<ProbeSite> place_probes(const RenderScene& scene, const CameraModel&
 // uniform between its rows' edges, then equirect_direction() of the result.
 glm::vec3 probe_texel_direction(int row, int col, int height, int width, const glm::vec2& a);
 
-// The same directions with the texel's row-edge cosines computed once, for loops that ask
-// for many directions of one texel (and no inverse trigonometry per direction).
+// probe_texel_direction() with the row-edge cosines computed once, for many directions of one texel.
 class ProbeTexel {
  public:
   ProbeTexel(int row, int col, int height, int width);
@@ -74,15 +66,12 @@ class ProbeTexel {
   float col_, width_;
 };
 
-// `count` points of [0,1)^2 stratified on the smallest s x t grid with s t >= count
-// (s = ceil(sqrt(count))): distinct cells picked by a random permutation, one jittered point
-// in each. Every point is uniform over the square on its own, so any average over them is
-// unbiased; when count is a perfect square every cell is used once.
-//
-// Interleaving (count n > 1): each cell is split n x n and the point is jittered inside
-// sub-cell (sub + shift(cell)) mod n, shift a hash of (key, cell). Calls with one key and all
-// n^2 values of `sub` cover every sub-cell of every cell they pick once; each call alone is
-// still stratified and unbiased (the shift is uniform over the sub-cells).
+// `count` points of [0,1)^2, one jittered point in each of `count` distinct cells (random
+// permutation) of the s x t grid, s = ceil(sqrt(count)), t = ceil(count / s). Each point is
+// uniform on its own, so any average is unbiased.
+// Interleaving (count n > 1): the point is jittered in sub-cell (sub + shift) mod n of its
+// cell's n x n, shift a hash of (key, cell): calls with one key and all n^2 `sub` cover each
+// picked cell's sub-cells once; each call alone stays stratified and unbiased.
 struct Interleave {
   glm::ivec2 sub{0};  // column, row in [0, count)
   int count = 1;
@@ -90,13 +79,10 @@ struct Interleave {
 };
 void stratified_square(int count, Rng& rng, std::vector<glm::vec2>* points, const Interleave& interleave = {});
 
-// The variance of the mean of `values`, drawn one at each of stratified_square's `points`
-// (same order), from the differences between cells 2k and 2k+1 of each row of its grid
-// (collapsed strata). A pair's squared difference estimates the two cells' variances plus
-// the difference of their means, so in expectation the estimate errs high, by the light's
-// variation across one cell; the samples' spread would count all of it across the square,
-// which stratification resolves (an edge through a texel). Negative where fewer than
-// `min_pairs` pairs of cells both hold a point.
+// The variance of the mean of `values` (one per stratified_square point, same order) from
+// the differences between cells 2k and 2k+1 of each grid row (collapsed strata): errs high by
+// the light's variation across one cell, but does not count an edge the strata resolve, as
+// the samples' spread would. Negative where fewer than `min_pairs` pairs hold both points.
 double stratified_mean_variance(const std::vector<glm::vec2>& points, const std::vector<float>& values, int min_pairs);
 
 }  // namespace phyir::render

@@ -1,21 +1,12 @@
 #pragma once
-// Renders the per-pixel light probes of one view (settings: probe_settings.h; layout and
-// placement: probe_grid.h; the design, the modes and their measured cost: docs/probes.md).
-//
-// Each texel is the incident radiance at the probe's origin averaged over the texel's solid
-// angle: `spp` directions per texel, stratified and uniform in solid angle inside it, each
-// one's radiance estimated by
-//  - ProbeMode::kPath: the path tracer, exactly as a camera ray of color.exr (unbiased; the
-//    reference the other mode is measured against);
-//  - ProbeMode::kCache: the direction's first hit is found by one ray and its emission added
-//    exactly; the light it reflects comes from a radiance cache shared by every probe of the
-//    view (diffuse) and from next-event estimation and BRDF-sampled rays (specular, and
-//    direct light near the emitters). Hard texels (lights, glass, glossy surfaces, edges)
-//    get more directions; texels are averaged with neighbouring probes' where parallax is
-//    small.
-// Random numbers: sample s of texel t of probe p draws from streams keyed by (seed, p, t, s)
-// (streams.h), the cache's from (seed, cell, sample); so probes.exr is bit-identical for a
-// seed whatever the thread count. Non-finite samples are counted and zeroed.
+// Renders the per-pixel light probes of one view (settings: probe_settings.h; placement:
+// probe_grid.h; docs/probes.md). A texel is the incident radiance at the origin averaged over
+// its solid angle, from `spp` stratified directions, each estimated by the path tracer as a
+// camera ray of color.exr (ProbeMode::kPath, the unbiased reference) or from a radiance cache
+// the view's probes share (ProbeMode::kCache; docs/probes-estimator.md).
+// Streams are keyed by (seed, probe, texel, sample), the cache's by (seed, cell, sample):
+// probes.exr is bit-identical for a seed whatever the thread count. Non-finite samples are
+// counted and zeroed.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -84,10 +75,9 @@ struct ProbeOutput {
   ProbeLayout layout;
   std::vector<ProbeSite> sites;  // row-major, H x W
   Image mosaic;                  // (H h) x (W w) RGB radiance
-  // (H h) x (W w), Y: each texel's standard error in luminance, from its own samples' variance
-  // pooled with its neighbours' (probe_standard_error.h). The noise of the shared cache, of the
-  // light estimated apart and of the photons is not in it (docs/probes.md "Per-texel standard
-  // error" measures how calibrated it is).
+  // (H h) x (W w), Y: each texel's standard error in luminance, its own samples' variance
+  // pooled with its neighbours'; without the noise of the shared cache, of the light estimated
+  // apart and of the photons (docs/probes.md, "Per-texel standard error").
   Image standard_error;
   Image position;                // H x W, X,Y,Z: probe origins (0 where nothing is seen)
   Image normal;                  // H x W, X,Y,Z: the normal each origin is offset along
@@ -110,10 +100,9 @@ class ProbeRenderer {
   // Places and renders every probe of the view.
   ProbeOutput render(const CameraModel& camera) const;
 
-  // Renders probes at given sites (row-major for settings.layout). With `subset` non-empty
-  // only those probe indices are rendered (the others stay 0); their values are the same as
-  // in a full render for kPath (kCache builds its cache from the subset only). With an error
-  // target, the probes are rendered again until it is reached (probe_error_target.h).
+  // Renders probes at given sites (row-major for settings.layout). A non-empty `subset`
+  // renders only those indices (the others stay 0), as a full render would in kPath (kCache
+  // builds its cache from the subset alone). With an error target, renders again until met.
   ProbeOutput render_at(std::vector<ProbeSite> sites, const std::vector<int>& subset = {}) const;
 
  private:
