@@ -86,15 +86,14 @@ class ProbeView {
   void shade_pass(int pass);
   void shade_tile(const std::vector<size_t>& tile, int pass, Worker* w);
   void prepare_probe(TileProbe* probe, int pass) const;
-  // A texel's first spp samples (and a lit texel's emission seen directly), then its value.
+  // A texel's first spp samples (and a lit texel's emission seen directly), then its value:
+  // them, or a hard texel's hard_spp fresh ones.
   void first_look(TileProbe& probe, int t, int pass, Worker* w);
   void finish_texel(TileProbe& probe, int t, Worker* w);
   // The probe's extra directions to its texels in proportion to their noise per direction.
   void balance(TileProbe& probe, Worker* w);
   // A texel estimated again from `share` fresh directions where that is at least twice its own.
   void rebalance(TexelState& s, double share, Worker* w);
-  // The value of a texel whose first samples are in: them, or hard_spp fresh ones.
-  glm::vec3 settle(TileProbe& probe, int t, Worker* w);
   // A hard texel from hard_spp fresh samples, or kDeepSppFactor x as many where those spread widely.
   glm::vec3 hard_estimate(TexelState& s, Worker* w);
   // The largest difference between a plain texel's first value and its neighbours' (luminance).

@@ -39,7 +39,7 @@ constexpr int kMinStrataPairs = 8;
 
 }  // namespace
 
-// A texel's first samples. settle gives hard ones (glass, a glossy surface or a light met; a spread
+// A texel's first samples. finish_texel gives hard ones (glass, a glossy surface or a light met; a spread
 // or a step from a neighbour over the threshold) fresh samples: no choice looks at those it keeps.
 void ProbeView::first_look(TileProbe& probe, int t, int pass, Worker* w) {
   const int row = t / layout_.res_width, col = t % layout_.res_width;
@@ -55,11 +55,6 @@ void ProbeView::first_look(TileProbe& probe, int t, int pass, Worker* w) {
   s.x.samples = settings_.spp;
 }
 
-void ProbeView::finish_texel(TileProbe& probe, int t, Worker* w) {
-  TexelState& s = probe.texels[size_t(t)];
-  s.value = s.done ? s.first : settle(probe, t, w);
-}
-
 void ProbeView::measure_texel(TexelState& s) const {
   Texel& x = s.x;
   if (!x.measure) return;
@@ -70,8 +65,10 @@ void ProbeView::measure_texel(TexelState& s) const {
   x.measure->add_texel(x.cos_all, x.cos_emitted, equirect_texel_solid_angle(x.row, layout_.res_width, layout_.res_height));
 }
 
-glm::vec3 ProbeView::settle(TileProbe& probe, int t, Worker* w) {
+void ProbeView::finish_texel(TileProbe& probe, int t, Worker* w) {
   TexelState& s = probe.texels[size_t(t)];
+  s.value = s.first;
+  if (s.done) return;
   const int spp = settings_.spp;
   // Judged against the whole value: light known exactly makes the same spread matter less.
   const float limit = settings_.spread_threshold * (luminance(s.first) + luminance(s.exact) + transport_.dark_floor());
@@ -80,9 +77,9 @@ glm::vec3 ProbeView::settle(TileProbe& probe, int t, Worker* w) {
   if (own) note_choice(s.x, kHardTexel);
   // A later pass also supersamples what an earlier one found (docs/probes.md, "Accuracy as a target").
   const bool hard = own || earlier_choice(s.x) >= kHardTexel;
-  if (!hard || !adaptive_) return s.first;
+  if (!hard || !adaptive_) return;
   ++w->stats.supersampled_texels;
-  return hard_estimate(s, w);
+  s.value = hard_estimate(s, w);
 }
 
 glm::vec3 ProbeView::hard_estimate(TexelState& s, Worker* w) {

@@ -103,22 +103,14 @@ class RadianceCache {
   const RadianceCacheSettings& settings() const { return settings_; }
 
  private:
-  struct Cell {
+  // A cell's points and, once filled, its irradiance (indirect its own mean, unsmoothed).
+  struct Cell : CachedIrradiance {
     uint64_t key = 0;
     int count = 0;
     CachePoint points[kPointsPerCell];
-    glm::vec3 indirect{0.0f};
-    glm::vec3 direct{0.0f};
-    glm::vec3 punctual{0.0f};
-    bool has_direct = false;
   };
   // What a lookup reads of a cell, packed apart from the fill's points (cache lines).
-  struct Value {
-    glm::vec3 indirect{0.0f};
-    glm::vec3 direct{0.0f};
-    glm::vec3 punctual{0.0f};
-    bool has_direct = false;
-  };
+  using Value = CachedIrradiance;
   // A cell's 3 x 3 x 3 neighbourhood in its bucket: indices into cells_, -1 if absent, x-major.
   using Neighbours = std::array<int32_t, 27>;
   static int neighbour_slot(const glm::ivec3& offset) { return (offset.x + 1) * 9 + (offset.y + 1) * 3 + (offset.z + 1); }
