@@ -7,6 +7,7 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <random>
 
 #include <fmt/format.h>
 #include <cstdio>
@@ -96,6 +97,62 @@ TEST(ProbeErrorTarget, RefinesTheProbesHoldingTheVariance) {
   EXPECT_TRUE(probes_to_refine(out, passes, 0.5).empty());
   std::vector<int> full(3, kMaxErrorPasses);
   EXPECT_TRUE(probes_to_refine(out, full, 0.0001).empty());  // no probe may take another pass
+}
+
+TEST(ProbeErrorTarget, AgreementIsThePassesDifferencesOverTheirReportedVariances) {
+  ProbeOutput total = constant_probes({1.0f, 2.0f}, {0.1f, 0.2f});
+  const ProbeOutput pass = constant_probes({1.3f, 2.0f}, {0.1f, 0.2f});
+  std::vector<int> passes{1, 1};
+  PassAgreement agreement;
+  EXPECT_EQ(agreement.factor(), 1.0);  // no two passes met yet
+  merge_pass(pass, {0, 1}, &passes, &total, &agreement);
+  EXPECT_EQ(agreement.texels, 16u);
+  // 8 texels differ by 0.3, 8 agree; reported 8 x (0.01 + 0.01) + 8 x (0.04 + 0.04).
+  EXPECT_NEAR(agreement.factor(), 8.0 * 0.09 / 0.8, 1e-5);
+  EXPECT_NEAR(estimated_grid_error(total, passes, 4.0).relative(), 2.0 * estimated_grid_error(total, passes).relative(),
+              1e-9);
+}
+
+TEST(ProbeErrorTarget, ChecksOneValidProbeInEightOfALargeGrid) {
+  std::vector<int> passes(400, 1);
+  passes[0] = 0;  // not valid
+  const std::vector<int> check = probes_to_check(passes);
+  ASSERT_EQ(check.size(), 50u);
+  EXPECT_EQ(check[0], 1);
+  EXPECT_EQ(check[1], 9);
+  std::vector<int> few(100, 1);  // fewer than kCheckEvery x kMinCheckProbes: all of them
+  EXPECT_EQ(probes_to_check(few).size(), 100u);
+}
+
+// Passes whose texels are 1 plus Gaussian noise of sd 0.2 but report sigma 0.1, as a texel
+// that missed a bright part reports too little: the target must follow the true noise.
+ProbeOutput noisy_pass(const ProbeSettings& settings, const std::vector<int>& subset) {
+  std::vector<float> value(200, 1.0f), sigma(200, 0.1f);
+  ProbeOutput out = constant_probes(value, sigma);
+  std::mt19937_64 rng(settings.seed);
+  std::normal_distribution<float> noise(0.0f, 0.2f);
+  for (int p = 0; p < 200; ++p)
+    for (int t = 0; t < out.layout.texels_per_probe(); ++t) {
+      const glm::ivec2 at = out.layout.mosaic_pixel(p, t);
+      const float v = 1.0f + noise(rng);
+      for (int c = 0; c < 3; ++c) out.mosaic.at(at.x, at.y, c) = v;
+    }
+  (void)subset;
+  return out;
+}
+
+TEST(ProbeErrorTarget, ATargetFollowsTheNoiseThePassesShowNotTheSigmaTheyReport) {
+  ProbeSettings settings;
+  settings.target_error = 0.1f;  // what sigma alone says the first pass has reached
+  ProbeOutput out = noisy_pass(settings, {});
+  refine_to_error(settings, {}, [](const ProbeSettings& s, const std::vector<int>& subset,
+                                   const std::vector<uint8_t>&) { return noisy_pass(s, subset); }, &out);
+  EXPECT_NEAR(out.stats.error.sigma_factor, 2.0, 0.2);
+  EXPECT_GE(out.stats.error.passes, 4);  // 0.2 / sqrt(passes) <= 0.1
+  EXPECT_LE(out.stats.error.estimated, 0.1 + 1e-6);
+  double squared = 0.0;
+  for (int p = 0; p < 200; ++p) squared += double(texel(out, p) - 1.0f) * double(texel(out, p) - 1.0f);
+  EXPECT_LT(std::sqrt(squared / 200.0), 0.12);  // the true error reached the target too
 }
 
 TEST(ProbeErrorTarget, LaterPassesShrinkTheReuseKernels) {

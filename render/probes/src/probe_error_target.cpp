@@ -29,6 +29,20 @@ GridError probe_error(const ProbeOutput& out, int p) {
   return e;
 }
 
+glm::vec3 texel_value(const Image& mosaic, const glm::ivec2& at) {
+  return glm::vec3(mosaic.at(at.x, at.y, 0), mosaic.at(at.x, at.y, 1), mosaic.at(at.x, at.y, 2));
+}
+
+// One texel that two independent passes hold, before they are merged.
+void agree(const ProbeOutput& held, const ProbeOutput& added, const glm::ivec2& at, PassAgreement* agreement) {
+  const double d = double(luminance(texel_value(held.mosaic, at))) - double(luminance(texel_value(added.mosaic, at)));
+  const double a = held.standard_error.at(at.x, at.y, 0), b = added.standard_error.at(at.x, at.y, 0);
+  if (!std::isfinite(d) || !std::isfinite(a) || !std::isfinite(b)) return;
+  agreement->squared_difference += d * d;
+  agreement->reported_variance += a * a + b * b;
+  ++agreement->texels;
+}
+
 }  // namespace
 
 std::vector<int> first_passes(const ProbeOutput& out, const std::vector<int>& subset) {
@@ -43,12 +57,16 @@ std::vector<int> first_passes(const ProbeOutput& out, const std::vector<int>& su
   return passes;
 }
 
+double PassAgreement::factor() const {
+  return texels > 0 && reported_variance > 0.0 ? squared_difference / reported_variance : 1.0;
+}
+
 double GridError::relative() const {
   if (texels == 0 || !(luminance_sum > 0.0)) return 0.0;
   return std::sqrt(variance_sum / double(texels)) / (luminance_sum / double(texels));
 }
 
-GridError estimated_grid_error(const ProbeOutput& out, const std::vector<int>& passes) {
+GridError estimated_grid_error(const ProbeOutput& out, const std::vector<int>& passes, double factor) {
   GridError total;
   for (int p = 0; p < out.layout.probe_count(); ++p) {
     if (passes[size_t(p)] == 0) continue;
@@ -57,17 +75,29 @@ GridError estimated_grid_error(const ProbeOutput& out, const std::vector<int>& p
     total.luminance_sum += e.luminance_sum;
     total.texels += e.texels;
   }
+  total.variance_sum *= factor;
   return total;
 }
 
-std::vector<int> probes_to_refine(const ProbeOutput& out, const std::vector<int>& passes, double target) {
-  const GridError total = estimated_grid_error(out, passes);
+std::vector<int> probes_to_check(const std::vector<int>& passes) {
+  std::vector<int> valid;
+  for (int p = 0; p < int(passes.size()); ++p)
+    if (passes[size_t(p)] > 0) valid.push_back(p);
+  if (valid.size() < size_t(kCheckEvery) * kMinCheckProbes) return valid;
+  std::vector<int> check;
+  for (size_t k = 0; k < valid.size(); k += kCheckEvery) check.push_back(valid[k]);
+  return check;
+}
+
+std::vector<int> probes_to_refine(const ProbeOutput& out, const std::vector<int>& passes, double target,
+                                  double factor) {
+  const GridError total = estimated_grid_error(out, passes, factor);
   const double mean = total.texels > 0 ? total.luminance_sum / double(total.texels) : 0.0;
   const double allowed = (target * mean) * (target * mean) * double(total.texels);
   std::vector<std::pair<double, int>> reductions;  // (V / (n + 1), p)
   for (int p = 0; p < out.layout.probe_count(); ++p) {
     if (passes[size_t(p)] == 0 || passes[size_t(p)] >= kMaxErrorPasses) continue;
-    const double variance = probe_error(out, p).variance_sum;
+    const double variance = probe_error(out, p).variance_sum * factor;
     if (variance > 0.0) reductions.push_back({variance / double(passes[size_t(p)] + 1), p});
   }
   // Largest first; ties by probe index, so the choice never depends on the sort's stability.
@@ -84,7 +114,8 @@ std::vector<int> probes_to_refine(const ProbeOutput& out, const std::vector<int>
   return chosen;
 }
 
-void merge_pass(const ProbeOutput& pass, const std::vector<int>& refined, std::vector<int>* passes, ProbeOutput* total) {
+void merge_pass(const ProbeOutput& pass, const std::vector<int>& refined, std::vector<int>* passes, ProbeOutput* total,
+                PassAgreement* agreement) {
   const int texels = total->layout.texels_per_probe();
   const bool weighted = !pass.texel_samples.empty() && pass.texel_samples.size() == total->texel_samples.size();
   for (int p : refined) {
@@ -97,6 +128,7 @@ void merge_pass(const ProbeOutput& pass, const std::vector<int>& refined, std::v
         held = total->texel_samples[id], added = pass.texel_samples[id];
       const double sum = held + added;
       const glm::ivec2 at = total->layout.mosaic_pixel(p, t);
+      if (agreement) agree(*total, pass, at, agreement);
       for (int c = 0; c < 3; ++c)
         total->mosaic.at(at.x, at.y, c) =
             float((held * total->mosaic.at(at.x, at.y, c) + added * pass.mosaic.at(at.x, at.y, c)) / sum);
@@ -135,23 +167,34 @@ void refine_to_error(const ProbeSettings& settings, const std::vector<int>& subs
   ProbeErrorTarget& record = out.stats.error;
   record.target = settings.target_error;
   std::vector<uint8_t> choices = out.texel_choices;
-  for (int k = 1; settings.target_error > 0.0f && k < kMaxErrorPasses; ++k) {
-    const double reached = estimated_grid_error(out, passes).relative();
-    // The target is a float: a float's rounding is not a reason for another pass.
-    if (reached <= double(settings.target_error) * (1.0 + 1e-6)) break;
-    const std::vector<int> refine = probes_to_refine(out, passes, settings.target_error);
-    if (refine.empty()) break;
-    spdlog::info("probes: estimated error {:.4f} above the target {:.4f}: pass {} over {} probes", reached,
-                 settings.target_error, k + 1, refine.size());
+  PassAgreement agreement;
+  auto run_pass = [&](int k, const std::vector<int>& refine) {
     const ProbeOutput pass = render_pass(pass_settings(settings, k), refine, choices);
     for (size_t i = 0; i < choices.size() && i < pass.texel_choices.size(); ++i)
       choices[i] = std::max(choices[i], pass.texel_choices[i]);
-    merge_pass(pass, refine, &passes, &out);
+    merge_pass(pass, refine, &passes, &out, &agreement);
     add_pass_stats(pass.stats, &out.stats);
     record.refined_probes += refine.size();
     record.passes = k + 1;
+  };
+  int k = 1;
+  if (settings.target_error > 0.0f) {
+    const std::vector<int> check = probes_to_check(passes);
+    spdlog::info("probes: pass 2 over {} probes measures how far sigma reads from independent passes", check.size());
+    if (!check.empty()) run_pass(k++, check);
   }
-  record.estimated = estimated_grid_error(out, passes).relative();
+  for (; settings.target_error > 0.0f && k < kMaxErrorPasses; ++k) {
+    const double reached = estimated_grid_error(out, passes, agreement.factor()).relative();
+    // The target is a float: a float's rounding is not a reason for another pass.
+    if (reached <= double(settings.target_error) * (1.0 + 1e-6)) break;
+    const std::vector<int> refine = probes_to_refine(out, passes, settings.target_error, agreement.factor());
+    if (refine.empty()) break;
+    spdlog::info("probes: estimated error {:.4f} (sigma x {:.2f}) above the target {:.4f}: pass {} over {} probes",
+                 reached, std::sqrt(agreement.factor()), settings.target_error, k + 1, refine.size());
+    run_pass(k, refine);
+  }
+  record.estimated = estimated_grid_error(out, passes, agreement.factor()).relative();
+  record.sigma_factor = std::sqrt(agreement.factor());
 }
 
 }  // namespace phyir::render

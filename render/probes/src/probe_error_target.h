@@ -1,7 +1,8 @@
 #pragma once
 // Rendering a view's probes until their estimated error reaches a target
 // (ProbeSettings::target_error; docs/probes.md, "Accuracy as a target"). The estimate pools the
-// texels' standard errors, sqrt(mean sigma^2) / mean luminance. Passes are independent (a seed
+// texels' standard errors, sqrt(mean sigma^2) / mean luminance, scaled by how far independent
+// passes over the same probes disagree beyond them (PassAgreement). Passes are independent (a seed
 // of their own; kernels shrunk: probe_pass_schedule.h) and merged weighted by the directions
 // each spent on a texel, never by sigma, which correlates with the value. A later pass
 // supersamples what any pass chose. The target bounds the noise sigma sees, not a bias.
@@ -17,23 +18,47 @@ namespace phyir::render {
 // computed one when it is empty), 0 for the others, which no estimate counts.
 std::vector<int> first_passes(const ProbeOutput& out, const std::vector<int>& subset);
 
+// How the texels' reported variances compare with what independent passes show: over the
+// texels two passes both hold, the squared differences of their luminances against the sums
+// of their reported variances. E[(a - b)^2] = Var a + Var b whatever sigma reports, so the
+// ratio is a consistent estimate of the factor the reported variances are off by, for the
+// light a texel's own directions missed and the cache's fill noise alike (docs/probes.md,
+// "What E bounds").
+struct PassAgreement {
+  double squared_difference = 0.0;
+  double reported_variance = 0.0;
+  uint64_t texels = 0;
+  // The factor: 1 before two passes met (or where they report no variance).
+  double factor() const;
+};
+
 // The estimated error of the probes holding passes, in luminance.
 struct GridError {
-  double variance_sum = 0.0;    // sum of the texels' sigma^2
+  double variance_sum = 0.0;    // sum of the texels' sigma^2, times the agreement's factor
   double luminance_sum = 0.0;   // sum of the texels' luminance
   uint64_t texels = 0;
   double relative() const;      // sqrt(mean sigma^2) / mean luminance; 0 when dark or empty
 };
-GridError estimated_grid_error(const ProbeOutput& out, const std::vector<int>& passes);
+GridError estimated_grid_error(const ProbeOutput& out, const std::vector<int>& passes, double factor = 1.0);
 
-// The probes to render once more so that the grid's variance, each probe's projected from
-// V / n to V / (n + 1), falls to (target x mean luminance)^2 per texel: largest reductions
-// first, all of them when out of reach. `passes`: from first_passes, then merge_pass.
-std::vector<int> probes_to_refine(const ProbeOutput& out, const std::vector<int>& passes, double target);
+// The probes to render once more so that the grid's variance (times `factor`), each probe's
+// projected from V / n to V / (n + 1), falls to (target x mean luminance)^2 per texel: largest
+// reductions first, all of them when out of reach. `passes`: from first_passes, then merge_pass.
+std::vector<int> probes_to_refine(const ProbeOutput& out, const std::vector<int>& passes, double target,
+                                  double factor = 1.0);
+
+// One valid probe in kCheckEvery (of those `passes` counts), every one on grids of fewer than
+// kCheckEvery x kMinCheckProbes: a second pass over them measures the agreement before any
+// stopping decision, so that a first pass whose sigma reads low does not end the refinement.
+std::vector<int> probes_to_check(const std::vector<int>& passes);
+constexpr int kCheckEvery = 8;
+constexpr int kMinCheckProbes = 16;
 
 // Folds a pass over `refined` into `total` (means weighted by each texel's directions where
-// both hold them, else equal weights; sigma^2 likewise) and counts it in `passes`.
-void merge_pass(const ProbeOutput& pass, const std::vector<int>& refined, std::vector<int>* passes, ProbeOutput* total);
+// both hold them, else equal weights; sigma^2 likewise) and counts it in `passes`; the two's
+// differences go into `agreement` (optional).
+void merge_pass(const ProbeOutput& pass, const std::vector<int>& refined, std::vector<int>* passes, ProbeOutput* total,
+                PassAgreement* agreement = nullptr);
 
 // Renders one independent pass of the given probes under the given settings, each texel
 // supersampled by `choices` (the earlier passes' TexelChoice, the most any of them made).

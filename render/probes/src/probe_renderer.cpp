@@ -44,7 +44,9 @@ nlohmann::json ProbeStats::cache_json() const {
 
 nlohmann::json ProbeErrorTarget::to_json() const {
   nlohmann::json j = {{"estimated_relative", estimated}};
-  if (target > 0.0) j.update({{"target_relative", target}, {"passes", passes}, {"refined_probes", refined_probes}});
+  if (target > 0.0)
+    j.update({{"target_relative", target}, {"passes", passes}, {"refined_probes", refined_probes},
+              {"sigma_factor", sigma_factor}});
   return j;
 }
 

@@ -28,7 +28,8 @@ namespace phyir::render {
 // made to reach it (docs/probes.md, "Accuracy as a target").
 struct ProbeErrorTarget {
   double target = 0.0;     // 0: none
-  double estimated = 0.0;  // sqrt(mean sigma^2) / mean luminance over the valid probes' texels
+  double estimated = 0.0;  // sqrt(mean sigma^2) / mean luminance over the valid probes' texels, x sigma_factor
+  double sigma_factor = 1.0;  // how far independent passes' differences put sigma off (1: one pass)
   int passes = 1;          // of the probes refined most
   uint64_t refined_probes = 0;  // probes rendered again, summed over the passes
   nlohmann::json to_json() const;
