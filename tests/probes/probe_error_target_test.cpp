@@ -155,6 +155,34 @@ TEST(ProbeErrorTarget, ATargetFollowsTheNoiseThePassesShowNotTheSigmaTheyReport)
   EXPECT_LT(std::sqrt(squared / 200.0), 0.12);  // the true error reached the target too
 }
 
+// The check renders one probe in 8 as the first pass did (its kernels, a first look of its
+// own); the passes after it take the earlier choices and shrink their kernels.
+TEST(ProbeErrorTarget, TheCheckIsAReplicaOfTheFirstPass) {
+  ProbeSettings settings;
+  settings.target_error = 0.1f;
+  ProbeOutput out = noisy_pass(settings, {});
+  out.texel_choices.assign(200 * 8, kHardTexel);
+  struct Call {
+    size_t probes;
+    bool choices, progressive_kernels;
+  };
+  std::vector<Call> calls;
+  const ProbeSettings first_pass_kernels = pass_settings(settings, 0);
+  refine_to_error(settings, {},
+                  [&](const ProbeSettings& s, const std::vector<int>& subset, const std::vector<uint8_t>& choices) {
+                    calls.push_back({subset.size(), !choices.empty(),
+                                     s.cache.cell_size != first_pass_kernels.cache.cell_size});
+                    return noisy_pass(s, subset);
+                  },
+                  &out);
+  ASSERT_GE(calls.size(), 2u);
+  EXPECT_EQ(calls[0].probes, 25u);
+  EXPECT_FALSE(calls[0].choices);
+  EXPECT_FALSE(calls[0].progressive_kernels);
+  EXPECT_TRUE(calls[1].choices);
+  EXPECT_TRUE(calls[1].progressive_kernels);
+}
+
 TEST(ProbeErrorTarget, LaterPassesShrinkTheReuseKernels) {
   ProbeSettings base;
   EXPECT_EQ(pass_settings(base, 0).seed, base.seed);

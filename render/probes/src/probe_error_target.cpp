@@ -168,8 +168,8 @@ void refine_to_error(const ProbeSettings& settings, const std::vector<int>& subs
   record.target = settings.target_error;
   std::vector<uint8_t> choices = out.texel_choices;
   PassAgreement agreement;
-  auto run_pass = [&](int k, const std::vector<int>& refine) {
-    const ProbeOutput pass = render_pass(pass_settings(settings, k), refine, choices);
+  auto run_pass = [&](int k, const std::vector<int>& refine, const ProbeSettings& pass_base, bool replica) {
+    const ProbeOutput pass = render_pass(pass_settings(pass_base, k), refine, replica ? std::vector<uint8_t>() : choices);
     for (size_t i = 0; i < choices.size() && i < pass.texel_choices.size(); ++i)
       choices[i] = std::max(choices[i], pass.texel_choices[i]);
     merge_pass(pass, refine, &passes, &out, &agreement);
@@ -181,7 +181,11 @@ void refine_to_error(const ProbeSettings& settings, const std::vector<int>& subs
   if (settings.target_error > 0.0f) {
     const std::vector<int> check = probes_to_check(passes);
     spdlog::info("probes: pass 2 over {} probes measures how far sigma reads from independent passes", check.size());
-    if (!check.empty()) run_pass(k++, check);
+    // A replica of the first pass (its kernels, its own first look): the check measures how
+    // far that pass's sigma reads.
+    ProbeSettings first_kernels = settings;
+    first_kernels.progressive = false;
+    if (!check.empty()) run_pass(k++, check, first_kernels, true);
   }
   for (; settings.target_error > 0.0f && k < kMaxErrorPasses; ++k) {
     const double reached = estimated_grid_error(out, passes, agreement.factor()).relative();
@@ -191,7 +195,7 @@ void refine_to_error(const ProbeSettings& settings, const std::vector<int>& subs
     if (refine.empty()) break;
     spdlog::info("probes: estimated error {:.4f} (sigma x {:.2f}) above the target {:.4f}: pass {} over {} probes",
                  reached, std::sqrt(agreement.factor()), settings.target_error, k + 1, refine.size());
-    run_pass(k, refine);
+    run_pass(k, refine, settings, false);
   }
   record.estimated = estimated_grid_error(out, passes, agreement.factor()).relative();
   record.sigma_factor = std::sqrt(agreement.factor());
