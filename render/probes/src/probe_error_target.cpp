@@ -180,12 +180,14 @@ void refine_to_error(const ProbeSettings& settings, const std::vector<int>& subs
   int k = 1;
   if (settings.target_error > 0.0f) {
     const std::vector<int> check = probes_to_check(passes);
-    spdlog::info("probes: pass 2 over {} probes measures how far sigma reads from independent passes", check.size());
     // A replica of the first pass (its kernels, its own first look): the check measures how
     // far that pass's sigma reads.
     ProbeSettings first_kernels = settings;
     first_kernels.progressive = false;
-    if (!check.empty()) run_pass(k++, check, first_kernels, true);
+    if (!check.empty()) {
+      spdlog::info("probes: pass 2 over {} probes measures how far sigma reads from independent passes", check.size());
+      run_pass(k++, check, first_kernels, true);
+    }
   }
   for (; settings.target_error > 0.0f && k < kMaxErrorPasses; ++k) {
     const double reached = estimated_grid_error(out, passes, agreement.factor()).relative();

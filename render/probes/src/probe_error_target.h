@@ -5,7 +5,8 @@
 // passes over the same probes disagree beyond them (PassAgreement). Passes are independent (a seed
 // of their own; kernels shrunk: probe_pass_schedule.h) and merged weighted by the directions
 // each spent on a texel, never by sigma, which correlates with the value. A later pass
-// supersamples what any pass chose. The target bounds the noise sigma sees, not a bias.
+// supersamples what any pass chose. The target bounds noise (sigma scaled by the passes'
+// disagreement), not a bias.
 #include <cstdint>
 #include <functional>
 #include <vector>
