@@ -14,6 +14,10 @@ namespace phyir::render {
 
 namespace {
 
+glm::vec3 texel_value(const Image& mosaic, const glm::ivec2& at) {
+  return glm::vec3(mosaic.at(at.x, at.y, 0), mosaic.at(at.x, at.y, 1), mosaic.at(at.x, at.y, 2));
+}
+
 // The variance and luminance sums of probe p's texels.
 GridError probe_error(const ProbeOutput& out, int p) {
   GridError e;
@@ -22,15 +26,10 @@ GridError probe_error(const ProbeOutput& out, int p) {
     const glm::ivec2 at = out.layout.mosaic_pixel(p, t);
     const float sigma = out.standard_error.at(at.x, at.y, 0);
     e.variance_sum += double(sigma) * sigma;
-    e.luminance_sum += luminance(glm::vec3(out.mosaic.at(at.x, at.y, 0), out.mosaic.at(at.x, at.y, 1),
-                                           out.mosaic.at(at.x, at.y, 2)));
+    e.luminance_sum += luminance(texel_value(out.mosaic, at));
   }
   e.texels = uint64_t(texels);
   return e;
-}
-
-glm::vec3 texel_value(const Image& mosaic, const glm::ivec2& at) {
-  return glm::vec3(mosaic.at(at.x, at.y, 0), mosaic.at(at.x, at.y, 1), mosaic.at(at.x, at.y, 2));
 }
 
 // One texel that two independent passes hold, before they are merged.
@@ -166,27 +165,29 @@ void refine_to_error(const ProbeSettings& settings, const std::vector<int>& subs
   std::vector<int> passes = first_passes(out, subset);
   ProbeErrorTarget& record = out.stats.error;
   record.target = settings.target_error;
+  record.passes = 1;
   std::vector<uint8_t> choices = out.texel_choices;
   PassAgreement agreement;
-  auto run_pass = [&](int k, const std::vector<int>& refine, const ProbeSettings& pass_base, bool replica) {
-    const ProbeOutput pass = render_pass(pass_settings(pass_base, k), refine, replica ? std::vector<uint8_t>() : choices);
+  auto run_pass = [&](const ProbeSettings& pass_setup, const std::vector<int>& refine,
+                      const std::vector<uint8_t>& earlier) {
+    const ProbeOutput pass = render_pass(pass_setup, refine, earlier);
     for (size_t i = 0; i < choices.size() && i < pass.texel_choices.size(); ++i)
       choices[i] = std::max(choices[i], pass.texel_choices[i]);
     merge_pass(pass, refine, &passes, &out, &agreement);
     add_pass_stats(pass.stats, &out.stats);
     record.refined_probes += refine.size();
-    record.passes = k + 1;
+    ++record.passes;
   };
   int k = 1;
   if (settings.target_error > 0.0f) {
     const std::vector<int> check = probes_to_check(passes);
     // A replica of the first pass (its kernels, its own first look): the check measures how
     // far that pass's sigma reads.
-    ProbeSettings first_kernels = settings;
-    first_kernels.progressive = false;
     if (!check.empty()) {
+      ProbeSettings first_kernels = settings;
+      first_kernels.progressive = false;
       spdlog::info("probes: pass 2 over {} probes measures how far sigma reads from independent passes", check.size());
-      run_pass(k++, check, first_kernels, true);
+      run_pass(pass_settings(first_kernels, k++), check, {});
     }
   }
   for (; settings.target_error > 0.0f && k < kMaxErrorPasses; ++k) {
@@ -197,7 +198,7 @@ void refine_to_error(const ProbeSettings& settings, const std::vector<int>& subs
     if (refine.empty()) break;
     spdlog::info("probes: estimated error {:.4f} (sigma x {:.2f}) above the target {:.4f}: pass {} over {} probes",
                  reached, std::sqrt(agreement.factor()), settings.target_error, k + 1, refine.size());
-    run_pass(k, refine, settings, false);
+    run_pass(pass_settings(settings, k), refine, choices);
   }
   record.estimated = estimated_grid_error(out, passes, agreement.factor()).relative();
   record.sigma_factor = std::sqrt(agreement.factor());
