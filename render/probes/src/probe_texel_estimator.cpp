@@ -65,7 +65,13 @@ glm::vec3 TexelEstimator::sample(const Ray& ray, uint64_t key, Part part, const 
   }
   SurfaceInteraction si;
   ++c->rays;
-  if (!scene_.trace(ray, &si)) return part == Part::kRest ? glm::vec3(0.0f) : miss(ray.direction);
+  if (!scene_.trace(ray, &si)) {
+    if (part == Part::kRest) return glm::vec3(0.0f);
+    // The environment is a light: its window frames and horizons are edges to supersample.
+    const glm::vec3 sky = miss(ray.direction);
+    if (max_component(sky) > 0.0f) *saw_hard = true;
+    return sky;
+  }
   *distance = std::min(*distance, si.distance);
   const glm::vec3 Le = si.emits ? si.emission : glm::vec3(0.0f);
   // Hard to sample: a light (unless estimated apart), glass, a glossy surface's highlights.
