@@ -77,17 +77,11 @@ TEST(TexelEstimatorHard, ADiffuseHitIsNotHard) {
 
 // A 2 x 2 x 1 m box without a lid under a uniform sky, three 4 cm bars across its opening.
 scenes::Scene barred_box() {
-  scenes::Scene scene;
-  const int m = test::add_material(scene, test::make_material(glm::vec3(0.4f)));
   const glm::vec3 lo(-1.0f, 0.0f, -1.0f), hi(1.0f, 1.0f, 1.0f);
-  const glm::vec3 ex(2.0f, 0.0f, 0.0f), ey(0.0f, 1.0f, 0.0f), ez(0.0f, 0.0f, 2.0f);
-  test::add_quad(scene, lo, ey, ez, m, "wall -X");
-  test::add_quad(scene, lo + ex, ez, ey, m, "wall +X");
-  test::add_quad(scene, lo, ez, ex, m, "floor");
-  test::add_quad(scene, lo, ex, ey, m, "wall -Z");
-  test::add_quad(scene, lo + ez, ey, ex, m, "wall +Z");
+  scenes::Scene scene = test::make_box_room(lo, hi, test::make_material(glm::vec3(0.4f)));
+  scene.meshes.erase(scene.meshes.begin() + 3);  // the ceiling (make_box_room's order)
   for (float x : {-0.5f, 0.0f, 0.5f})
-    test::add_box(scene, glm::vec3(x - 0.02f, hi.y - 0.04f, lo.z), glm::vec3(x + 0.02f, hi.y, hi.z), m,
+    test::add_box(scene, glm::vec3(x - 0.02f, hi.y - 0.04f, lo.z), glm::vec3(x + 0.02f, hi.y, hi.z), 0,
                   /*inward=*/false, "bar");
   return scene;
 }

@@ -33,9 +33,10 @@ class TexelEstimator {
 
   // Radiance arriving at ray.origin from -ray.direction (cache mode: `part` of it). Cache
   // mode: *distance lowered to the first hit's (unchanged on a miss); *emitted = the part a
-  // light seen first emits (not the environment's); *saw_hard set on a light (the environment
-  // included), glass or a glossy hit; first-hit lookups go through `foot`. `texel_solid_angle`: the texel's, times
-  // spp / its directions where balanced (PunctualPhotons::gather's `scale`); 0: no photons.
+  // light seen first emits (not the environment's); *saw_hard set on a light (the
+  // environment included), glass or a glossy hit; first-hit lookups go through `foot`.
+  // `texel_solid_angle`: the texel's, times spp / its directions where balanced
+  // (PunctualPhotons::gather's `scale`); 0: no photons.
   glm::vec3 sample(const Ray& ray, uint64_t key, Part part, const FootCorrection& foot, float texel_solid_angle,
                    bool* saw_hard, float* distance, glm::vec3* emitted, PathCounters* c) const;
 
