@@ -665,5 +665,47 @@ TEST(ProbeBalance, TheExtraDirectionsGoWhereTheNoiseIsAndCutTheProbesError) {
   EXPECT_LT(once[1], 2.2 * none[1]);
 }
 
+// The same disc's probe in one tile with a probe inside a dark, closed box beside the room,
+// whose texels have no noise: the tile's extra directions (balance x all its directions)
+// follow the noise across its probes, so the disc's texels take the dark probe's share too
+// (about twice the extra directions they take alone; shared out per probe, measured 1.3x,
+// the cache differing with the probes that found its cells), and they still cut its error.
+TEST(ProbeBalance, ATilesExtraDirectionsGoToItsNoisiestProbe) {
+  scenes::Scene scene = spot_disc_room(0.16f, 0.2f);
+  test::add_box(scene, {5.0f, 0.0f, -0.5f}, {6.0f, 1.0f, 0.5f}, test::add_material(scene, test::make_material()), true);
+  ProbeSettings path = settings_for(ProbeMode::kPath, 4096, kDiscH, kDiscW, 2);
+  path.punctual_lights = false;
+  const Image reference = render_single(scene, kDiscOrigin, path);
+  const RenderScene rs(scene);
+  std::vector<ProbeSite> pair = single_site(kDiscOrigin);
+  pair.push_back(single_site(glm::vec3(5.5f, 0.5f, 0.0f)).front());
+  struct Run { double rays = 0.0, error = 0.0; };
+  auto run = [&](float balance, bool with_dark_probe) {
+    Run r;
+    const int seeds = 4;
+    for (int seed = 0; seed < seeds; ++seed) {
+      ProbeSettings cache = settings_for(ProbeMode::kCache, 4, kDiscH, kDiscW, 2);
+      cache.punctual_lights = false;
+      cache.photons_per_light = 0;
+      cache.balance = balance;
+      cache.seed = uint64_t(300 + seed);
+      if (with_dark_probe) cache.layout.grid_width = 2;
+      const ProbeOutput out = ProbeRenderer(rs, analyse_effects(scene, false), cache)
+                                  .render_at(with_dark_probe ? pair : single_site(kDiscOrigin));
+      r.rays += double(out.stats.counters.rays) / seeds;
+      const Image disc_probe = probe_image(out.mosaic, out.layout, 0, 0);
+      r.error += image_error(disc_probe, reference).relative_rmse / seeds;
+    }
+    return r;
+  };
+  const Run alone0 = run(0.0f, false), alone1 = run(1.0f, false), pair0 = run(0.0f, true), pair1 = run(1.0f, true);
+  const double extra_alone = alone1.rays - alone0.rays, extra_pair = pair1.rays - pair0.rays;
+  std::printf("[ tile balance ] extra rays: %.0f alone, %.0f beside the dark probe; there the disc probe's error %.4f -> %.4f\n",
+              extra_alone, extra_pair, pair0.error, pair1.error);
+  ASSERT_GT(extra_alone, 0.0);
+  EXPECT_GT(extra_pair, 1.5 * extra_alone);
+  EXPECT_LT(pair1.error, 0.6 * pair0.error);
+}
+
 }  // namespace
 }  // namespace phyir::render

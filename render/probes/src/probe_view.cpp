@@ -166,8 +166,8 @@ void ProbeView::shade_tile(const std::vector<size_t>& tile, int pass, Worker* w)
   for (int t = 0; t < texels_; ++t)
     for (TileProbe& probe : w->tile)
       if (in_pass(probe, t, pass)) finish_texel(probe, t, w);
+  balance(w);
   for (TileProbe& probe : w->tile) {
-    balance(probe, w);
     if (!transport_.photons().empty()) gather_photons(probe, pass, w);
     for (TexelState& s : probe.texels) {
       if (!s.looked) continue;

@@ -4,7 +4,7 @@
 // (probe_view_transport.h); the view keeps its passes' bookkeeping. Passes and sharing in
 // probe_view.cpp, texels in probe_view_texels.cpp (docs/probes-estimator.md, "Code map"):
 //   select_probes; shade_pass (twice with the foot correction): shade_tile's first_look and
-//   finish_texel, then per probe balance and gather_photons; correct_feet; share_between_neighbours
+//   finish_texel, balance, then per probe gather_photons; correct_feet; share_between_neighbours
 #include <memory>
 #include <utility>
 #include <vector>
@@ -90,8 +90,8 @@ class ProbeView {
   // them, or a hard texel's hard_spp fresh ones.
   void first_look(TileProbe& probe, int t, int pass, Worker* w);
   void finish_texel(TileProbe& probe, int t, Worker* w);
-  // The probe's extra directions to its texels in proportion to their noise per direction.
-  void balance(TileProbe& probe, Worker* w);
+  // The tile's extra directions to its probes' texels in proportion to their noise per direction.
+  void balance(Worker* w);
   // A texel estimated again from `share` fresh directions where that is at least twice its own.
   void rebalance(TexelState& s, double share, Worker* w);
   // A hard texel from hard_spp fresh samples, or kDeepSppFactor x as many where those spread widely.

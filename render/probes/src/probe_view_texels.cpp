@@ -101,17 +101,20 @@ glm::vec3 ProbeView::hard_estimate(TexelState& s, Worker* w) {
                   nullptr, w);
 }
 
-void ProbeView::balance(TileProbe& probe, Worker* w) {
+void ProbeView::balance(Worker* w) {
   if (!adaptive_ || !(settings_.balance > 0.0f)) return;
-  // Neyman's allocation: the extra directions in proportion to each texel's noise per direction.
+  // Neyman's allocation over the tile's probes: the extra directions in proportion to each
+  // texel's noise per direction, in luminance, whichever probe it is in (the least summed variance).
   auto per_direction = [](const Texel& x) { return std::sqrt(std::max(x.variance, 0.0f) * float(x.samples)); };
   double noise = 0.0, spent = 0.0;
-  for (const TexelState& s : probe.texels)
-    if (s.looked) noise += per_direction(s.x), spent += s.x.samples;
+  for (const TileProbe& probe : w->tile)
+    for (const TexelState& s : probe.texels)
+      if (s.looked) noise += per_direction(s.x), spent += s.x.samples;
   if (!(noise > 0.0)) return;
   const double extra = double(settings_.balance) * spent;
-  for (TexelState& s : probe.texels)  // the looked ones are this pass's
-    if (s.looked) rebalance(s, extra * per_direction(s.x) / noise, w);
+  for (TileProbe& probe : w->tile)
+    for (TexelState& s : probe.texels)  // the looked ones are this pass's
+      if (s.looked) rebalance(s, extra * per_direction(s.x) / noise, w);
 }
 
 void ProbeView::rebalance(TexelState& s, double share, Worker* w) {
