@@ -700,8 +700,8 @@ TEST(ProbeBalance, ATilesExtraDirectionsGoToItsNoisiestProbe) {
   };
   const Run alone0 = run(0.0f, false), alone1 = run(1.0f, false), pair0 = run(0.0f, true), pair1 = run(1.0f, true);
   const double extra_alone = alone1.rays - alone0.rays, extra_pair = pair1.rays - pair0.rays;
-  std::printf("[ tile balance ] extra rays: %.0f alone, %.0f beside the dark probe; there the disc probe's error %.4f -> %.4f\n",
-              extra_alone, extra_pair, pair0.error, pair1.error);
+  std::printf("[ tile balance ] extra rays: %.0f alone, %.0f beside the dark probe; the disc probe's error alone %.4f -> %.4f, "
+              "beside it %.4f -> %.4f\n", extra_alone, extra_pair, alone0.error, alone1.error, pair0.error, pair1.error);
   ASSERT_GT(extra_alone, 0.0);
   EXPECT_GT(extra_pair, 1.5 * extra_alone);
   EXPECT_LT(pair1.error, 0.6 * pair0.error);
