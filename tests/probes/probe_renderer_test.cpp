@@ -631,6 +631,16 @@ TEST(ProbeDeepTexels, PassesToAnErrorTargetLeaveTheFirstLooksLossBehind) {
   EXPECT_NEAR(m.cache, m.path, 3.0 * m.standard_error + 0.1 * m.path);
 }
 
+// Cache mode at 4 spp on the disc's probe, the spot's own light and photons left out.
+ProbeSettings disc_cache_settings(float balance, uint64_t seed) {
+  ProbeSettings cache = settings_for(ProbeMode::kCache, 4, kDiscH, kDiscW, 2);
+  cache.punctual_lights = false;
+  cache.photons_per_light = 0;
+  cache.balance = balance;
+  cache.seed = seed;
+  return cache;
+}
+
 // Without photons a spot's 60 cm disc on the ceiling holds nearly all of the probe's noise:
 // balancing gives its texels the probe's extra directions (docs/probes-estimator.md,
 // "Balancing the texels' noise"), which cuts the probe's error against path mode (measured
@@ -645,11 +655,7 @@ TEST(ProbeBalance, TheExtraDirectionsGoWhereTheNoiseIsAndCutTheProbesError) {
     double error = 0.0, rays = 0.0, balanced = 0.0;
     const int seeds = 4;
     for (int seed = 0; seed < seeds; ++seed) {
-      ProbeSettings cache = settings_for(ProbeMode::kCache, 4, kDiscH, kDiscW, 2);
-      cache.punctual_lights = false;
-      cache.photons_per_light = 0;
-      cache.balance = balance;
-      cache.seed = uint64_t(200 + seed);
+      const ProbeSettings cache = disc_cache_settings(balance, uint64_t(200 + seed));
       const ProbeOutput out = ProbeRenderer(rs, analyse_effects(scene, false), cache).render_at(single_site(kDiscOrigin));
       error += image_error(out.mosaic, reference).relative_rmse / seeds;
       rays += double(out.stats.counters.rays) / seeds;
@@ -684,11 +690,7 @@ TEST(ProbeBalance, ATilesExtraDirectionsGoToItsNoisiestProbe) {
     Run r;
     const int seeds = 4;
     for (int seed = 0; seed < seeds; ++seed) {
-      ProbeSettings cache = settings_for(ProbeMode::kCache, 4, kDiscH, kDiscW, 2);
-      cache.punctual_lights = false;
-      cache.photons_per_light = 0;
-      cache.balance = balance;
-      cache.seed = uint64_t(300 + seed);
+      ProbeSettings cache = disc_cache_settings(balance, uint64_t(300 + seed));
       if (with_dark_probe) cache.layout.grid_width = 2;
       const ProbeOutput out = ProbeRenderer(rs, analyse_effects(scene, false), cache)
                                   .render_at(with_dark_probe ? pair : single_site(kDiscOrigin));
