@@ -1,5 +1,6 @@
 #include "camera_flags.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "flag_registry.h"
@@ -28,6 +29,12 @@ void add_image_size_flags(CLI::App* cmd, int& width, int& height) {
       ->group(kGroup);
   sets(cmd, "height", cmd->add_option("--height", height, "image height in pixels"))->capture_default_str()->group(kGroup);
   sets(cmd, "size", "--width/--height");
+  // One of the two given: the other follows at 2:1 (a panorama's), not the other's default.
+  cmd->parse_complete_callback([cmd, &width, &height] {
+    const bool width_given = cmd->count("--width") > 0, height_given = cmd->count("--height") > 0;
+    if (width_given && !height_given) height = std::max(width / 2, 1);
+    if (height_given && !width_given) width = 2 * height;
+  });
 }
 
 void add_camera_flags(CLI::App* cmd, render::RenderJob& job) {

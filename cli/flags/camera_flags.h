@@ -10,7 +10,8 @@
 
 namespace phyir::cli {
 
-// --width and --height (a panorama's width is twice its height).
+// --width and --height (a panorama's width is twice its height); where only one is given, the
+// other follows at 2:1. Sets the command's parse_complete_callback.
 void add_image_size_flags(CLI::App* cmd, int& width, int& height);
 
 // The size and --camera X,Y,Z (metres; default: the scene's camera), --camera-index and
