@@ -7,7 +7,6 @@
 #include <limits>
 #include <utility>
 
-#include "phyir/core/error.h"
 #include "phyir/core/safe_math.h"
 #include "phyir/render/equirect.h"
 #include "phyir/render/gbuffer.h"

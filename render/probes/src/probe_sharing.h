@@ -17,7 +17,6 @@
 
 namespace phyir::render {
 
-
 // Which of the window() x window() sub-cells of its strata probe (i, j) draws from: (j mod
 // n, i mod n), so any full window of the grid holds each sub-cell once.
 glm::ivec2 sub_stratum(int i, int j, const ProbeSharing& sharing);

@@ -2,13 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
 
 #include "phyir/core/safe_math.h"
 #include "phyir/render/ray_offset.h"
-#include "phyir/render/direct_lighting.h"
 #include "phyir/render/streams.h"
-#include "phyir/render/sampling.h"
 
 namespace phyir::render {
 

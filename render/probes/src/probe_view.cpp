@@ -3,11 +3,9 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 
 #include "phyir/core/error.h"
-#include "phyir/core/progress.h"
 #include "phyir/core/safe_math.h"
 #include "phyir/core/stopwatch.h"
 #include "phyir/render/equirect.h"

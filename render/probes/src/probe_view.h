@@ -5,7 +5,6 @@
 // probe_view.cpp, texels in probe_view_texels.cpp (docs/probes-estimator.md, "Code map"):
 //   select_probes; shade_pass (twice with the foot correction): shade_tile's first_look and
 //   finish_texel, balance, then per probe gather_photons; correct_feet; share_between_neighbours
-#include <memory>
 #include <utility>
 #include <vector>
 

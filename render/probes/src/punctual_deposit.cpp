@@ -7,9 +7,7 @@
 #include <cmath>
 
 #include "phyir/core/safe_math.h"
-#include "phyir/render/direct_lighting.h"
 #include "phyir/render/equirect.h"
-#include "phyir/render/ray_offset.h"
 
 namespace phyir::render {
 
@@ -42,18 +40,6 @@ bool punctual_texel(const RenderScene& scene, int light, const glm::vec3& origin
 }
 
 }  // namespace
-
-glm::vec3 punctual_irradiance(const RenderScene& scene, const glm::vec3& position, const glm::vec3& n,
-                              const glm::vec3& ng, uint64_t* rays) {
-  ShadingPoint x;
-  x.position = position;
-  x.geometric_normal = ng;
-  x.frame = Frame(n);
-  PathCounters counters;
-  const glm::vec3 E = punctual_light(scene, x, Lobes::kCosine, &counters);
-  *rays += counters.rays;
-  return E;
-}
 
 uint64_t deposit_punctual_lights(const RenderScene& scene, const ProbeLayout& layout,
                                  const std::vector<ProbeSite>& sites, const std::vector<int>& probes, Image* mosaic) {

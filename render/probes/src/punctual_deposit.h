@@ -15,12 +15,6 @@ namespace phyir::render {
 uint64_t deposit_punctual_lights(const RenderScene& scene, const ProbeLayout& layout,
                                  const std::vector<ProbeSite>& sites, const std::vector<int>& probes, Image* mosaic);
 
-// The punctual lights' irradiance at a point, occlusion included: sum over lights it sees of
-// E max(0, n . wi), n its unit shading normal, lights below its geometric normal `ng` left
-// out; one shadow ray per light facing it (counted in *rays). Exact, no random numbers.
-glm::vec3 punctual_irradiance(const RenderScene& scene, const glm::vec3& position, const glm::vec3& n,
-                              const glm::vec3& ng, uint64_t* rays);
-
 // The texel (row, col) of an h x w probe that direction `d` falls in.
 glm::ivec2 probe_texel_of(const glm::vec3& d, int height, int width);
 

@@ -5,18 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "phyir/core/progress.h"
 #include "phyir/core/safe_math.h"
-#include "phyir/render/direct_lighting.h"
-#include "phyir/render/emitter_sampler.h"
-#include "phyir/render/frame.h"
-#include "phyir/render/probe_grid.h"
-#include "phyir/render/ray_offset.h"
 #include "phyir/render/streams.h"
-#include "punctual_deposit.h"
-#include "phyir/render/sampling.h"
 
 namespace phyir::render {
 

@@ -28,7 +28,6 @@
 
 namespace phyir::render {
 
-
 // A surface point as the cache sees it: normals on the side it was seen from.
 struct CachePoint {
   glm::vec3 position{0.0f};

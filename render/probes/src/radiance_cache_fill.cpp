@@ -11,12 +11,24 @@
 #include "phyir/render/ray_offset.h"
 #include "phyir/render/streams.h"
 #include "phyir/render/sampling.h"
-#include "punctual_deposit.h"
 
 // The radiance cache's fill: a cell's irradiance estimates (docs/probes-estimator.md, "The radiance
 // cache": fill and lookup). Discovery, layout, smoothing and lookups: radiance_cache.cpp.
 
 namespace phyir::render {
+
+namespace {
+
+// A cache point as the light estimators see it; irradiance needs no BRDF or viewer.
+ShadingPoint shading_point_at(const CachePoint& point) {
+  ShadingPoint x;
+  x.position = point.position;
+  x.geometric_normal = point.geometric_normal;
+  x.frame = Frame(point.shading_normal);
+  return x;
+}
+
+}  // namespace
 
 void RadianceCache::fill(Cell* cell, PathCounters* counters) const {
   // Direct light only far from every emitter; with no emitters it is 0, unsampled.
@@ -52,11 +64,8 @@ void RadianceCache::fill(Cell* cell, PathCounters* counters) const {
   }
   if (sample_direct && !emitters.delta_lights().empty()) {
     glm::vec3 punctual(0.0f);
-    for (int k = 0; k < cell->count; ++k) {
-      const CachePoint& point = cell->points[k];
-      punctual += punctual_irradiance(*scene_, point.position, point.shading_normal, point.geometric_normal,
-                                      &counters->rays);
-    }
+    for (int k = 0; k < cell->count; ++k)
+      punctual += punctual_light(*scene_, shading_point_at(cell->points[k]), Lobes::kCosine, counters);
     cell->punctual = punctual / float(std::max(cell->count, 1));
   }
   const double count = double(std::max(sample, 1));
@@ -73,12 +82,8 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
   out.has_direct = direct;
   if (max_bounces_ < 1) return out;  // nothing is reflected at all
   const RenderScene& scene = *scene_;
-  const glm::vec3& ns = point.shading_normal;
   const glm::vec3& ng = point.geometric_normal;
-  ShadingPoint x;
-  x.position = point.position;
-  x.geometric_normal = ng;
-  x.frame = Frame(ns);
+  const ShadingPoint x = shading_point_at(point);
   if (direct && has_lights(scene)) {
     DirectLightOptions irradiance;
     irradiance.lobes = Lobes::kCosine;

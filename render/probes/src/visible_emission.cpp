@@ -51,5 +51,4 @@ glm::vec3 visible_emission(const EmitterCoverage::View& lights, const std::vecto
   return glm::vec3(sum);
 }
 
-
 }  // namespace phyir::render
