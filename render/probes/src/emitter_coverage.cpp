@@ -141,10 +141,7 @@ EmitterCoverage::View EmitterCoverage::view(const glm::vec3& origin) const {
     // Back at d[0]: a turn of 2 pi means the triangle surrounds a pole; close the outline
     // along that pole's line (cos theta = +-1).
     if (std::abs(phi - start) > 1.0) {
-      const glm::vec3 up(0.0f, 1.0f, 0.0f);
-      const bool surrounds_up = glm::dot(up, s.edge_normal[0]) >= 0.0f && glm::dot(up, s.edge_normal[1]) >= 0.0f &&
-                                glm::dot(up, s.edge_normal[2]) >= 0.0f;
-      const double z = surrounds_up ? 1.0 : -1.0;
+      const double z = v.inside(s, glm::vec3(0.0f, 1.0f, 0.0f)) ? 1.0 : -1.0;
       s.outline.push_back({phi, z});
       s.outline.push_back({start, z});
     }

@@ -6,14 +6,12 @@
 
 namespace phyir::render {
 
-float pass_shrink(int k) { return float(std::pow(double(k + 1), -1.0 / 3.0)); }
-
 ProbeSettings pass_settings(const ProbeSettings& base, int k) {
   if (k == 0) return base;
   ProbeSettings s = base;
   s.seed = stream_key(base.seed, Purpose::kProbeRefinePass, uint64_t(k));
   if (!base.progressive) return s;
-  const float shrink = pass_shrink(k);
+  const float shrink = float(std::pow(double(k + 1), -1.0 / 3.0));
   s.cache.cell_size = base.cache.cell_size * shrink;
   s.cache.direct_distance_cells = base.cache.direct_distance_cells / shrink;
   s.sharing.parallax_texels = base.sharing.parallax_texels * shrink;

@@ -14,11 +14,8 @@
 
 namespace phyir::render {
 
-// The shrink factor of pass k: (k + 1)^(-1/3).
-float pass_shrink(int k);
-
 // Pass k's settings: `base` with a seed of its own (k > 0) and, when base.progressive, its
-// kernels shrunk by pass_shrink(k). Pass 0 is `base` itself.
+// kernels shrunk by (k + 1)^(-1/3). Pass 0 is `base` itself.
 ProbeSettings pass_settings(const ProbeSettings& base, int k);
 
 }  // namespace phyir::render

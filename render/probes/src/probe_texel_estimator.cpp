@@ -147,21 +147,18 @@ CachedIrradiance TexelEstimator::lookup(const SurfaceInteraction& si, const Shad
 
 glm::vec3 TexelEstimator::reflected_at(const Ray& ray, const SurfaceInteraction& y, int next, int depth, uint64_t key,
                                        PathCounters* c, bool from_glossy) const {
-  if (y.transmission > 0.0f) {
-    // Glass: the path tracer from here.
-    const int budget = std::max(settings_.path.max_bounces - std::min(next, kMaxSpecularDepth), 0);
+  // The bounces a path traced from y may take.
+  const int budget = std::max(settings_.path.max_bounces - std::min(next, kMaxSpecularDepth), 0);
+  if (y.transmission > 0.0f)  // glass: the path tracer from here
     return tracer_.continue_from(y, ray, stream_key(key, Purpose::kTexelGlass, uint64_t(depth)), budget, c);
-  }
   if (from_glossy && y.brdf.roughness < settings_.glossy_roughness && next < kMaxSpecularDepth)
     return reflected(y, -ray.direction, next, key, c);
   // The chain's end: the cache's uniformly lit lobe, or on a glossy y with probability
   // chain_end_paths (progressive passes) the path tracer's light, for the sharp images the
   // uniform lobe misses; a rough y's lobe is nearly uniform, not worth a path.
   if (settings_.chain_end_paths > 0.0f && glossy(y.brdf) &&
-      stream(key, Purpose::kTexelChainEnd, uint64_t(depth)).next_float() < settings_.chain_end_paths) {
-    const int budget = std::max(settings_.path.max_bounces - std::min(next, kMaxSpecularDepth), 0);
+      stream(key, Purpose::kTexelChainEnd, uint64_t(depth)).next_float() < settings_.chain_end_paths)
     return tracer_.continue_from(y, ray, stream_key(key, Purpose::kTexelChainEndPath, uint64_t(depth)), budget, c);
-  }
   return terminal(y, -ray.direction, next, key, c);
 }
 

@@ -87,8 +87,6 @@ class RadianceCache {
                             const glm::vec2& u_light, uint64_t key, PathCounters* counters) const;
   // The environment's own sample of an estimate's indirect E (MIS against its cosine ray).
   glm::vec3 environment_irradiance(const ShadingPoint& x, uint64_t key, PathCounters* counters) const;
-  // Stores a finite indirect estimate E in *out (counts a non-finite one) and returns *out.
-  static CachedIrradiance finish_indirect(const glm::vec3& E, CachedIrradiance* out, PathCounters* counters);
 
   // The cell key of a point (position and shading normal).
   uint64_t cell_key(const glm::vec3& position, const glm::vec3& normal) const;

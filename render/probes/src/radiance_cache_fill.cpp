@@ -28,6 +28,13 @@ ShadingPoint shading_point_at(const CachePoint& point) {
   return x;
 }
 
+// Stores a finite indirect estimate E in *out (counts a non-finite one) and returns *out.
+CachedIrradiance finish_indirect(const glm::vec3& E, CachedIrradiance* out, PathCounters* counters) {
+  if (is_finite(E)) out->indirect = E;
+  else ++counters->nonfinite_samples;
+  return *out;
+}
+
 }  // namespace
 
 void RadianceCache::fill(Cell* cell, PathCounters* counters) const {
@@ -132,12 +139,6 @@ CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec
                                        has_subpath ? &subpath : nullptr, key, max_bounces_ - 1, counters);
   }
   return finish_indirect(E, &out, counters);
-}
-
-CachedIrradiance RadianceCache::finish_indirect(const glm::vec3& E, CachedIrradiance* out, PathCounters* counters) {
-  if (is_finite(E)) out->indirect = E;
-  else ++counters->nonfinite_samples;
-  return *out;
 }
 
 glm::vec3 RadianceCache::environment_irradiance(const ShadingPoint& x, uint64_t key, PathCounters* counters) const {
