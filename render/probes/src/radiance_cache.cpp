@@ -36,6 +36,11 @@ int normal_bucket(const glm::vec3& n) {
   return (axis * 2 + sign) * 9 + third(s) * 3 + third(t);
 }
 
+// The integer cell of lattice coordinates, clamped far outside any packable range first.
+glm::ivec3 cell_of(const glm::dvec3& c) {
+  return glm::ivec3(glm::clamp(glm::floor(c), glm::dvec3(-1e9), glm::dvec3(1e9)));
+}
+
 }  // namespace
 
 RadianceCache::RadianceCache(const RenderScene& scene, const Effects& effects, const PathSettings& path,
@@ -66,17 +71,6 @@ glm::ivec3 RadianceCache::unpack(uint64_t key) {
   return cell;
 }
 
-namespace {
-// The integer cell of lattice coordinates, clamped far outside any packable range first.
-glm::ivec3 cell_of(const glm::dvec3& c) {
-  return glm::ivec3(glm::clamp(glm::floor(c), glm::dvec3(-1e9), glm::dvec3(1e9)));
-}
-}  // namespace
-
-uint64_t RadianceCache::cell_key(const glm::vec3& position, const glm::vec3& normal) const {
-  return pack(cell_of(lattice(position)), normal_bucket(normal));
-}
-
 void RadianceCache::Collector::offer(const RadianceCache& cache, const CachePoint& point, uint64_t tie_break) {
   // Nearest the centre, since lookups interpolate between centres (docs/probes-estimator.md,
   // "The radiance cache"). Priority: distance in 2^-20 cells in the high 32 bits, the
@@ -85,7 +79,7 @@ void RadianceCache::Collector::offer(const RadianceCache& cache, const CachePoin
   const glm::dvec3 offset = c - (glm::floor(c) + 0.5);  // within +-0.5 per axis
   const uint64_t distance = uint64_t(std::sqrt(glm::dot(offset, offset)) * double(1 << 20));
   const uint64_t priority = (distance << 32) | (tie_break >> 32);
-  Best& best = cells_[cache.cell_key(point.position, point.shading_normal)];
+  Best& best = cells_[pack(cell_of(c), normal_bucket(point.shading_normal))];
   if (best.count < kPointsPerCell) {
     best.kept[best.count++] = Candidate{priority, point};
     return;

@@ -88,9 +88,6 @@ class RadianceCache {
   // The environment's own sample of an estimate's indirect E (MIS against its cosine ray).
   glm::vec3 environment_irradiance(const ShadingPoint& x, uint64_t key, PathCounters* counters) const;
 
-  // The cell key of a point (position and shading normal).
-  uint64_t cell_key(const glm::vec3& position, const glm::vec3& normal) const;
-
   size_t cell_count() const { return cells_.size(); }
   uint64_t fill_samples() const { return fill_samples_; }
   size_t direct_cell_count() const { return direct_cells_; }
