@@ -19,11 +19,9 @@ class EmitterFootprints {
   static constexpr uint8_t kEdge = 2;     // ... and a light's outline may cross it
 
   // Raises flags[row * w + col] of an h x w probe at `origin` to kCovered where a front-facing
-  // emissive triangle may cover the texel, occlusion ignored (its edges' texel box grown by one
-  // texel; the whole cap round a pole it surrounds), and to kEdge where its outline, sampled at
-  // 1/8 of a texel, falls: edges shared with no coplanar triangle of its mesh, less creases
-  // whose two sides `origin` sees from the same side. A cluster subtending less than a texel is
-  // marked as its bounding sphere's cap, all kEdge: the cost goes by clusters, not triangles.
+  // emissive triangle may cover the texel, occlusion ignored, and to kEdge where a light's
+  // outline may cross it (what counts as outline, and the clusters: docs/probes-estimator.md,
+  // "Lights seen directly: exact coverage").
   void mark(const glm::vec3& origin, int h, int w, std::vector<uint8_t>* flags) const;
 
  private:

@@ -1,11 +1,6 @@
 #pragma once
-// The cache's error at a probe's own surface, measured by the probe and taken out
-// (docs/probes-estimator.md, "The foot correction"). The texels looking back at that surface
-// read the same cells and share their fill noise; the probe's front hemisphere against the
-// cosine measures the irradiance at the foot from hundreds of independent texels. The texels
-// behind are shaded last, their lookups near the foot shifted by the difference between that
-// measurement and the cache (indirect against indirect; totals where the cache holds direct
-// light), less the mean difference over the view's probes: the last bounce, which the cache lacks.
+// The cache's error at a probe's own surface, measured by the probe's front texels and taken
+// out of the lookups of its texels behind (docs/probes-estimator.md, "The foot correction").
 #include <vector>
 
 #include <glm/glm.hpp>

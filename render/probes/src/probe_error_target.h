@@ -1,12 +1,8 @@
 #pragma once
 // Rendering a view's probes until their estimated error reaches a target
-// (ProbeSettings::target_error; docs/probes.md, "Accuracy as a target"). The estimate pools the
-// texels' standard errors, sqrt(mean sigma^2) / mean luminance, scaled by how far independent
-// passes over the same probes disagree beyond them (PassAgreement). Passes are independent (a seed
-// of their own; kernels shrunk: probe_pass_schedule.h) and merged weighted by the directions
-// each spent on a texel, never by sigma, which correlates with the value. A later pass
-// supersamples what any pass chose. The target bounds noise (sigma scaled by the passes'
-// disagreement), not a bias.
+// (ProbeSettings::target_error): the estimate, the passes and their merge are docs/probes.md,
+// "Accuracy as a target". Passes are merged by the directions each spent on a texel, never by
+// sigma, which correlates with the value. The target bounds noise, not a bias.
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -19,12 +15,9 @@ namespace phyir::render {
 // computed one when it is empty), 0 for the others, which no estimate counts.
 std::vector<int> first_passes(const ProbeOutput& out, const std::vector<int>& subset);
 
-// How the texels' reported variances compare with what independent passes show: over the
-// texels two passes both hold, the squared differences of their luminances against the sums
-// of their reported variances. E[(a - b)^2] = Var a + Var b whatever sigma reports, so the
-// ratio is a consistent estimate of the factor the reported variances are off by, for the
-// light a texel's own directions missed and the cache's fill noise alike (docs/probes.md,
-// "What E bounds").
+// How far the texels' reported variances are off, from independent passes: over the texels
+// two passes both hold, their luminances' squared differences against the sums of their
+// reported variances (E[(a - b)^2] = Var a + Var b; docs/probes.md, "Accuracy as a target").
 struct PassAgreement {
   double squared_difference = 0.0;
   double reported_variance = 0.0;

@@ -1,11 +1,7 @@
 #pragma once
-// Sharing samples between neighbouring probes of one surface (cache mode; docs/probes-estimator.md,
-// "Sharing between neighbours"). Each texel of a valid probe is averaged, weighted by sample
-// counts, with the same texel of the valid probes in the (2r+1) x (2r+1) window around it where
-// the two lie on one surface (at most max_baseline apart), the texel's parallax is below
-// parallax_texels x its smaller extent (hit distances within a factor 2), and their values agree
-// within 3 standard errors of their difference. The window's probes draw interleaved strata
-// (sub_stratum): their average is stratified over (2r+1)^2 times one probe's strata.
+// Sharing samples between neighbouring probes of one surface (cache mode): which texels are
+// averaged, and the interleaved strata that make the average stratified, are
+// docs/probes-estimator.md, "Sharing between neighbours".
 #include <cstdint>
 #include <vector>
 

@@ -1,8 +1,6 @@
 #pragma once
-// Each probe texel's standard error as reported (probe_stderr.exr). A texel's own variance
-// estimate (ProbeView::estimate) is noisy and tracks its mean where light is skewed, so the
-// reported variance is half its own and half the mean of its 3x3 neighbourhood in the probe
-// (columns wrap, rows clamp). docs/probes.md, "Per-texel standard error".
+// Each probe texel's standard error as reported (probe_stderr.exr): its own variance estimate
+// is noisy, so it is pooled with its neighbours' (docs/probes.md, "Per-texel standard error").
 #include "phyir/core/image.h"
 #include "phyir/view/probe_layout.h"
 

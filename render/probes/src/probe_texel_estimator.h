@@ -49,10 +49,9 @@ class TexelEstimator {
   };
   glm::vec3 miss(const glm::vec3& direction) const;
 
-  // Radiance the opaque surface at si reflects towards wo_world; `depth`: its scattering event
-  // from the probe's first hit (< max_bounces); `first` only at that hit. Direct light by
-  // next-event estimation and one BRDF ray (power heuristic), punctual lights exact; indirect
-  // diffuse f_d E(x) from the cache, specular through that ray, rouletted by its share.
+  // Radiance the opaque surface at si reflects towards wo_world (docs/probes-estimator.md, "The
+  // texel estimator", steps 2-5); `depth`: its scattering event from the probe's first hit
+  // (< max_bounces); `first` only at that hit.
   glm::vec3 reflected(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key, PathCounters* c,
                       const FirstHit* first = nullptr) const;
 
@@ -64,9 +63,8 @@ class TexelEstimator {
   glm::vec3 reflected_at(const Ray& ray, const SurfaceInteraction& y, int next, int depth, uint64_t key,
                          PathCounters* c, bool from_glossy) const;
 
-  // reflected() where the cache holds direct light too: diffuse f_d E, no ray; specular by
-  // next-event estimation through f_s in every sample (highlights never carry a roulette weight)
-  // and a GGX ray kept with probability `keep`, power heuristic at its density keep x pdf.
+  // reflected() where the cache holds direct light too (steps 2 and 3): diffuse f_d E, no ray;
+  // specular by next-event estimation and a rouletted GGX ray, power heuristic at keep x pdf.
   glm::vec3 reflected_split(const ShadingPoint& x, const glm::vec3& fd, const CachedIrradiance& E, int depth,
                             uint64_t key, PathCounters* c, const float* photon_shares) const;
 

@@ -1,10 +1,8 @@
 #pragma once
-// One view's probes being rendered: the steps of ProbeRenderer::render_at. Internal to the
-// probe renderer. The light transport the probes share is its ViewTransport
-// (probe_view_transport.h); the view keeps its passes' bookkeeping. Passes and sharing in
-// probe_view.cpp, texels in probe_view_texels.cpp (docs/probes-estimator.md, "Code map"):
-//   select_probes; shade_pass (twice with the foot correction): shade_tile's first_look and
-//   finish_texel, balance, then per probe gather_photons; correct_feet; share_between_neighbours
+// One view's probes being rendered: the steps of ProbeRenderer::render_at, in the order of
+// docs/probes-estimator.md, "Code map". The light transport the probes share is its
+// ViewTransport (probe_view_transport.h); passes and sharing in probe_view.cpp, texels in
+// probe_view_texels.cpp. Internal to the probe renderer.
 #include <utility>
 #include <vector>
 

@@ -1,16 +1,7 @@
 #pragma once
-// A world-space cache of irradiance on the surfaces a view's probes see, shared by all of
-// them (docs/probes-estimator.md, "The radiance cache").
-// Cells: cubes of `cell_size` split by shading normal (54 buckets; a board's two sides never
-// share a cell), keys packed exactly, values in a SparseCellGrid. Discovery keeps each cell's
-// kPointsPerCell points nearest its centre, whatever the thread count; the fill averages
-// `samples_per_cell` estimates of E, the irradiance over the shading normal's hemisphere.
-// Indirect E counts up to max_bounces - 1 further scattering events, so a lookup at a probe's
-// first hit gives the path tracer's path lengths. Cells at least `direct_distance_cells` from
-// every emitter also hold the emissive triangles' direct E and the punctual lights' exact E
-// (mean over the points). Lookups interpolate between cell centres, indirect E smoothed over
-// 3 x 3 x 3 cells; an undiscovered cell gives a one-sample indirect estimate, no direct light.
-// Diffuse radiance leaving a point is f_d E, f_d = B (1 - M) / pi (eq. 13) taken at the point.
+// A world-space cache of irradiance E on the surfaces a view's probes see, shared by all of
+// them: its cells, discovery, fill, direct light and lookups are docs/probes-estimator.md,
+// "The radiance cache". Diffuse radiance leaving a point is f_d E, f_d = B (1 - M) / pi (eq. 13).
 #include <array>
 #include <atomic>
 #include <cstdint>
