@@ -40,6 +40,21 @@ void agree(const ProbeOutput& held, const ProbeOutput& added, const glm::ivec2& 
   ++agreement->texels;
 }
 
+// `pass`'s statistics added to `total`'s, its seconds included (a later pass's time is the view's).
+void add_pass_stats(const ProbeStats& pass, ProbeStats* total) {
+  const uint64_t probes = total->probes, valid = total->valid, nothing = total->nothing, emitter = total->emitter,
+                 transparent = total->transparent;
+  *total += pass;
+  // A pass counts the grid's probes again: the view's counts are the first pass's.
+  total->probes = probes, total->valid = valid, total->nothing = nothing, total->emitter = emitter,
+  total->transparent = transparent;
+  total->cache_seconds += pass.cache_seconds;
+  total->shade_seconds += pass.shade_seconds;
+  total->share_seconds += pass.share_seconds;
+  total->total_seconds += pass.total_seconds;
+  total->cache_fill_samples += pass.cache_fill_samples;
+}
+
 }  // namespace
 
 std::vector<int> first_passes(const ProbeOutput& out, const std::vector<int>& subset) {
@@ -137,25 +152,6 @@ void merge_pass(const ProbeOutput& pass, const std::vector<int>& refined, std::v
     ++(*passes)[size_t(p)];
   }
 }
-
-namespace {
-
-// `pass`'s statistics added to `total`'s, its seconds included (a later pass's time is the view's).
-void add_pass_stats(const ProbeStats& pass, ProbeStats* total) {
-  const uint64_t probes = total->probes, valid = total->valid, nothing = total->nothing, emitter = total->emitter,
-                 transparent = total->transparent;
-  *total += pass;
-  // A pass counts the grid's probes again: the view's counts are the first pass's.
-  total->probes = probes, total->valid = valid, total->nothing = nothing, total->emitter = emitter,
-  total->transparent = transparent;
-  total->cache_seconds += pass.cache_seconds;
-  total->shade_seconds += pass.shade_seconds;
-  total->share_seconds += pass.share_seconds;
-  total->total_seconds += pass.total_seconds;
-  total->cache_fill_samples += pass.cache_fill_samples;
-}
-
-}  // namespace
 
 void refine_to_error(const ProbeSettings& settings, const std::vector<int>& subset, const ProbePass& render_pass,
                      ProbeOutput* first) {

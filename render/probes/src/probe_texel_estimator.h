@@ -8,7 +8,6 @@
 #include "phyir/render/effects.h"
 #include "foot_correction.h"
 #include "punctual_photons.h"
-#include "phyir/render/frame.h"
 #include "phyir/render/path_tracer.h"
 #include "phyir/render/probe_renderer.h"
 #include "radiance_cache.h"

@@ -48,14 +48,13 @@ uint64_t deposit_punctual_lights(const RenderScene& scene, const ProbeLayout& la
   std::atomic<uint64_t> rays{0};
   tbb::parallel_for(size_t(0), probes.size(), [&](size_t k) {
     const int p = probes[k];
-    const int i = p / layout.grid_width, j = p % layout.grid_width;
     uint64_t traced = 0;
     for (int light = 0; light < lights.size(); ++light) {
       glm::ivec2 texel;
       glm::vec3 radiance;
       if (!punctual_texel(scene, light, sites[size_t(p)].origin, layout, &texel, &radiance, &traced)) continue;
-      for (int c = 0; c < 3; ++c)
-        mosaic->at(j * layout.res_width + texel.y, i * layout.res_height + texel.x, c) += radiance[c];
+      const glm::ivec2 at = layout.mosaic_pixel(p, texel.x * layout.res_width + texel.y);
+      for (int c = 0; c < 3; ++c) mosaic->at(at.x, at.y, c) += radiance[c];
     }
     rays.fetch_add(traced, std::memory_order_relaxed);
   });

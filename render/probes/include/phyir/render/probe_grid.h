@@ -1,10 +1,7 @@
 #pragma once
 // Where per-pixel light probes sit and how their texels are sampled (the PhyIR paper's SC
-// lighting label, sec. 3.2 and C.1; docs/probes.md, "What a probe is"). Layout: H x W probes of
-// h x w texels, view/probe_layout.h. Probe (i, j) belongs to the centre of grid cell (i, j):
-// at half the panorama's resolution the corner shared by pixels (2i, 2j) .. (2i+1, 2j+1), at
-// full resolution the pixel centre. Its origin is the first surface along that ray, moved
-// off it along the camera-facing shading normal by the offset.
+// lighting label, sec. 3.2 and C.1; docs/probes.md, "What a probe is" and "Which pixel a probe
+// belongs to"). Layout: H x W probes of h x w texels, view/probe_layout.h.
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -1,12 +1,10 @@
 #pragma once
 // Renders the per-pixel light probes of one view (settings: probe_settings.h; placement:
-// probe_grid.h; docs/probes.md). A texel is the incident radiance at the origin averaged over
-// its solid angle, from `spp` stratified directions, each estimated by the path tracer as a
-// camera ray of color.exr (ProbeMode::kPath, the unbiased reference) or from a radiance cache
-// the view's probes share (ProbeMode::kCache; docs/probes-estimator.md).
-// Streams are keyed by (seed, probe, texel, sample), the cache's by (seed, cell, sample):
-// probes.exr is bit-identical for a seed whatever the thread count. Non-finite samples are
-// counted and zeroed.
+// probe_grid.h; docs/probes.md): each texel from `spp` stratified directions, by the path tracer
+// (ProbeMode::kPath, the unbiased reference) or over a radiance cache the view's probes share
+// (ProbeMode::kCache; docs/probes-estimator.md). Streams are keyed by (seed, probe, texel,
+// sample), the cache's by (seed, cell, sample): probes.exr is bit-identical for a seed whatever
+// the thread count. Non-finite samples are counted and zeroed.
 #include <cstdint>
 #include <string>
 #include <vector>
