@@ -20,21 +20,19 @@ Size parse_size(const std::string& args) {
 }
 
 TEST(CameraFlags, OneSideGivenTheOtherFollowsAtTwoToOne) {
-  const Size width_only = parse_size("--width 256");
-  EXPECT_EQ(width_only.width, 256);
-  EXPECT_EQ(width_only.height, 128);
-  const Size height_only = parse_size("--height 100");
-  EXPECT_EQ(height_only.width, 200);
-  EXPECT_EQ(height_only.height, 100);
-}
-
-TEST(CameraFlags, BothGivenOrNeitherAreKept) {
-  const Size both = parse_size("--width 300 --height 200");
-  EXPECT_EQ(both.width, 300);
-  EXPECT_EQ(both.height, 200);
-  const Size neither = parse_size("");
-  EXPECT_EQ(neither.width, 1024);
-  EXPECT_EQ(neither.height, 512);
+  struct Case {
+    const char* args;
+    int width, height;
+  };
+  const Case cases[] = {{"--width 256", 256, 128},
+                        {"--height 100", 200, 100},
+                        {"--width 300 --height 200", 300, 200},  // both given: kept
+                        {"", 1024, 512}};                        // neither: the defaults
+  for (const Case& c : cases) {
+    const Size size = parse_size(c.args);
+    EXPECT_EQ(size.width, c.width) << c.args;
+    EXPECT_EQ(size.height, c.height) << c.args;
+  }
 }
 
 }  // namespace
