@@ -80,8 +80,10 @@ TEST(TexelEstimatorHard, ADiffuseHitIsNotHard) {
 scenes::Scene barred_box() {
   const glm::vec3 lo(-1.0f, 0.0f, -1.0f), hi(1.0f, 1.0f, 1.0f);
   scenes::Scene scene = test::make_box_room(lo, hi, test::make_material(glm::vec3(0.4f)));
-  scene.meshes.erase(std::find_if(scene.meshes.begin(), scene.meshes.end(),
-                                  [](const scenes::Mesh& m) { return m.name == "ceiling"; }));
+  const auto ceiling = std::find_if(scene.meshes.begin(), scene.meshes.end(),
+                                    [](const scenes::Mesh& m) { return m.name == "ceiling"; });
+  EXPECT_NE(ceiling, scene.meshes.end()) << "make_box_room names its ceiling";
+  if (ceiling != scene.meshes.end()) scene.meshes.erase(ceiling);
   for (float x : {-0.5f, 0.0f, 0.5f})
     test::add_box(scene, glm::vec3(x - 0.02f, hi.y - 0.04f, lo.z), glm::vec3(x + 0.02f, hi.y, hi.z), 0,
                   /*inward=*/false, "bar");
