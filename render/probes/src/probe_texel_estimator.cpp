@@ -47,7 +47,7 @@ TexelEstimator::TexelEstimator(const RenderScene& scene, const Effects& effects,
       photons_(photons && !photons->empty() && exact_punctual_ ? photons : nullptr) {}
 
 glm::vec3 TexelEstimator::sample(const Ray& ray, uint64_t key, Part part, const FootCorrection& foot,
-                                 float texel_solid_angle, bool* saw_hard, float* distance, glm::vec3* emitted,
+                                 float texel_solid_angle, uint8_t* seen, float* distance, glm::vec3* emitted,
                                  PathCounters* c) const {
   *emitted = glm::vec3(0.0f);
   if (settings_.mode == ProbeMode::kPath) return tracer_.radiance(ray, key, c);
@@ -66,14 +66,14 @@ glm::vec3 TexelEstimator::sample(const Ray& ray, uint64_t key, Part part, const 
     if (part == Part::kRest) return glm::vec3(0.0f);
     // The environment is a light: its window frames and horizons are edges to supersample.
     const glm::vec3 sky = miss(ray.direction);
-    if (max_component(sky) > 0.0f) *saw_hard = true;
+    if (max_component(sky) > 0.0f) *seen |= kSeenHard | kSeenSky;
     return sky;
   }
   *distance = std::min(*distance, si.distance);
   const glm::vec3 Le = si.emits ? si.emission : glm::vec3(0.0f);
   // Hard to sample: a light (unless estimated apart), glass, a glossy surface's highlights.
   if ((si.emits && part == Part::kAll) || si.transmission > 0.0f || si.brdf.roughness < settings_.glossy_roughness)
-    *saw_hard = true;
+    *seen |= kSeenHard;
   const glm::vec3 L = part == Part::kAll ? Le : glm::vec3(0.0f);
   *emitted = L;
   if (settings_.path.max_bounces < 1) return L;

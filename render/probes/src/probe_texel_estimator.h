@@ -1,6 +1,8 @@
 #pragma once
 // One direction of a probe texel: a path tracer's camera ray in path mode; in cache mode the
 // steps of docs/probes-estimator.md, "The texel estimator". Internal to the probe renderer.
+#include <cstdint>
+
 #include <glm/glm.hpp>
 
 #include "phyir/render/brdf.h"
@@ -30,14 +32,17 @@ class TexelEstimator {
   // or the rest; the last two are estimated with different sample counts.
   enum class Part { kAll, kEmission, kRest };
 
+  // What a sample met that makes its texel hard (flags in sample()'s `*seen`).
+  enum Seen : uint8_t { kSeenHard = 1, kSeenSky = 2 };
+
   // Radiance arriving at ray.origin from -ray.direction (cache mode: `part` of it). Cache
   // mode: *distance lowered to the first hit's (unchanged on a miss); *emitted = the part a
-  // light seen first emits (not the environment's); *saw_hard set on a light (the
-  // environment included), glass or a glossy hit; first-hit lookups go through `foot`.
+  // light seen first emits (not the environment's); *seen gains kSeenHard on a light (the
+  // environment included: kSeenSky too), glass or a glossy hit; first-hit lookups go through `foot`.
   // `texel_solid_angle`: the texel's, times spp / its directions where balanced
   // (PunctualPhotons::gather's `scale`); 0: no photons.
   glm::vec3 sample(const Ray& ray, uint64_t key, Part part, const FootCorrection& foot, float texel_solid_angle,
-                   bool* saw_hard, float* distance, glm::vec3* emitted, PathCounters* c) const;
+                   uint8_t* seen, float* distance, glm::vec3* emitted, PathCounters* c) const;
 
  private:
   // At a probe ray's own hit only: the foot correction of its lookup, and each punctual

@@ -72,7 +72,7 @@ class ProbeView {
     Part part = Part::kAll;    // kRest where a light's emission is estimated apart
     glm::vec3 first{0.0f};     // mean of the first samples (final where `done`)
     float spread = 0.0f;       // their luminances' range
-    bool hard = false;         // they met glass, a glossy surface or a light
+    uint8_t seen = 0;          // TexelEstimator::Seen: they met glass, a glossy surface or a light
     bool done = false;         // a light's outline: supersampled from the start
     glm::vec3 exact{0.0f};     // the emission seen directly, estimated apart
     glm::vec3 exact_cos{0.0f}; // its cosine-weighted mean (FootIrradiance)
@@ -91,13 +91,14 @@ class ProbeView {
   void balance(Worker* w);
   // A texel estimated again from `share` fresh directions where that is at least twice its own.
   void rebalance(TexelState& s, double share, Worker* w);
-  // A hard texel from hard_spp fresh samples, or kDeepSppFactor x as many where those spread widely.
+  // A hard texel from hard_spp fresh samples (kSkySppFactor x spp where it saw the sky), or
+  // kDeepSppFactor x as many where those spread widely.
   glm::vec3 hard_estimate(TexelState& s, Worker* w);
   // The largest difference between a plain texel's first value and its neighbours' (luminance).
   float neighbour_step(const TileProbe& probe, int t) const;
   // A lit texel's emission seen directly; true (value final) where a light's outline crosses it.
   bool look_at_light(TexelState& s, Worker* w);
-  glm::vec3 estimate(Texel& x, int first, int count, Part part, bool* saw_hard, float* spread, Worker* w);
+  glm::vec3 estimate(Texel& x, int first, int count, Part part, uint8_t* seen, float* spread, Worker* w);
   void store_texel(const Texel& x, glm::vec3 value, const glm::vec3& seen_emission, Worker* w);
   // The photons' estimate of the pass's texels (punctual_photons.h), kept to be added after
   // sharing; pass 0's also go into the foot correction's measure now.

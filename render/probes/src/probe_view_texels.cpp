@@ -26,6 +26,9 @@ constexpr int kLightPartSppFactor = 4;
 constexpr int kLightPartEdgeSppFactor = 64;
 constexpr int kEmissionSppFactor = 16;
 constexpr int kEmissionEdgeSppFactor = 256;
+// A hard texel that saw the environment: its fresh directions, in spp, at least as many as a
+// light's emission seen directly takes (docs/probes-estimator.md, "Hard texels").
+constexpr int kSkySppFactor = kEmissionSppFactor;
 
 // Balancing: a texel's share replaces its own directions where it is at least kBalanceGain x
 // them, at most kMostBalanceSppFactor x spp, numbered after every other batch of the texel.
@@ -51,7 +54,7 @@ void ProbeView::first_look(TileProbe& probe, int t, int pass, Worker* w) {
     s.part = Part::kRest;
     if (look_at_light(s, w)) return;  // a light's outline: supersampled from the start
   }
-  s.first = estimate(s.x, 0, settings_.spp, s.part, &s.hard, &s.spread, w);
+  s.first = estimate(s.x, 0, settings_.spp, s.part, &s.seen, &s.spread, w);
   s.x.samples = settings_.spp;
 }
 
@@ -73,7 +76,7 @@ void ProbeView::finish_texel(TileProbe& probe, int t, Worker* w) {
   // Judged against the whole value: light known exactly makes the same spread matter less.
   const float limit = settings_.spread_threshold * (luminance(s.first) + luminance(s.exact) + transport_.dark_floor());
   const float step = s.part == Part::kAll ? neighbour_step(probe, t) : 0.0f;
-  const bool own = s.hard || (spp > 1 && s.spread > limit) || step > limit;
+  const bool own = s.seen != 0 || (spp > 1 && s.spread > limit) || step > limit;
   if (own) note_choice(s.x, kHardTexel);
   // A later pass also supersamples what an earlier one found (docs/probes.md, "Accuracy as a target").
   const bool hard = own || earlier_choice(s.x) >= kHardTexel;
@@ -83,8 +86,10 @@ void ProbeView::finish_texel(TileProbe& probe, int t, Worker* w) {
 }
 
 glm::vec3 ProbeView::hard_estimate(TexelState& s, Worker* w) {
-  const int spp = settings_.spp, hard_spp = spp * settings_.hard_spp_factor;
-  bool unused = false;
+  const int spp = settings_.spp;
+  const bool sky = s.seen & TexelEstimator::kSeenSky;
+  const int hard_spp = spp * (sky ? std::max(settings_.hard_spp_factor, kSkySppFactor) : settings_.hard_spp_factor);
+  uint8_t unused = 0;
   const bool deep_before = earlier_ && earlier_choice(s.x) >= kDeepTexel;
   if (!deep_before) {
     s.x.samples = hard_spp;
@@ -94,7 +99,8 @@ glm::vec3 ProbeView::hard_estimate(TexelState& s, Worker* w) {
     if (own) note_choice(s.x, kDeepTexel);
     if (!own) return value;
   }
-  // A rare bright part: more fresh samples, numbered after every other batch (emission's included).
+  // A rare bright part: more fresh samples, numbered after every other batch (emission's included;
+  // a sky batch, [spp, 17 spp), ends before).
   ++w->stats.deep_texels;
   s.x.samples = hard_spp * kDeepSppFactor;
   return estimate(s.x, spp * (1 + settings_.hard_spp_factor + kEmissionEdgeSppFactor), s.x.samples, s.part, &unused,
@@ -123,7 +129,7 @@ void ProbeView::rebalance(TexelState& s, double share, Worker* w) {
   s.x.samples = std::min(int(std::ceil(share)), settings_.spp * kMostBalanceSppFactor);
   // The photons' count as spp / its directions (balance heuristic, a photon a 16th of a direction).
   s.x.photon_scale = float(settings_.spp) / float(s.x.samples);
-  bool unused = false;
+  uint8_t unused = 0;
   s.value = estimate(s.x, kBalanceFirstSppFactor * settings_.spp, s.x.samples, s.part, &unused, nullptr, w);
   ++w->stats.balanced_texels;
 }
@@ -171,7 +177,7 @@ bool ProbeView::look_at_light(TexelState& s, Worker* w) {
                                spp * (edge ? kLightPartEdgeSppFactor : kLightPartSppFactor), rng, probe.measured,
                                &s.exact_cos, &w->strata, &w->stats.counters.rays);
   } else {
-    bool unused = false;
+    uint8_t unused = 0;
     s.exact = estimate(x, spp + hard_spp, spp * (edge ? kEmissionEdgeSppFactor : kEmissionSppFactor), Part::kEmission,
                        &unused, nullptr, w);
     s.exact_cos = x.cos_emitted;
@@ -188,7 +194,7 @@ bool ProbeView::look_at_light(TexelState& s, Worker* w) {
 
 // `spread` (if given): the samples' luminance range. x.cos_all, x.cos_emitted: the mean radiance
 // and its emitted part x the cosine to the probe's normal where the texel is measured, else 0.
-glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* saw_hard, float* spread, Worker* w) {
+glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, uint8_t* seen, float* spread, Worker* w) {
   TileProbe& probe = *x.probe;
   const uint64_t id = texel_id(probe.p, x.t);
   Rng permutation = item_stream(probe_seed_, id, Purpose::kProbeStrata, uint64_t(first));
@@ -205,7 +211,7 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, bool* s
     const uint64_t key = sample_key(probe_seed_, id, uint64_t(first + s));
     const Ray ray{origin, x.cone.direction(w->strata[size_t(s)])};
     glm::vec3 emitted;
-    glm::vec3 L = transport_.estimator().sample(ray, key, part, probe.foot, solid_angle * x.photon_scale, saw_hard,
+    glm::vec3 L = transport_.estimator().sample(ray, key, part, probe.foot, solid_angle * x.photon_scale, seen,
                                                 &x.distance, &emitted, &w->stats.counters);
     if (!is_finite(L) || !is_finite(emitted)) {
       ++w->stats.counters.nonfinite_samples;
