@@ -99,8 +99,8 @@ glm::vec3 ProbeView::hard_estimate(TexelState& s, Worker* w) {
     if (own) note_choice(s.x, kDeepTexel);
     if (!own) return value;
   }
-  // A rare bright part: more fresh samples, numbered after every other batch (emission's included;
-  // a sky batch, [spp, 17 spp), ends before).
+  // A rare bright part: more fresh samples, numbered after every other batch (emission's
+  // included, and a sky texel's 16 x spp).
   ++w->stats.deep_texels;
   s.x.samples = hard_spp * kDeepSppFactor;
   return estimate(s.x, spp * (1 + settings_.hard_spp_factor + kEmissionEdgeSppFactor), s.x.samples, s.part, &unused,

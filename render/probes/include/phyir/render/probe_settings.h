@@ -48,7 +48,9 @@ struct ProbeSettings {
   PathSettings path;              // max_bounces counts scattering after the probe ray's hit
   // kCache only.
   RadianceCacheSettings cache;    // its seed and progress are derived from this struct's
-  int hard_spp_factor = 6;        // hard texels (lights, glass, glossy, edges) get this many times spp
+  // Hard texels (lights, glass, glossy, edges) get this many times spp; at least 16 x where
+  // they saw the sky (docs/probes-estimator.md, "Hard texels").
+  int hard_spp_factor = 6;
   // A texel whose first spp luminances spread over more than this x (their mean + a floor)
   // is hard: an edge, a highlight or a shadow boundary.
   float spread_threshold = 0.75f;
