@@ -13,7 +13,7 @@ namespace {
 
 // A BRDF-sampled ray's hit is followed with probability min(1, kSpecularKeepScale x the
 // specular share of its weight), weighted by the inverse: a glossy or metal lobe always, a
-// wall's in 1/8 of the samples (the floor: no sample weighted by more than 8).
+// pale wall's in about a quarter of the samples, none in fewer than 1/8 (no weight over 8).
 constexpr float kSpecularKeepScale = 4.0f;
 constexpr float kMinSpecularKeep = 0.125f;
 
