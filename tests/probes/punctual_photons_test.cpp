@@ -261,7 +261,8 @@ TEST(PunctualPhotons, AFloorProbeUnderABulbSeesItsHaloBetter) {
 // A wall probe facing the skylight room's sun patch, rendered with two more probes in
 // opposite corners of the room: the sun's photons go where a view's probes are (the box round
 // them), and the rim of the patch is seen better with them. The patch's texels against path
-// mode, over seeds; the probe's mean stays.
+// mode, over seeds; the probe's mean stays. Balanced, about as good with photons as without
+// (over twelve seeds 0.078 against 0.091; three at a time, 0.70-0.98 of it).
 TEST(PunctualPhotons, AWallProbeSeesTheSunPatchBetter) {
   PHYIR_SKIP_UNDER_SANITIZERS("PunctualPhotons.TakeNothingWhereNoneAreSent");
   const scenes::Scene scene = skylight_room();
@@ -287,7 +288,7 @@ TEST(PunctualPhotons, AWallProbeSeesTheSunPatchBetter) {
   path.spp = 4096;
   const Image reference = render(path);
   expect_photons_help("the sun patch's texels", render, reference, towards, 0.35f);
-  expect_photons_help("the sun patch's texels", render, reference, towards, 0.35f, 1.0f);
+  expect_photons_help("the sun patch's texels", render, reference, towards, 0.35f, 1.0f, 1.15);
 }
 
 }  // namespace
