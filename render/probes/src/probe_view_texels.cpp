@@ -29,6 +29,9 @@ constexpr int kEmissionEdgeSppFactor = 256;
 // A hard texel that saw the environment: its fresh directions, in spp, at least as many as a
 // light's emission seen directly takes (docs/probes-estimator.md, "Hard texels").
 constexpr int kSkySppFactor = kEmissionSppFactor;
+// A sky texel's batch, [spp, spp (1 + max(hard_spp_factor, kSkySppFactor))), ends before the deep
+// texels' first sample, spp (1 + hard_spp_factor + kEmissionEdgeSppFactor), whatever the factor.
+static_assert(kSkySppFactor <= kEmissionEdgeSppFactor, "the sky batch would overlap the deep batch");
 
 // Balancing: a texel's share replaces its own directions where it is at least kBalanceGain x
 // them, at most kMostBalanceSppFactor x spp, numbered after every other batch of the texel.
@@ -76,7 +79,7 @@ void ProbeView::finish_texel(TileProbe& probe, int t, Worker* w) {
   // Judged against the whole value: light known exactly makes the same spread matter less.
   const float limit = settings_.spread_threshold * (luminance(s.first) + luminance(s.exact) + transport_.dark_floor());
   const float step = s.part == Part::kAll ? neighbour_step(probe, t) : 0.0f;
-  const bool own = s.seen != 0 || (spp > 1 && s.spread > limit) || step > limit;
+  const bool own = (s.seen & TexelEstimator::kSeenHard) || (spp > 1 && s.spread > limit) || step > limit;
   if (own) note_choice(s.x, kHardTexel);
   // A later pass also supersamples what an earlier one found (docs/probes.md, "Accuracy as a target").
   const bool hard = own || earlier_choice(s.x) >= kHardTexel;
@@ -99,8 +102,8 @@ glm::vec3 ProbeView::hard_estimate(TexelState& s, Worker* w) {
     if (own) note_choice(s.x, kDeepTexel);
     if (!own) return value;
   }
-  // A rare bright part: more fresh samples, numbered after every other batch (emission's
-  // included, and a sky texel's 16 x spp).
+  // A rare bright part: more fresh samples, numbered after every other batch (emission's and
+  // a sky texel's included).
   ++w->stats.deep_texels;
   s.x.samples = hard_spp * kDeepSppFactor;
   return estimate(s.x, spp * (1 + settings_.hard_spp_factor + kEmissionEdgeSppFactor), s.x.samples, s.part, &unused,
