@@ -1,5 +1,6 @@
 #include "phyir/render/direct_lighting.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "phyir/core/safe_math.h"
@@ -44,8 +45,25 @@ bool can_arrive(const ShadingPoint& x, const glm::vec3& wi_world) {
   return glm::dot(wi_world, x.geometric_normal) > 0.0f || x.shadow_lift != glm::vec3(0.0f);
 }
 
-glm::vec3 shadow_origin(const ShadingPoint& x) {
-  return offset_ray_origin(x.position + x.shadow_lift, x.geometric_normal);
+namespace {
+
+// A light at least this far above the facet's plane (the cosine with its normal) is seen from
+// the point itself; nearer the plane the smooth-surface lift blends in (Cycles' default
+// "shadow terminator geometry offset").
+constexpr float kLiftCutoff = 0.1f;
+
+// The density of the competing BRDF-sampled ray: none below the facet, where the integrators
+// drop it, so a light sample there takes the whole light.
+float competing_pdf(const ShadingPoint& x, const GuideMixture& guide, float lobe_density, const glm::vec3& wi_world) {
+  return glm::dot(wi_world, x.geometric_normal) > 0.0f ? guide.pdf(lobe_density, wi_world) : 0.0f;
+}
+
+}  // namespace
+
+glm::vec3 shadow_origin(const ShadingPoint& x, const glm::vec3& wi_world) {
+  const float above = glm::dot(wi_world, x.geometric_normal);
+  const float lift = std::clamp(1.0f - above / kLiftCutoff, 0.0f, 1.0f);
+  return offset_ray_origin(x.position + lift * x.shadow_lift, x.geometric_normal);
 }
 
 namespace {
@@ -53,8 +71,8 @@ namespace {
 // The shadow ray of a light sample: to a point on an emitter, to a point light, or out of
 // the scene towards a directional light; it always leaves on the shaded side of the facet.
 Ray shadow_ray(const ShadingPoint& x, const EmitterSample& ls) {
-  if (std::isinf(ls.distance)) return Ray{shadow_origin(x), ls.wi};
-  return shadow_ray_between(shadow_origin(x), ls.position, ls.normal);
+  if (std::isinf(ls.distance)) return Ray{shadow_origin(x, ls.wi), ls.wi};
+  return shadow_ray_between(shadow_origin(x, ls.wi), ls.position, ls.normal);
 }
 
 }  // namespace
@@ -76,7 +94,8 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
     float w = 1.0f;
     if (options.mis && !ls.delta)
       w = power_heuristic(float(options.light_samples) * ls.pdf,
-                          options.brdf_strategy_probability * options.guide.pdf(lobe_pdf(x, options.lobes, wi), ls.wi));
+                          options.brdf_strategy_probability *
+                              competing_pdf(x, options.guide, lobe_pdf(x, options.lobes, wi), ls.wi));
     else if (ls.delta && options.subpaths)
       w = options.subpaths->eye_weight(options.previous, x, ls.light, ls.pdf);
     return throughput * f * ls.radiance * (wi.z * w / ls.pdf);
@@ -140,9 +159,9 @@ glm::vec3 environment_sample(const RenderScene& scene, const ShadingPoint& x, Lo
   const glm::vec3 f = lobe_eval(x, lobes, wi);
   if (!(wi.z > 0.0f) || !can_arrive(x, wi_world) || !(max_component(f) > 0.0f)) return glm::vec3(0.0f);
   ++counters->rays;
-  const float through = scene.accelerator().transmittance(Ray{shadow_origin(x), wi_world});
+  const float through = scene.accelerator().transmittance(Ray{shadow_origin(x, wi_world), wi_world});
   if (!(through > 0.0f)) return glm::vec3(0.0f);
-  const float w = power_heuristic(pdf, guide.pdf(lobe_pdf(x, lobes, wi), wi_world), other_pdf());
+  const float w = power_heuristic(pdf, competing_pdf(x, guide, lobe_pdf(x, lobes, wi), wi_world), other_pdf());
   return throughput * f * Le * (wi.z * w * through / pdf);
 }
 

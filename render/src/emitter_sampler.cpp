@@ -56,6 +56,20 @@ Geometry point_geometry(const glm::vec3& normal, const glm::vec3& reference, con
   return g;
 }
 
+// How far from a triangle's plane a reference may lie and still be in it, per unit of its
+// largest coordinate (about 128 float steps: below the ray offset of ray_offset.h, above the
+// rounding of a hit point).
+constexpr float kInPlaneTolerance = 1.0f / 65536.0f;
+
+// The reference lies in the triangle's plane: on the light itself or on a coplanar neighbour,
+// which it sees edge-on (no light). Its own triangle would otherwise be sampled at a distance
+// of float noise, in a direction of float noise, with a weight of thousands.
+bool in_plane(const glm::vec3& normal, const glm::vec3& vertex, const glm::vec3& reference) {
+  const glm::vec3 a = glm::abs(reference);
+  const float scale = std::max({1.0f, a.x, a.y, a.z});
+  return std::abs(glm::dot(normal, reference - vertex)) <= kInPlaneTolerance * scale;
+}
+
 // A point uniform on a triangle of `area` picked with probability `pmf`: pmf / area * d^2 / |cos|.
 Geometry area_sampled(float pmf, float area, const glm::vec3& normal, const glm::vec3& reference,
                       const glm::vec3& point) {
@@ -421,6 +435,7 @@ bool EmitterSampler::sample(const glm::vec3& reference, float u_select, const gl
   }
   if (index < 0) return false;
   const EmissiveTriangle& e = triangles_[index];
+  if (in_plane(e.normal, e.p0, reference)) return false;
   glm::vec2 b12;
   glm::vec3 point;
   Geometry g;
@@ -471,6 +486,7 @@ float EmitterSampler::pdf(const glm::vec3& reference, int mesh, int triangle, co
   const int index = lookup_[first_of_mesh_[mesh] + triangle];
   if (index < 0) return 0.0f;
   const EmissiveTriangle& e = triangles_[index];
+  if (in_plane(e.normal, e.p0, reference)) return 0.0f;
   const float pmf = selection_pmf(reference, index, punctual);
   SphericalTriangle seen;
   if (by_solid_angle(e, reference) && seen.set(reference, e.p0, e.p1, e.p2))

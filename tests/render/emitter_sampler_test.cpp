@@ -305,6 +305,37 @@ TEST(EmitterSampler, OneSidedEmitterIsDarkFromBehind) {
   }
 }
 
+// A point on a light (a glowing lamp shade shading its own surface) lies in its triangles'
+// planes and sees them edge-on: they give it no light. Its own triangle was sampled at a
+// distance of float noise, in a direction of float noise, with weights in the thousands.
+TEST(EmitterSampler, APointOnALightSeesItsPlaneEdgeOn) {
+  scenes::Scene scene;
+  // A tilted panel (hit points off its plane by rounding alone) and a second light beside it.
+  const glm::vec3 corner(-0.5f, 2.0f, -0.25f), u(1.0f, 0.13f, 0.07f), v(0.03f, 0.21f, 0.5f);
+  const int light = add_quad(scene, corner, u, v, add_material(scene, make_emitter(glm::vec3(5.0f), true)), "panel");
+  add_quad(scene, {-0.5f, 1.0f, 1.0f}, {1.0f, 0.0f, 0.0f}, {0.0f, 0.5f, 0.0f}, add_material(scene, make_emitter(glm::vec3(1.0f), true)),
+           "other light");
+  const RenderScene rs(scene);
+  const EmitterSampler& sampler = rs.emitters();
+  Rng rng(41, 3);
+  int on_own_plane = 0, other = 0;
+  for (int i = 0; i < 2000; ++i) {
+    // Points on the panel as rays find them.
+    const glm::vec3 target = corner + (0.1f + 0.8f * rng.next_float()) * u + (0.1f + 0.8f * rng.next_float()) * v;
+    const glm::vec3 from(0.0f, 0.5f, 0.0f);
+    SurfaceInteraction si;
+    ASSERT_TRUE(rs.trace(Ray{from, glm::normalize(target - from)}, &si));
+    ASSERT_EQ(si.mesh, light);
+    EmitterSample s;
+    if (!sampler.sample(si.position, rng.next_float(), rng.next_2d(), &s)) continue;
+    if (s.mesh == light) ++on_own_plane;
+    else ++other;
+    EXPECT_EQ(sampler.pdf(si.position, light, 0, corner + 0.3f * u + 0.2f * v), 0.0f);
+  }
+  EXPECT_EQ(on_own_plane, 0);
+  EXPECT_GT(other, 500) << "the other light still lights the point";
+}
+
 // A copy of mesh `m` wound the other way, at the same place: a twin sheet.
 int add_twin(scenes::Scene& scene, int m) {
   scenes::Mesh twin = scene.meshes[size_t(m)];

@@ -1,15 +1,19 @@
 // The shadow terminator of smooth-shaded low-polygon meshes (docs/brdf.md, "Smooth normals
 // on coarse meshes"): a faceted sphere with interpolated normals under a point light is
 // lit as the smooth sphere its normals describe, up to its shading horizon, and not
-// beyond; a flat wall with a light behind it stays dark whatever its shading normal says.
+// beyond; a flat wall with a light behind it stays dark whatever its shading normal says; a
+// thin plate whose normals are smoothed over its rim keeps the shadow of a card above it.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
+#include "phyir/core/safe_math.h"
 #include "phyir/render/brdf.h"
+#include "phyir/render/direct_lighting.h"
 #include "phyir/render/frame.h"
 #include "phyir/render/render_view.h"
+#include "phyir/render/rng.h"
 #include "test_scenes.h"
 
 namespace phyir::render {
@@ -201,6 +205,55 @@ TEST(ShadowTerminator, ACoarseLampshadeIsLitAsAFineOne) {
               fine, coarse / fine);
   ASSERT_GT(fine, 0.0);
   EXPECT_NEAR(coarse / fine, 1.0, 0.1);
+}
+
+// A thin plate (0.4 x 0.4 m, 2 mm thick) whose vertex normals are smoothed over its rim, as
+// exported lamp plates and shelves often are: every corner's normal leans 55 degrees off the
+// top face, so the smooth surface they describe bulges 20 cm above its middle. A 10 cm card
+// hangs 2 cm above the middle, under a point light and a small emissive panel straight above:
+// the middle is in the card's shadow. The light is far above the facet's plane, where the
+// facet hides nothing and a BRDF-sampled ray from the point itself would see the card, so the
+// shadow rays leave from the point, not from the bulge (from there they passed over the card).
+TEST(ShadowTerminator, AThinPlateWithNormalsSmoothedOverItsRimKeepsItsShadows) {
+  scenes::Scene scene;
+  scene.source = "shadow_terminator_test: plate";
+  const int white = test::add_material(scene, test::make_material(glm::vec3(0.8f)));
+  scenes::Mesh plate;
+  plate.name = "plate";
+  plate.material = white;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 sign(corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f, corner & 4 ? 1.0f : -1.0f);
+    plate.positions.push_back(sign * glm::vec3(0.2f, 0.001f, 0.2f));
+    plate.normals.push_back(glm::normalize(sign));  // the three faces' normals averaged
+  }
+  // Six faces, wound outward.
+  const unsigned faces[6][4] = {{2, 6, 7, 3}, {0, 1, 5, 4}, {1, 3, 7, 5}, {0, 4, 6, 2}, {4, 5, 7, 6}, {0, 2, 3, 1}};
+  for (const auto& f : faces) {
+    plate.triangles.push_back(glm::uvec3(f[0], f[1], f[2]));
+    plate.triangles.push_back(glm::uvec3(f[0], f[2], f[3]));
+  }
+  test::add_mesh(scene, std::move(plate));
+  test::add_quad(scene, glm::vec3(-0.05f, 0.021f, -0.05f), glm::vec3(0.1f, 0, 0), glm::vec3(0, 0, 0.1f), white, "card");
+  scene.lights.push_back(test::make_point_light(kWatts, glm::vec3(0.0f, 1.0f, 0.0f)));
+  test::add_quad(scene, glm::vec3(-0.02f, 1.0f, 0.02f), glm::vec3(0.04f, 0, 0), glm::vec3(0, 0, -0.04f),
+                 test::add_material(scene, test::make_emitter(glm::vec3(50.0f))), "panel");  // faces down
+  const RenderScene rs(scene);
+
+  SurfaceInteraction si;
+  ASSERT_TRUE(rs.trace(Ray{glm::vec3(0.01f, 0.015f, 0.0f), glm::vec3(0, -1, 0)}, &si));
+  ASSERT_GT(glm::length(si.shadow_lift), 0.1f) << "the plate's smoothed normals lift its middle";
+  const ShadingPoint x = shading_point(si, glm::vec3(0, 1, 0));
+  PathCounters counters;
+  EXPECT_EQ(max_component(punctual_light(rs, x, Lobes::kAll, &counters)), 0.0f) << "the bulb, through the card";
+  Rng rng(5, 1);
+  DirectLightOptions options;
+  for (int k = 0; k < 256; ++k) {
+    LightVariates u;
+    u.select = rng.next_float();
+    u.point = rng.next_2d();
+    ASSERT_EQ(max_component(sample_emitter_light(rs, x, u, options, glm::vec3(1.0f), &rng, &counters)), 0.0f)
+        << "the panel, through the card (sample " << k << ")";
+  }
 }
 
 }  // namespace

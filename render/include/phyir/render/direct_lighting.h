@@ -61,8 +61,12 @@ float lobe_pdf(const ShadingPoint& x, Lobes lobes, const glm::vec3& wi);
 // (docs/brdf.md, "Smooth normals on coarse meshes").
 bool can_arrive(const ShadingPoint& x, const glm::vec3& wi_world);
 
-// Where every shadow ray of x starts: its smooth-surface point, on the shaded side.
-glm::vec3 shadow_origin(const ShadingPoint& x);
+// Where a shadow ray of x towards wi_world starts, on the shaded side: its smooth-surface
+// point for a light below or near the facet's plane (the terminator's band), x itself for one
+// clearly above it, where the facet cannot hide the light and a BRDF-sampled ray from x
+// competes: leaving from elsewhere would make the two strategies see different things (a thin
+// disc whose normals are smoothed over its rim lifts its points by centimetres).
+glm::vec3 shadow_origin(const ShadingPoint& x, const glm::vec3& wi_world);
 
 // The path vertex before the one being shaded, as a multiple-importance weight needs it.
 struct PreviousVertex {

@@ -95,7 +95,8 @@ class EmitterSampler {
   // Solid-angle pdf of having sampled `point` on (mesh, triangle) from `reference`:
   // pmf(triangle) / area * d^2 / |cos at the emitter|. Bit-identical to sample()'s pdf for
   // the same point. Zero for non-emissive triangles, and for grazing points
-  // (|cos| < kMinCosine), which sample() rejects (returns false), keeping MIS consistent.
+  // (|cos| < kMinCosine) and triangles in whose plane `reference` lies (seen edge-on: a point
+  // on the light itself), which sample() rejects (returns false), keeping MIS consistent.
   float pdf(const glm::vec3& reference, int mesh, int triangle, const glm::vec3& point, bool punctual = true) const;
   // The probability that sample() (punctual = true) chooses punctual light `light` from
   // `reference`: its EmitterSample::pdf, without drawing one.
