@@ -52,12 +52,6 @@ namespace {
 // "shadow terminator geometry offset").
 constexpr float kLiftCutoff = 0.1f;
 
-// The density of the competing BRDF-sampled ray: none below the facet, where the integrators
-// drop it, so a light sample there takes the whole light.
-float competing_pdf(const ShadingPoint& x, const GuideMixture& guide, float lobe_density, const glm::vec3& wi_world) {
-  return glm::dot(wi_world, x.geometric_normal) > 0.0f ? guide.pdf(lobe_density, wi_world) : 0.0f;
-}
-
 }  // namespace
 
 glm::vec3 shadow_origin(const ShadingPoint& x, const glm::vec3& wi_world) {
@@ -94,8 +88,7 @@ glm::vec3 sample_emitter_light(const RenderScene& scene, const ShadingPoint& x, 
     float w = 1.0f;
     if (options.mis && !ls.delta)
       w = power_heuristic(float(options.light_samples) * ls.pdf,
-                          options.brdf_strategy_probability *
-                              competing_pdf(x, options.guide, lobe_pdf(x, options.lobes, wi), ls.wi));
+                          options.brdf_strategy_probability * options.guide.pdf(lobe_pdf(x, options.lobes, wi), ls.wi));
     else if (ls.delta && options.subpaths)
       w = options.subpaths->eye_weight(options.previous, x, ls.light, ls.pdf);
     return throughput * f * ls.radiance * (wi.z * w / ls.pdf);
@@ -161,7 +154,7 @@ glm::vec3 environment_sample(const RenderScene& scene, const ShadingPoint& x, Lo
   ++counters->rays;
   const float through = scene.accelerator().transmittance(Ray{shadow_origin(x, wi_world), wi_world});
   if (!(through > 0.0f)) return glm::vec3(0.0f);
-  const float w = power_heuristic(pdf, competing_pdf(x, guide, lobe_pdf(x, lobes, wi), wi_world), other_pdf());
+  const float w = power_heuristic(pdf, guide.pdf(lobe_pdf(x, lobes, wi), wi_world), other_pdf());
   return throughput * f * Le * (wi.z * w * through / pdf);
 }
 
