@@ -1,6 +1,7 @@
 // Apartments from Debian's real furniture library (sweethome3d-furniture): furnished rooms,
 // no meshes crossing, lamps lit at night, daylight through the windows, same bytes for the
-// same seed. Skipped when the package is not installed.
+// same seed, light samples and rays seeing the lamps alike. Skipped when the package is not
+// installed.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,7 +10,12 @@
 #include <set>
 
 #include "phyir/core/image_io.h"
+#include "phyir/core/safe_math.h"
 #include "phyir/render/camera.h"
+#include "phyir/render/direct_lighting.h"
+#include "phyir/render/ray_offset.h"
+#include "phyir/render/rng.h"
+#include "phyir/render/sampling.h"
 #include "phyir/render/render_scene.h"
 #include "phyir/render/render_view.h"
 #include "phyir/scenes/apartment_generator.h"
@@ -147,6 +153,84 @@ TEST(ApartmentRealLibrary, WindowsLetDaylightIn) {
     mean[night] = mean_radiance_towards(scene, eye, glm::vec3(window->outward.x, 0.0f, window->outward.y));
   }
   EXPECT_GT(mean[0], 3.0 * mean[1]) << "day " << mean[0] << ", night " << mean[1];
+}
+
+// Next-event estimation and rays agree on what the lamps give the surfaces round them: at
+// points a few centimetres from every lamp of a furnished night apartment (shades, fixtures,
+// their plates and canopies, real meshes with smoothed normals), the direct irradiance from
+// light samples with their shadow rays equals that from cosine-distributed rays that hit the
+// lamps. Both strategies estimate one integral only if both see the same things: shadow rays
+// leaving from a lifted point (a thin plate's normals smoothed over its rim lifted it by
+// centimetres) or a sample of the point's own triangle broke that on the night apartment.
+TEST(ApartmentRealLibrary, LightSamplesAndRaysSeeTheLampsAlike) {
+  if (!library_installed()) GTEST_SKIP() << "sweethome3d-furniture is not installed";
+  const fs::path dir = temp_dir("apartment_lamps");
+  scenes::ApartmentOptions night;
+  night.lighting = ApartmentLighting::Night;
+  night.rooms = 3;
+  scenes::generate_apartment(dir, 0, 1, real_library(), night);
+  const scenes::Scene scene = scenes::load_gltf(dir / "apartment_0.gltf");
+  const render::RenderScene rs(scene);
+  render::Rng rng(11, 2);
+  render::PathCounters counters;
+  render::DirectLightOptions cosine;
+  cosine.lobes = render::Lobes::kCosine;
+  cosine.mis = false;
+  cosine.punctual = false;
+  double sum_light = 0.0, sum_ray = 0.0, variance = 0.0;  // variance of sum_light - sum_ray
+  int points = 0, far_apart = 0;
+  for (const scenes::Mesh& mesh : scene.meshes) {
+    if (!(glm::length(scene.materials[size_t(mesh.material)].emission()) > 0.0f) || mesh.triangles.empty()) continue;
+    for (int k = 0; k < 48; ++k) {
+      // A point a few centimetres from a random triangle of the lamp, in a random direction.
+      const glm::uvec3 t = mesh.triangles[size_t(rng.next_float() * float(mesh.triangles.size())) % mesh.triangles.size()];
+      const glm::vec3 centre = (mesh.positions[t.x] + mesh.positions[t.y] + mesh.positions[t.z]) / 3.0f;
+      render::SurfaceInteraction si, back;
+      const glm::vec3 d = render::sample_uniform_sphere(rng.next_2d());
+      // Seen from the start, the lamp comes first (not the ceiling it is pressed against).
+      if (!rs.trace(render::Ray{centre + 0.03f * d, -d}, &back) || !back.emits) continue;
+      if (!rs.trace(render::Ray{centre + 0.03f * d, d}, &si) || si.distance > 0.3f || si.emits) continue;
+      // Not the roof space above a ceiling: no probe sees it, and there the top of a canopy
+      // pressed against the ceiling shares its plane (light samples reach it, rays do not).
+      if (scene.meshes[size_t(si.mesh)].name.rfind("roof", 0) == 0) continue;
+      // Light from above the facet, which both strategies can find (below it only the light
+      // samples reach, through the smooth-surface lift, where the facet's neighbours allow).
+      render::ShadingPoint x = render::shading_point(si, -d);
+      x.frame = render::Frame(x.geometric_normal);
+      const render::Frame& up = x.frame;
+      double light = 0.0, ray = 0.0, light2 = 0.0, ray2 = 0.0;
+      constexpr int kSamples = 2000;
+      for (int i = 0; i < kSamples; ++i) {
+        render::LightVariates u;
+        u.select = rng.next_float();
+        u.point = rng.next_2d();
+        const double l = luminance(render::sample_emitter_light(rs, x, u, cosine, glm::vec3(1.0f), &rng, &counters));
+        const glm::vec3 w = up.to_world(render::sample_cosine_hemisphere(rng.next_2d()));
+        render::SurfaceInteraction hit;
+        double r = 0.0;
+        if (rs.trace(render::Ray{render::spawn_origin(si.position, x.geometric_normal, w), w}, &hit) && hit.emits)
+          r = kPi * luminance(hit.emission);
+        light += l;
+        light2 += l * l;
+        ray += r;
+        ray2 += r * r;
+      }
+      light /= kSamples;
+      ray /= kSamples;
+      variance += (light2 / kSamples - light * light + ray2 / kSamples - ray * ray) / kSamples;
+      sum_light += light;
+      sum_ray += ray;
+      ++points;
+      if (std::abs(light - ray) > 0.5 * std::max(light, ray) && std::max(light, ray) > 0.05) ++far_apart;
+    }
+  }
+  const double sigma = std::sqrt(variance);
+  std::printf("[lamps] %d points: light samples %.4f, rays %.4f (ratio %.4f, %.1f sigma), %d points over 50%% apart\n",
+              points, sum_light, sum_ray, sum_light / sum_ray, (sum_light - sum_ray) / sigma, far_apart);
+  ASSERT_GT(points, 20);
+  ASSERT_GT(sum_ray, 0.0);
+  EXPECT_NEAR(sum_light, sum_ray, 4.0 * sigma + 0.01 * sum_ray);
+  EXPECT_LE(far_apart, 1) << "points whose two estimates differ by over half";
 }
 
 }  // namespace
