@@ -20,6 +20,7 @@
 #include "phyir/render/render_view.h"
 #include "phyir/scenes/apartment_generator.h"
 #include "phyir/scenes/gltf_loader.h"
+#include "monte_carlo.h"
 
 namespace phyir {
 namespace {
@@ -155,6 +156,41 @@ TEST(ApartmentRealLibrary, WindowsLetDaylightIn) {
   EXPECT_GT(mean[0], 3.0 * mean[1]) << "day " << mean[0] << ", night " << mean[1];
 }
 
+// The direct irradiance at si from the emissive triangles above its facet, estimated both
+// ways: light samples with their shadow rays, and cosine-distributed rays that hit a lamp.
+struct BothWays {
+  test::MeanAndError light, ray;
+};
+
+BothWays direct_irradiance_both_ways(const render::RenderScene& rs, const render::SurfaceInteraction& si,
+                                     const glm::vec3& wo, render::Rng* rng) {
+  constexpr int kSamples = 2000;
+  // Light from above the facet, which both strategies can find (below it only the light
+  // samples reach, through the smooth-surface lift, where the facet's neighbours allow).
+  render::ShadingPoint x = render::shading_point(si, wo);
+  x.frame = render::Frame(x.geometric_normal);
+  render::DirectLightOptions cosine;
+  cosine.lobes = render::Lobes::kCosine;
+  cosine.mis = false;
+  cosine.punctual = false;
+  render::PathCounters counters;
+  BothWays both;
+  both.light = test::monte_carlo(kSamples, [&](int) {
+    render::LightVariates u;
+    u.select = rng->next_float();
+    u.point = rng->next_2d();
+    return double(luminance(render::sample_emitter_light(rs, x, u, cosine, glm::vec3(1.0f), rng, &counters)));
+  });
+  both.ray = test::monte_carlo(kSamples, [&](int) {
+    const glm::vec3 w = x.frame.to_world(render::sample_cosine_hemisphere(rng->next_2d()));
+    render::SurfaceInteraction hit;
+    const bool lamp =
+        rs.trace(render::Ray{render::spawn_origin(si.position, x.geometric_normal, w), w}, &hit) && hit.emits;
+    return lamp ? double(kPi * luminance(hit.emission)) : 0.0;
+  });
+  return both;
+}
+
 // Next-event estimation and rays agree on what the lamps give the surfaces round them: at
 // points a few centimetres from every lamp of a furnished night apartment (shades, fixtures,
 // their plates and canopies, real meshes with smoothed normals), the direct irradiance from
@@ -172,11 +208,6 @@ TEST(ApartmentRealLibrary, LightSamplesAndRaysSeeTheLampsAlike) {
   const scenes::Scene scene = scenes::load_gltf(dir / "apartment_0.gltf");
   const render::RenderScene rs(scene);
   render::Rng rng(11, 2);
-  render::PathCounters counters;
-  render::DirectLightOptions cosine;
-  cosine.lobes = render::Lobes::kCosine;
-  cosine.mis = false;
-  cosine.punctual = false;
   double sum_light = 0.0, sum_ray = 0.0, variance = 0.0;  // variance of sum_light - sum_ray
   int points = 0, far_apart = 0;
   for (const scenes::Mesh& mesh : scene.meshes) {
@@ -193,33 +224,11 @@ TEST(ApartmentRealLibrary, LightSamplesAndRaysSeeTheLampsAlike) {
       // Not the roof space above a ceiling: no probe sees it, and there the top of a canopy
       // pressed against the ceiling shares its plane (light samples reach it, rays do not).
       if (scene.meshes[size_t(si.mesh)].name.rfind("roof", 0) == 0) continue;
-      // Light from above the facet, which both strategies can find (below it only the light
-      // samples reach, through the smooth-surface lift, where the facet's neighbours allow).
-      render::ShadingPoint x = render::shading_point(si, -d);
-      x.frame = render::Frame(x.geometric_normal);
-      const render::Frame& up = x.frame;
-      double light = 0.0, ray = 0.0, light2 = 0.0, ray2 = 0.0;
-      constexpr int kSamples = 2000;
-      for (int i = 0; i < kSamples; ++i) {
-        render::LightVariates u;
-        u.select = rng.next_float();
-        u.point = rng.next_2d();
-        const double l = luminance(render::sample_emitter_light(rs, x, u, cosine, glm::vec3(1.0f), &rng, &counters));
-        const glm::vec3 w = up.to_world(render::sample_cosine_hemisphere(rng.next_2d()));
-        render::SurfaceInteraction hit;
-        double r = 0.0;
-        if (rs.trace(render::Ray{render::spawn_origin(si.position, x.geometric_normal, w), w}, &hit) && hit.emits)
-          r = kPi * luminance(hit.emission);
-        light += l;
-        light2 += l * l;
-        ray += r;
-        ray2 += r * r;
-      }
-      light /= kSamples;
-      ray /= kSamples;
-      variance += (light2 / kSamples - light * light + ray2 / kSamples - ray * ray) / kSamples;
+      const BothWays both = direct_irradiance_both_ways(rs, si, -d, &rng);
+      const double light = both.light.mean, ray = both.ray.mean;
       sum_light += light;
       sum_ray += ray;
+      variance += both.light.standard_error * both.light.standard_error + both.ray.standard_error * both.ray.standard_error;
       ++points;
       if (std::abs(light - ray) > 0.5 * std::max(light, ray) && std::max(light, ray) > 0.05) ++far_apart;
     }
