@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <glm/gtc/constants.hpp>
-
 namespace phyir::render {
 
 namespace {
@@ -36,9 +34,11 @@ bool SphericalTriangle::set(const glm::vec3& reference, const glm::vec3& p0, con
                             const glm::vec3& p2) {
   const glm::dvec3 r(reference);
   if (!unit(glm::dvec3(p0) - r, &a_) || !unit(glm::dvec3(p1) - r, &b_) || !unit(glm::dvec3(p2) - r, &c_)) return false;
-  alpha_ = corner_angle(a_, b_, c_);
-  const double beta = corner_angle(b_, c_, a_), gamma = corner_angle(c_, a_, b_);
-  solid_angle_ = alpha_ + beta + gamma - glm::pi<double>();  // double: the sum cancels
+  alpha_ = corner_angle(a_, b_, c_);  // the one angle sample() needs
+  // Van Oosterom and Strackee (1983): tan(omega / 2) = |a.(b x c)| / (1 + a.b + b.c + c.a) for
+  // unit a, b, c. One atan2 instead of Girard's three corner angles, whose sum minus pi cancels.
+  const double triple = std::abs(glm::dot(a_, glm::cross(b_, c_)));
+  solid_angle_ = 2.0 * std::atan2(triple, 1.0 + glm::dot(a_, b_) + glm::dot(b_, c_) + glm::dot(c_, a_));
   return solid_angle_ > 0.0 && std::isfinite(solid_angle_);
 }
 

@@ -61,31 +61,32 @@ bool append_arc(const glm::dvec3& a, double phi_a, const glm::dvec3& b, int dept
 double clipped_area(const std::vector<glm::dvec2>& poly, double x0, double x1, double y0, double y1, glm::dvec2* lo,
                     glm::dvec2* hi) {
   thread_local std::vector<glm::dvec2> a, b;
-  a = poly;
-  auto clip = [&](int axis, double bound, bool keep_above) {
-    b.clear();
+  // One side of the box: the part of `in` on its inner side, into *out.
+  auto clip = [](const std::vector<glm::dvec2>& in, std::vector<glm::dvec2>* out, int axis, double bound,
+                 bool keep_above) {
+    out->clear();
     auto inside = [&](const glm::dvec2& p) { return keep_above ? p[axis] >= bound : p[axis] <= bound; };
-    for (size_t i = 0; i < a.size(); ++i) {
-      const glm::dvec2& p = a[i];
-      const glm::dvec2& q = a[(i + 1) % a.size()];
+    for (size_t i = 0, n = in.size(); i < n; ++i) {
+      const glm::dvec2& p = in[i];
+      const glm::dvec2& q = in[i + 1 < n ? i + 1 : 0];
       const bool pin = inside(p), qin = inside(q);
-      if (pin) b.push_back(p);
+      if (pin) out->push_back(p);
       if (pin != qin) {
         const double t = (bound - p[axis]) / (q[axis] - p[axis]);
-        b.push_back(p + t * (q - p));
+        out->push_back(p + t * (q - p));
       }
     }
-    std::swap(a, b);
   };
-  clip(0, x0, true);
-  clip(0, x1, false);
-  clip(1, y0, true);
-  clip(1, y1, false);
+  // The row's band first: it leaves the fewest points to the other sides.
+  clip(poly, &a, 1, y0, true);
+  clip(a, &b, 1, y1, false);
+  clip(b, &a, 0, x0, true);
+  clip(a, &b, 0, x1, false);
   double twice = 0.0;
   *lo = glm::dvec2(x1, y1), *hi = glm::dvec2(x0, y0);
-  for (size_t i = 0; i < a.size(); ++i) {
-    const glm::dvec2& p = a[i];
-    const glm::dvec2& q = a[(i + 1) % a.size()];
+  for (size_t i = 0, n = b.size(); i < n; ++i) {
+    const glm::dvec2& p = b[i];
+    const glm::dvec2& q = b[i + 1 < n ? i + 1 : 0];
     twice += p.x * q.y - q.x * p.y;
     *lo = glm::min(*lo, p), *hi = glm::max(*hi, p);
   }
