@@ -1,4 +1,6 @@
-// SphericalTriangle: its solid angle against Van Oosterom and Strackee's formula, and its
+// SphericalTriangle: its solid angle against Van Oosterom and Strackee's formula and, as the
+// code computes it that way too, against Girard's (the sum of the corner angles less pi) and
+// an octant's pi / 2, up to a triangle wider than pi (the formula's other branch); and its
 // samples inside the triangle and uniform in solid angle (the share falling in a part of it
 // is that part's share of the solid angle), for a far small triangle, a near large one and
 // a thin strip seen from beside it.
@@ -11,6 +13,8 @@
 
 namespace phyir::render {
 namespace {
+
+constexpr double kPi_d = 3.14159265358979323846;
 
 // Whether unit d points into the triangle (p0, p1, p2) seen from the origin.
 bool inside(const glm::dvec3& d, const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2) {
@@ -53,6 +57,37 @@ TEST(SphericalTriangle, SolidAngleIsVanOosteromsAndSamplesAreInsideAndUniform) {
     EXPECT_LE(outside, n * n / 10000) << "a few on the edges, from rounding";
     // A stratified grid resolves the cut to about 1 / n of the triangle.
     EXPECT_NEAR(double(in_part) / (n * n), share, 4.0 / n);
+  }
+}
+
+// Girard's theorem: the sum of the interior angles less pi, each the angle between the planes
+// through the vertex and its two neighbours.
+double girard_solid_angle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  auto corner = [](const glm::dvec3& v, const glm::dvec3& p, const glm::dvec3& q) {
+    return std::acos(glm::dot(glm::normalize(glm::cross(v, p)), glm::normalize(glm::cross(v, q))));
+  };
+  return corner(a, b, c) + corner(b, c, a) + corner(c, a, b) - kPi_d;
+}
+
+TEST(SphericalTriangle, SolidAngleAgreesWithGirardsTheoremBeyondPi) {
+  SphericalTriangle octant;
+  ASSERT_TRUE(octant.set(glm::vec3(0.0f), {1, 0, 0}, {0, 1, 0}, {0, 0, 1}));
+  EXPECT_NEAR(octant.solid_angle(), 0.5 * kPi_d, 1e-12);
+  // Three points below the equator, 120 degrees apart, round the point's foot: between pi and 2 pi.
+  for (const double below : {0.3, 0.05}) {
+    glm::vec3 p[3];
+    for (int k = 0; k < 3; ++k) p[k] = glm::vec3(std::cos(2.0944 * k), std::sin(2.0944 * k), -below);
+    SphericalTriangle wide;
+    ASSERT_TRUE(wide.set(glm::vec3(0.0f), p[0], p[1], p[2]));
+    const double girard = girard_solid_angle(glm::dvec3(p[0]), glm::dvec3(p[1]), glm::dvec3(p[2]));
+    EXPECT_GT(girard, kPi_d);
+    EXPECT_NEAR(wide.solid_angle(), girard, 1e-9 * girard) << below;
+  }
+  for (const Case& c : kCases) {
+    SphericalTriangle t;
+    ASSERT_TRUE(t.set(glm::vec3(0.0f), c.p0, c.p1, c.p2));
+    const double girard = girard_solid_angle(glm::dvec3(c.p0), glm::dvec3(c.p1), glm::dvec3(c.p2));
+    EXPECT_NEAR(t.solid_angle(), girard, 1e-6 * girard) << c.name;
   }
 }
 
