@@ -77,11 +77,10 @@ double clipped_area(const std::vector<glm::dvec2>& poly, double x0, double x1, d
       }
     }
   };
-  // The row's band first: it leaves the fewest points to the other sides.
-  clip(poly, &a, 1, y0, true);
-  clip(a, &b, 1, y1, false);
-  clip(b, &a, 0, x0, true);
+  clip(poly, &a, 0, x0, true);
   clip(a, &b, 0, x1, false);
+  clip(b, &a, 1, y0, true);
+  clip(a, &b, 1, y1, false);
   double twice = 0.0;
   *lo = glm::dvec2(x1, y1), *hi = glm::dvec2(x0, y0);
   for (size_t i = 0, n = b.size(); i < n; ++i) {
