@@ -8,13 +8,13 @@
 
 #include <cmath>
 
+#include <glm/gtc/constants.hpp>
+
 #include "phyir/render/spherical_triangle.h"
 #include "test_scenes.h"
 
 namespace phyir::render {
 namespace {
-
-constexpr double kPi_d = 3.14159265358979323846;
 
 // Whether unit d points into the triangle (p0, p1, p2) seen from the origin.
 bool inside(const glm::dvec3& d, const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2) {
@@ -66,13 +66,13 @@ double girard_solid_angle(const glm::dvec3& a, const glm::dvec3& b, const glm::d
   auto corner = [](const glm::dvec3& v, const glm::dvec3& p, const glm::dvec3& q) {
     return std::acos(glm::dot(glm::normalize(glm::cross(v, p)), glm::normalize(glm::cross(v, q))));
   };
-  return corner(a, b, c) + corner(b, c, a) + corner(c, a, b) - kPi_d;
+  return corner(a, b, c) + corner(b, c, a) + corner(c, a, b) - glm::pi<double>();
 }
 
 TEST(SphericalTriangle, SolidAngleAgreesWithGirardsTheoremBeyondPi) {
   SphericalTriangle octant;
   ASSERT_TRUE(octant.set(glm::vec3(0.0f), {1, 0, 0}, {0, 1, 0}, {0, 0, 1}));
-  EXPECT_NEAR(octant.solid_angle(), 0.5 * kPi_d, 1e-12);
+  EXPECT_NEAR(octant.solid_angle(), 0.5 * glm::pi<double>(), 1e-12);
   // Three points below the equator, 120 degrees apart, round the point's foot: between pi and 2 pi.
   for (const double below : {0.3, 0.05}) {
     glm::vec3 p[3];
@@ -80,7 +80,7 @@ TEST(SphericalTriangle, SolidAngleAgreesWithGirardsTheoremBeyondPi) {
     SphericalTriangle wide;
     ASSERT_TRUE(wide.set(glm::vec3(0.0f), p[0], p[1], p[2]));
     const double girard = girard_solid_angle(glm::dvec3(p[0]), glm::dvec3(p[1]), glm::dvec3(p[2]));
-    EXPECT_GT(girard, kPi_d);
+    EXPECT_GT(girard, glm::pi<double>());
     EXPECT_NEAR(wide.solid_angle(), girard, 1e-9 * girard) << below;
   }
   for (const Case& c : kCases) {
