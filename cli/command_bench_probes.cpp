@@ -150,6 +150,7 @@ void add_row(const BenchProbeFlags& f, const render::ProbeStudy& study, const re
   std::string name = text;
   std::replace(name.begin(), name.end(), ':', '-');
   write_image(fs::path(f.out) / ("strip_" + grid + "_" + res + "_" + name + ".exr"), row.strip);
+  write_image(fs::path(f.out) / ("strip_" + grid + "_" + res + "_" + name + "_stderr.exr"), row.strip_stderr);
   const double noise = study.reference_noise();
   spdlog::info("{} {} {:>14}: {:8.2f} s ({:8.2f} s CPU){}, relative RMSE {:.4f} (reference noise {:.4f}); "
                "standard error: median |e|/sigma {:.2f} x Gaussian, {:.0f}% within 2 sigma",

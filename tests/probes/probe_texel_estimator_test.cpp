@@ -48,10 +48,10 @@ Sampled sample_once(const RenderScene& rs, const scenes::Scene& scene, bool envi
   const ProbeSettings settings = settings_for(ProbeMode::kCache, 4, 16, 32, 0);
   const TexelEstimator estimator(rs, analyse_effects(scene, environment), settings, nullptr);
   Sampled s;
-  float distance = std::numeric_limits<float>::infinity();
-  glm::vec3 emitted(0.0f);
+  TexelEstimator::SampleNotes notes;
   PathCounters counters;
-  s.value = estimator.sample(ray, 7, part, FootCorrection(), 0.0f, &s.seen, &distance, &emitted, &counters);
+  s.value = estimator.sample(ray, 7, part, FootCorrection(), 0.0f, &notes, &counters);
+  s.seen = notes.seen;
   return s;
 }
 

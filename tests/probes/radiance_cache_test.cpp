@@ -3,7 +3,8 @@
 // cell-wide box filter would miss by several percent where the irradiance falls off;
 // the interpolated lookup must not), cells near the light keep no direct light, and with
 // one bounce there is no indirect light at all, smoothing the indirect light cuts its
-// noise without moving its mean, and under the sky through a window (a floor under an
+// noise without moving its mean, the variances a lookup reports match its spread over
+// seeds, and under the sky through a window (a floor under an
 // environment black but for one bright texel, irradiance L x the texel's projected solid
 // angle) the fill's own samples of the environment find it in every estimate, where cosine
 // rays alone would in one of ~650.
@@ -17,6 +18,7 @@
 #include "phyir/render/effects.h"
 #include "phyir/render/environment_light.h"
 #include "phyir/core/image.h"
+#include "phyir/core/safe_math.h"
 #include "radiance_cache.h"
 #include "phyir/render/render_scene.h"
 #include "phyir/render/rng.h"
@@ -205,14 +207,19 @@ TEST(RadianceCachePunctual, APointLightIsExactAtTheCellsAndLeftOutOfTheSampledDi
 // Smoothing the indirect light over a cell's neighbourhood: a floor lit only indirectly,
 // by a wall a light shines on. Two caches of different seeds differ by far less with it
 // than without, and the mean over the floor stays the same (the light changes slowly).
-TEST(RadianceCacheFill, SmoothingTheIndirectLightCutsItsNoiseAndKeepsItsMean) {
+// A floor lit by a panel facing a wall: its indirect light is what the wall reflects.
+scenes::Scene floor_beside_lit_wall() {
   scenes::Scene scene;
   const int white = test::add_material(scene, test::make_material(glm::vec3(0.8f), 1.0f, 0.0f));
   test::add_quad(scene, glm::vec3(-2, 0, 2), glm::vec3(4, 0, 0), glm::vec3(0, 0, -4), white, "floor");
   test::add_quad(scene, glm::vec3(0.6f, 0, 2), glm::vec3(0, 0, -4), glm::vec3(0, 2, 0), white, "wall");
-  // Facing +X, towards the wall: the floor's indirect light is what the wall reflects.
   test::add_quad(scene, glm::vec3(-0.3f, 1.0f, -0.3f), glm::vec3(0, 0.4f, 0), glm::vec3(0, 0, 0.6f),
                  test::add_material(scene, test::make_emitter(glm::vec3(10.0f))), "light");
+  return scene;
+}
+
+TEST(RadianceCacheFill, SmoothingTheIndirectLightCutsItsNoiseAndKeepsItsMean) {
+  const scenes::Scene scene = floor_beside_lit_wall();
   const RenderScene render_scene(scene);
   auto lookups = [&](bool smooth, uint64_t seed) {
     RadianceCacheSettings settings;
@@ -234,6 +241,86 @@ TEST(RadianceCacheFill, SmoothingTheIndirectLightCutsItsNoiseAndKeepsItsMean) {
   ASSERT_GT(raw_mean, 0.0);
   EXPECT_LT(smooth_noise, 0.6 * raw_noise);
   EXPECT_NEAR(smooth_mean / raw_mean, 1.0, 0.02);
+}
+
+// A closed grey room lit by a ceiling panel: light from every direction.
+scenes::Scene grey_room() {
+  scenes::Scene scene = test::make_box_room(glm::vec3(-1.5f, 0.0f, -1.5f), glm::vec3(1.5f, 2.5f, 1.5f),
+                                            test::make_material(glm::vec3(0.6f), 1.0f, 0.0f));
+  test::add_quad(scene, glm::vec3(-0.3f, 2.49f, -0.3f), glm::vec3(0.6f, 0, 0), glm::vec3(0, 0, 0.6f),
+                 test::add_material(scene, test::make_emitter(glm::vec3(10.0f))), "light");
+  return scene;
+}
+
+// Lookups at kPoints floor points of caches of kSeeds seeds, 128 estimates a cell (the default).
+constexpr int kSeeds = 16, kPoints = 64;
+std::vector<std::vector<CachedIrradiance>> lookups_over_seeds(const scenes::Scene& scene, bool smooth) {
+  const RenderScene render_scene(scene);
+  std::vector<std::vector<CachedIrradiance>> runs(kSeeds);
+  for (int seed = 0; seed < kSeeds; ++seed) {
+    RadianceCacheSettings settings;
+    settings.samples_per_cell = 128;
+    settings.smooth_indirect = smooth;
+    settings.seed = uint64_t(seed + 1);
+    RadianceCache cache(render_scene, analyse_effects(scene, false), PathSettings{2, 3}, settings);
+    RadianceCache::Collector collector;
+    uint64_t k = 0;
+    for (float x = -0.4f; x <= 0.4f; x += 0.01f)
+      for (float z = -0.4f; z <= 0.4f; z += 0.01f) collector.offer(cache, floor_point(x, z), mix64(++k));
+    PathCounters counters;
+    cache.build({&collector}, &counters);
+    Rng rng(5, 0);
+    for (int n = 0; n < kPoints; ++n) {
+      const glm::vec2 u = rng.next_2d();
+      CachedIrradiance e;
+      if (cache.interpolate(floor_point(-0.3f + 0.6f * u.x, -0.3f + 0.6f * u.y), &e)) runs[size_t(seed)].push_back(e);
+    }
+  }
+  return runs;
+}
+
+// Summed over the points: the lookups' variance over seeds / the mean variance they report.
+double measured_over_reported(const std::vector<std::vector<CachedIrradiance>>& runs, bool direct) {
+  double measured = 0.0, reported = 0.0;
+  for (int n = 0; n < kPoints; ++n) {
+    double sum = 0.0, sum_squares = 0.0;
+    for (const auto& run : runs) {
+      const CachedIrradiance& e = run[size_t(n)];
+      const double y = luminance(direct ? e.direct : e.indirect);
+      sum += y, sum_squares += y * y;
+      reported += direct ? e.direct_variance : e.indirect_variance;
+    }
+    measured += (sum_squares - sum * sum / kSeeds) / (kSeeds - 1);
+  }
+  return measured / (reported / kSeeds);
+}
+
+TEST(RadianceCacheFill, ReportedVariancesMatchTheLookupsSpreadOverSeeds) {
+  // Unsmoothed cells are independent: the report should match but for its own noise and the
+  // irradiance's variation over a cell, which it counts. Smoothed ones share most of their
+  // cells, taken as one error, which overstates a lookup between cell centres by up to ~1.4x
+  // (a box of 3 cells linearly interpolated keeps 10/36 of a cell's variance per axis, not 1/3).
+  // The grey room has light all round; the floor beside a lit wall sees black over half its
+  // hemisphere, the step between strata the fill's stratification removes.
+  for (const auto& [name, scene] : {std::pair("grey room", grey_room()), std::pair("lit wall", floor_beside_lit_wall())}) {
+    for (bool smooth : {false, true}) {
+      const auto runs = lookups_over_seeds(scene, smooth);
+      for (const auto& run : runs) {
+        ASSERT_EQ(run.size(), size_t(kPoints));
+        for (const CachedIrradiance& e : run) {
+          ASSERT_TRUE(e.has_direct) << "the floor is over 30 cm (6 cells) from the light";
+          EXPECT_GT(e.block, 0u);
+        }
+      }
+      for (bool direct : {false, true}) {
+        const double ratio = measured_over_reported(runs, direct);
+        std::printf("[ fill variance ] %s, %s, %s: measured / reported %.3f\n", name, smooth ? "smoothed" : "unsmoothed",
+                    direct ? "direct" : "indirect", ratio);
+        EXPECT_GT(ratio, smooth && !direct ? 0.55 : 0.7);
+        EXPECT_LT(ratio, smooth && !direct ? 1.2 : 1.4);
+      }
+    }
+  }
 }
 
 TEST(RadianceCacheEnvironment, ASmallBrightPatchOfSkyIsFoundByItsOwnSamples) {

@@ -146,9 +146,9 @@ ProbeStudyRow ProbeStudy::measure(const ProbeStudySetting& setting) const {
   row.strip = probe_strip(out.mosaic, t.layout, subset_);
   row.error = image_error(row.strip, reference_);
   row.per_probe = probe_spread(per_probe_relative_rmse(row.strip, reference_, reference_, t.layout.res_width));
+  row.strip_stderr = probe_strip(out.standard_error, t.layout, subset_);
   if (!reference_stderr_.empty())
-    row.calibration = probe_calibration(row.strip, probe_strip(out.standard_error, t.layout, subset_), reference_,
-                                        reference_stderr_);
+    row.calibration = probe_calibration(row.strip, row.strip_stderr, reference_, reference_stderr_);
   return row;
 }
 

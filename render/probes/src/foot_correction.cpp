@@ -43,9 +43,11 @@ bool TexelCones::faces_away(int texel, const glm::vec3& normal) const {
   return glm::dot(cone.axis, normal) < -cone.sin_radius;
 }
 
-void FootIrradiance::add_texel(const glm::vec3& radiance_cos, const glm::vec3& emitted_cos, float solid_angle) {
+void FootIrradiance::add_texel(const glm::vec3& radiance_cos, const glm::vec3& emitted_cos, float solid_angle,
+                               float variance_cos) {
   direct_ += glm::dvec3(emitted_cos) * double(solid_angle);
   indirect_ += glm::dvec3(radiance_cos - emitted_cos) * double(solid_angle);
+  variance_ += double(variance_cos) * double(solid_angle) * double(solid_angle);
 }
 
 FootCorrection FootCorrection::measure(const RadianceCache& cache, const ProbeSite& site, const FootIrradiance& measured) {
@@ -60,6 +62,7 @@ FootCorrection FootCorrection::measure(const RadianceCache& cache, const ProbeSi
   out.foot_ = site.surface;
   out.normal_ = site.normal;
   out.difference_ = probe - cached;
+  out.variance_ = measured.variance();
   out.cell_ = cache.settings().cell_size;
   out.has_direct_ = E.has_direct;
   out.active_ = true;
@@ -95,6 +98,11 @@ void FootCorrection::apply(const glm::vec3& position, const glm::vec3& normal, C
   const glm::vec3 indirect = E->indirect + w * difference_;
   E->indirect = glm::max(indirect, glm::vec3(0.0f));
   if (has_direct_) E->direct = glm::max(E->direct + glm::min(indirect, glm::vec3(0.0f)), glm::vec3(0.0f));
+  // The cache's error at the foot cancels in the share w; the measurement's takes its place.
+  const float kept = (1.0f - w) * (1.0f - w);
+  E->indirect_variance = kept * E->indirect_variance + w * w * variance_;
+  E->direct_variance *= kept;
+  if (w >= 0.5f) E->block = kFootBlock;
 }
 
 }  // namespace phyir::render

@@ -31,15 +31,20 @@ class FootIrradiance {
  public:
   explicit FootIrradiance(const glm::vec3& normal) : normal_(normal) {}
   // One texel: `radiance_cos`, `emitted_cos` its sample means of the radiance and of its part
-  // emitted by a light seen first, times max(0, d . normal); `solid_angle` the texel's.
-  void add_texel(const glm::vec3& radiance_cos, const glm::vec3& emitted_cos, float solid_angle);
+  // emitted by a light seen first, times max(0, d . normal); `solid_angle` the texel's;
+  // `variance_cos` the variance of radiance_cos's luminance.
+  void add_texel(const glm::vec3& radiance_cos, const glm::vec3& emitted_cos, float solid_angle,
+                 float variance_cos = 0.0f);
   float cosine(const glm::vec3& direction) const { return glm::max(glm::dot(direction, normal_), 0.0f); }
   glm::vec3 indirect() const { return glm::vec3(indirect_); }
   glm::vec3 direct() const { return glm::vec3(direct_); }
+  // The variance of the measured irradiance's luminance (the texels' errors independent).
+  float variance() const { return float(variance_); }
 
  private:
   glm::vec3 normal_;
   glm::dvec3 indirect_{0.0}, direct_{0.0};
+  double variance_ = 0.0;
 };
 
 class FootCorrection {
@@ -54,8 +59,13 @@ class FootCorrection {
   // The same correction less a difference common to every probe.
   FootCorrection less(const glm::vec3& common) const;
 
-  // Shifts a lookup at `position` (unit shading normal `normal`) by the correction's share
-  // there; the irradiance stays >= 0.
+  // A lookup's block (CachedIrradiance::block) where its error is mostly the measurement's,
+  // common to the probe's texels.
+  static constexpr uint64_t kFootBlock = ~uint64_t(0);
+
+  // Shifts a lookup at `position` (unit shading normal `normal`) by the correction's share w
+  // there; the irradiance stays >= 0. Its variances become (1 - w)^2 the cache's plus w^2 the
+  // measurement's; where w >= 1/2 its block becomes kFootBlock.
   void apply(const glm::vec3& position, const glm::vec3& normal, CachedIrradiance* E) const;
 
   bool active() const { return active_; }
@@ -65,6 +75,7 @@ class FootCorrection {
  private:
   glm::vec3 foot_{0.0f}, normal_{0.0f, 1.0f, 0.0f};
   glm::vec3 difference_{0.0f};
+  float variance_ = 0.0f;  // the measurement's
   float cell_ = 0.0f;
   bool has_direct_ = false;
   bool active_ = false;

@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 
@@ -64,7 +65,8 @@ TexelParallax texel_parallax(const ProbeLayout& layout, float parallax_texels) {
 void check_records(const ProbeLayout& layout, const TexelRecords& records) {
   const size_t records_needed = size_t(layout.probe_count()) * size_t(layout.texels_per_probe());
   if (records.distance.size() != records_needed || records.samples.size() != records_needed ||
-      records.variance.size() != records_needed)
+      records.variance.size() != records_needed ||
+      (!records.cache_variance.empty() && records.cache_variance.size() != records_needed))
     fail("sharing needs texel records of {} texels, {} given", records_needed, records.samples.size());
 }
 
@@ -79,6 +81,9 @@ struct SharingInputs {
   const TexelParallax& parallax;
 
   bool usable(int p) const { return computed[size_t(p)] && sites[size_t(p)].valid(); }
+  double cache_sigma(size_t id) const {
+    return records.cache_variance.empty() ? 0.0 : std::sqrt(std::max(double(records.cache_variance[id]), 0.0));
+  }
   glm::dvec3 texel(int probe, int t) const {
     const glm::ivec2 at = layout.mosaic_pixel(probe, t);
     return glm::dvec3(mosaic.at(at.x, at.y, 0), mosaic.at(at.x, at.y, 1), mosaic.at(at.x, at.y, 2));
@@ -94,6 +99,7 @@ class WindowAverage {
         sum_(static_cast<size_t>(texels_)),
         weight_(static_cast<size_t>(texels_)),
         weighted_variance_(static_cast<size_t>(texels_)),
+        weighted_cache_sigma_(static_cast<size_t>(texels_)),
         took_(static_cast<size_t>(texels_)) {}
 
   // Writes probe p's shared texels into `out` and their standard errors into `error`
@@ -112,6 +118,7 @@ class WindowAverage {
       sum_[size_t(t)] = n * in_.texel(p, t);
       weight_[size_t(t)] = n;
       weighted_variance_[size_t(t)] = n * n * double(in_.records.variance[base_p + size_t(t)]);
+      weighted_cache_sigma_[size_t(t)] = n * in_.cache_sigma(base_p + size_t(t));
       took_[size_t(t)] = 0;
     }
   }
@@ -152,12 +159,13 @@ class WindowAverage {
       sum_[size_t(t)] += n * value;
       weight_[size_t(t)] += n;
       weighted_variance_[size_t(t)] += n * n * double(records.variance[base_q + size_t(t)]);
+      weighted_cache_sigma_[size_t(t)] += n * in_.cache_sigma(base_q + size_t(t));
       took_[size_t(t)] = 1;
     }
   }
 
-  // Variance of a weighted mean of independent estimates, sum n^2 var / (sum n)^2: own streams and
-  // interleaved strata; what the texels share through the cache is in neither term.
+  // Variance of a weighted mean of independent estimates, sum n^2 var / (sum n)^2 (own streams and
+  // interleaved strata), plus the cache's error, which neighbours looking at one surface read alike.
   uint64_t write_shared(int p, Image& out, Image* error) const {
     uint64_t shared = 0;
     for (int t = 0; t < texels_; ++t) {
@@ -167,7 +175,9 @@ class WindowAverage {
       const glm::dvec3 v = sum_[size_t(t)] / weight;
       const glm::ivec2 at = in_.layout.mosaic_pixel(p, t);
       for (int ch = 0; ch < 3; ++ch) out.at(at.x, at.y, ch) = float(v[ch]);
-      if (error) error->at(at.x, at.y, 0) = float(std::sqrt(std::max(weighted_variance_[size_t(t)], 0.0)) / weight);
+      const double own = std::max(weighted_variance_[size_t(t)], 0.0) / (weight * weight);
+      const double cache = weighted_cache_sigma_[size_t(t)] / weight;
+      if (error) error->at(at.x, at.y, 0) = float(std::sqrt(own + cache * cache));
     }
     return shared;
   }
@@ -177,6 +187,7 @@ class WindowAverage {
   std::vector<glm::dvec3> sum_;
   std::vector<double> weight_;
   std::vector<double> weighted_variance_;  // sum of n^2 x variance
+  std::vector<double> weighted_cache_sigma_;  // sum of n x the cache's standard error
   std::vector<uint8_t> took_;
 };
 

@@ -30,6 +30,16 @@ constexpr int kMaxExactPunctualLights = 8;
 // rays for 1% more error).
 constexpr float kWeakShadowFraction = 0.05f;
 
+// The standard error of the luminance of f_d E (E with its direct part where `with_direct`)
+// from the lookup's fill noise: E's luminance variance scaled by f_d's effect on E's colour.
+void note_cache_error(const glm::vec3& fd, const CachedIrradiance& E, bool with_direct,
+                      TexelEstimator::SampleNotes* notes) {
+  const glm::vec3 used = with_direct ? E.indirect + E.direct : E.indirect;
+  const float variance = E.indirect_variance + (with_direct ? E.direct_variance : 0.0f);
+  notes->cache_sigma = safe_div(luminance(fd * used), luminance(used)) * std::sqrt(std::max(variance, 0.0f));
+  notes->cache_block = E.block;
+}
+
 }  // namespace
 
 CachePoint cache_point(const SurfaceInteraction& si, const glm::vec3& shading_normal) {
@@ -47,17 +57,15 @@ TexelEstimator::TexelEstimator(const RenderScene& scene, const Effects& effects,
       photons_(photons && !photons->empty() && exact_punctual_ ? photons : nullptr) {}
 
 glm::vec3 TexelEstimator::sample(const Ray& ray, uint64_t key, Part part, const FootCorrection& foot,
-                                 float texel_solid_angle, uint8_t* seen, float* distance, glm::vec3* emitted,
-                                 PathCounters* c) const {
-  *emitted = glm::vec3(0.0f);
+                                 float texel_solid_angle, SampleNotes* notes, PathCounters* c) const {
   if (settings_.mode == ProbeMode::kPath) return tracer_.radiance(ray, key, c);
   if (part == Part::kEmission) {  // most of these rays: a light texel's many directions
     glm::vec3 Le;
     float t = 0.0f;
     ++c->rays;
     if (!scene_.trace_emission(ray, &Le, &t)) return miss(ray.direction);
-    *distance = std::min(*distance, t);
-    *emitted = Le;
+    notes->distance = t;
+    notes->emitted = Le;
     return Le;
   }
   SurfaceInteraction si;
@@ -66,21 +74,22 @@ glm::vec3 TexelEstimator::sample(const Ray& ray, uint64_t key, Part part, const 
     if (part == Part::kRest) return glm::vec3(0.0f);
     // The environment is a light: its window frames and horizons are edges to supersample.
     const glm::vec3 sky = miss(ray.direction);
-    if (max_component(sky) > 0.0f) *seen |= kSeenHard | kSeenSky;
+    if (max_component(sky) > 0.0f) notes->seen |= kSeenHard | kSeenSky;
     return sky;
   }
-  *distance = std::min(*distance, si.distance);
+  notes->distance = si.distance;
   const glm::vec3 Le = si.emits ? si.emission : glm::vec3(0.0f);
   // Hard to sample: a light (unless estimated apart), glass, a glossy surface's highlights.
   if ((si.emits && part == Part::kAll) || si.transmission > 0.0f || si.brdf.roughness < settings_.glossy_roughness)
-    *seen |= kSeenHard;
+    notes->seen |= kSeenHard;
   const glm::vec3 L = part == Part::kAll ? Le : glm::vec3(0.0f);
-  *emitted = L;
+  notes->emitted = L;
   if (settings_.path.max_bounces < 1) return L;
   if (si.transmission > 0.0f)  // glass: path traced from its hit
     return L + tracer_.continue_from(si, ray, key, settings_.path.max_bounces, c);
   FirstHit first;
   first.foot = &foot;
+  first.notes = notes;
   float shares[PunctualPhotons::kMaxLights];
   if (photons_ && photons_->shares(ray.origin, si.position, si.geometric_normal, texel_solid_angle, shares))
     first.photon_shares = shares;
@@ -101,7 +110,9 @@ glm::vec3 TexelEstimator::reflected(const SurfaceInteraction& si, const glm::vec
   CachedIrradiance E = lookup(si, x, depth, key, c);
   const float* photon_shares = first ? first->photon_shares : nullptr;
   if (first && first->foot) first->foot->apply(si.position, x.frame.n, &E);
-  if (E.has_direct && !is_mirror(p.roughness)) return reflected_split(x, fd, E, depth, key, c, photon_shares);
+  const bool split = E.has_direct && !is_mirror(p.roughness);
+  if (first && first->notes) note_cache_error(fd, E, split, first->notes);
+  if (split) return reflected_split(x, fd, E, depth, key, c, photon_shares);
   glm::vec3 L(0.0f);
   if (max_component(fd) > 0.0f) L += fd * E.indirect;
 

@@ -2,6 +2,7 @@
 // One direction of a probe texel: a path tracer's camera ray in path mode; in cache mode the
 // steps of docs/probes-estimator.md, "The texel estimator". Internal to the probe renderer.
 #include <cstdint>
+#include <limits>
 
 #include <glm/glm.hpp>
 
@@ -35,14 +36,21 @@ class TexelEstimator {
   // What a sample met that makes its texel hard (flags in sample()'s `*seen`).
   enum Seen : uint8_t { kSeenHard = 1, kSeenSky = 2 };
 
-  // Radiance arriving at ray.origin from -ray.direction (cache mode: `part` of it). Cache
-  // mode: *distance lowered to the first hit's (unchanged on a miss); *emitted = the part a
-  // light seen first emits (not the environment's); *seen gains kSeenHard on a light (the
-  // environment included: kSeenSky too), glass or a glossy hit; first-hit lookups go through `foot`.
+  // What one sample met besides its radiance (cache mode; path mode leaves them as they are).
+  struct SampleNotes {
+    uint8_t seen = 0;  // Seen: kSeenHard on a light (the environment included: kSeenSky too), glass or a glossy hit
+    float distance = std::numeric_limits<float>::infinity();  // to its first hit
+    glm::vec3 emitted{0.0f};   // the part a light seen first emits (not the environment's)
+    float cache_sigma = 0.0f;  // the standard error of its luminance the first hit's lookup adds (fill noise)
+    uint64_t cache_block = 0;  // the cells sharing that error (CachedIrradiance::block); 0: none
+  };
+
+  // Radiance arriving at ray.origin from -ray.direction (cache mode: `part` of it), `*notes`
+  // from a default SampleNotes; first-hit lookups go through `foot`.
   // `texel_solid_angle`: the texel's, times spp / its directions where balanced
   // (PunctualPhotons::gather's `scale`); 0: no photons.
   glm::vec3 sample(const Ray& ray, uint64_t key, Part part, const FootCorrection& foot, float texel_solid_angle,
-                   uint8_t* seen, float* distance, glm::vec3* emitted, PathCounters* c) const;
+                   SampleNotes* notes, PathCounters* c) const;
 
  private:
   // At a probe ray's own hit only: the foot correction of its lookup, and each punctual
@@ -50,6 +58,7 @@ class TexelEstimator {
   struct FirstHit {
     const FootCorrection* foot = nullptr;
     const float* photon_shares = nullptr;
+    SampleNotes* notes = nullptr;  // gets the lookup's cache error
   };
   glm::vec3 miss(const glm::vec3& direction) const;
 

@@ -93,6 +93,7 @@ ProbeOutput ProbeView::run() {
     records_.distance.assign(size_t(layout_.probe_count()) * size_t(texels_), std::numeric_limits<float>::infinity());
     records_.samples.assign(size_t(layout_.probe_count()) * size_t(texels_), 0.0f);
     records_.variance.assign(size_t(layout_.probe_count()) * size_t(texels_), 0.0f);
+    records_.cache_variance.assign(size_t(layout_.probe_count()) * size_t(texels_), 0.0f);
   }
   feet_.assign(correct_foot_ ? todo_.size() : 0, FootCorrection());
   Progress progress("probes", todo_.size() * (correct_foot_ ? 2 : 1), correct_foot_ ? "probe halves" : "probes",

@@ -44,6 +44,7 @@ class ProbeView {
     ProbeStats stats;
     std::vector<glm::vec2> strata;
     std::vector<float> luminances;  // of one estimate's samples, in the strata's order
+    std::vector<std::pair<uint64_t, float>> cache_errors;  // of one estimate's samples: (block, sigma)
     std::vector<EmitterCoverage::View::Piece> pieces;
     std::vector<TileProbe> tile;
     std::vector<std::pair<uint64_t, glm::vec3>> emission_seen;  // added after sharing
@@ -60,7 +61,8 @@ class ProbeView {
     float distance = 0.0f;              // its nearest hit
     glm::vec3 cos_all{0.0f}, cos_emitted{0.0f};
     int samples = 0;          // directions its value (apart from the emission seen directly) took
-    float variance = 0.0f;    // of that value's luminance (ProbeView::estimate)
+    float variance = 0.0f;    // of that value's luminance (ProbeView::estimate), from its own samples
+    float cache_variance = 0.0f;  // what the cache's fill noise adds to it (shared with other texels)
     // Photons counted as this x their number: spp / its directions where balanced, else 1.
     float photon_scale = 1.0f;
   };

@@ -1,5 +1,6 @@
 #include "probe_view.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -43,6 +44,23 @@ constexpr int kBalanceFirstSppFactor = 1 << 16;
 // spread, which counts an edge the strata resolve (docs/probes-estimator.md, "Sharing between neighbours").
 constexpr int kMinStrataPairs = 8;
 
+// The variance the cache's fill noise adds to the mean of `count` samples, from their
+// (block, sigma): one error within a block of cells, independent errors across blocks
+// (docs/probes.md, "Per-texel standard error").
+float shared_cache_variance(std::vector<std::pair<uint64_t, float>>* errors, int count) {
+  if (errors->empty() || count <= 0) return 0.0f;
+  std::sort(errors->begin(), errors->end());
+  double variance = 0.0, block_sum = 0.0;
+  for (size_t k = 0; k < errors->size(); ++k) {
+    block_sum += (*errors)[k].second;
+    if (k + 1 == errors->size() || (*errors)[k + 1].first != (*errors)[k].first) {
+      variance += block_sum * block_sum;
+      block_sum = 0.0;
+    }
+  }
+  return float(variance / (double(count) * double(count)));
+}
+
 }  // namespace
 
 // A texel's first samples. finish_texel gives hard ones (glass, a glossy surface or a light met; a spread
@@ -68,7 +86,9 @@ void ProbeView::measure_texel(TexelState& s) const {
     x.cos_all += s.exact_cos;
     x.cos_emitted = s.exact_cos;
   }
-  x.measure->add_texel(x.cos_all, x.cos_emitted, equirect_texel_solid_angle(x.row, layout_.res_width, layout_.res_height));
+  const float cosine = x.measure->cosine(x.cone.direction(glm::vec2(0.5f)));
+  x.measure->add_texel(x.cos_all, x.cos_emitted, equirect_texel_solid_angle(x.row, layout_.res_width, layout_.res_height),
+                       (x.variance + x.cache_variance) * cosine * cosine);
 }
 
 void ProbeView::finish_texel(TileProbe& probe, int t, Worker* w) {
@@ -209,17 +229,22 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, uint8_t
   glm::dvec3 sum(0.0), sum_cos(0.0), sum_emitted_cos(0.0);
   double sum_y = 0.0, sum_y2 = 0.0;
   w->luminances.clear();
+  w->cache_errors.clear();
   float lo = std::numeric_limits<float>::infinity(), hi = 0.0f;
   for (int s = 0; s < count; ++s) {
     const uint64_t key = sample_key(probe_seed_, id, uint64_t(first + s));
     const Ray ray{origin, x.cone.direction(w->strata[size_t(s)])};
-    glm::vec3 emitted;
-    glm::vec3 L = transport_.estimator().sample(ray, key, part, probe.foot, solid_angle * x.photon_scale, seen,
-                                                &x.distance, &emitted, &w->stats.counters);
+    TexelEstimator::SampleNotes notes;
+    glm::vec3 L = transport_.estimator().sample(ray, key, part, probe.foot, solid_angle * x.photon_scale, &notes,
+                                                &w->stats.counters);
+    glm::vec3& emitted = notes.emitted;
     if (!is_finite(L) || !is_finite(emitted)) {
       ++w->stats.counters.nonfinite_samples;
       L = emitted = glm::vec3(0.0f);
     }
+    *seen |= notes.seen;
+    x.distance = std::min(x.distance, notes.distance);
+    if (notes.cache_block != 0) w->cache_errors.emplace_back(notes.cache_block, notes.cache_sigma);
     sum += glm::dvec3(L);
     if (x.measure) {
       const double cosine = x.measure->cosine(ray.direction);
@@ -235,6 +260,7 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, uint8_t
   x.variance = float(stratified_mean_variance(w->strata, w->luminances, kMinStrataPairs));
   if (!(x.variance >= 0.0f))
     x.variance = count > 1 ? float(std::max(sum_y2 - sum_y * sum_y / count, 0.0) / (double(count) * (count - 1))) : 0.0f;
+  x.cache_variance = shared_cache_variance(&w->cache_errors, count);
   if (spread) *spread = count > 0 ? hi - lo : 0.0f;
   x.cos_all = glm::vec3(sum_cos / double(count));
   x.cos_emitted = glm::vec3(sum_emitted_cos / double(count));
@@ -254,6 +280,7 @@ void ProbeView::store_texel(const Texel& x, glm::vec3 value, const glm::vec3& se
     records_.distance[size_t(id)] = x.distance;
     records_.samples[size_t(id)] = float(x.samples);
     records_.variance[size_t(id)] = x.variance;
+    records_.cache_variance[size_t(id)] = x.cache_variance;
     // Emission seen directly is not shared: a light's edge moves with the slightest parallax.
     if (x.probe->lit[size_t(x.t)]) w->emission_seen.push_back({id, seen_emission});
   } else {
@@ -261,7 +288,7 @@ void ProbeView::store_texel(const Texel& x, glm::vec3 value, const glm::vec3& se
   }
   const glm::ivec2 at = layout_.mosaic_pixel(p, x.t);
   for (int ch = 0; ch < 3; ++ch) out_.mosaic.at(at.x, at.y, ch) = value[ch];
-  out_.standard_error.at(at.x, at.y, 0) = std::sqrt(std::max(x.variance, 0.0f));
+  out_.standard_error.at(at.x, at.y, 0) = std::sqrt(std::max(x.variance + x.cache_variance, 0.0f));
 }
 
 }  // namespace phyir::render

@@ -143,27 +143,31 @@ void RadianceCache::build(const std::vector<const Collector*>& collectors, PathC
     progress.advance(r.size());
   });
   for (const PathCounters& c : local) *counters += c;
-  const std::vector<glm::vec3> smoothed = settings_.smooth_indirect ? smooth_indirect() : std::vector<glm::vec3>();
+  const std::vector<Smoothed> smoothed = settings_.smooth_indirect ? smooth_indirect() : std::vector<Smoothed>();
   lookup_ = grid_of([&](size_t i) {
     const Cell& cell = cells_[i];
-    return Value{smoothed.empty() ? cell.indirect : smoothed[i], cell.direct, cell.punctual, cell.has_direct};
+    const Smoothed indirect = smoothed.empty() ? Smoothed{cell.indirect, cell.indirect_variance} : smoothed[i];
+    return Value{indirect.indirect, cell.direct, cell.punctual, indirect.variance, cell.direct_variance, cell.has_direct};
   });
   direct_cells_ = size_t(std::count_if(cells_.begin(), cells_.end(), [](const Cell& c) { return c.has_direct; }));
   fill_samples_ = uint64_t(cells_.size()) * uint64_t(std::max(settings_.samples_per_cell, 1));
 }
 
-std::vector<glm::vec3> RadianceCache::smooth_indirect() const {
-  std::vector<glm::vec3> smoothed(cells_.size());
+std::vector<RadianceCache::Smoothed> RadianceCache::smooth_indirect() const {
+  std::vector<Smoothed> smoothed(cells_.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, cells_.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i < r.end(); ++i) {
       glm::dvec3 sum(0.0);
+      double variance = 0.0;  // the cells' fills are independent
       int count = 0;
       for (int index : neighbours_[i]) {
         if (index < 0) continue;
         sum += glm::dvec3(cells_[size_t(index)].indirect);
+        variance += cells_[size_t(index)].indirect_variance;
         ++count;
       }
-      smoothed[i] = glm::vec3(sum / double(count));  // count >= 1: the cell is its own neighbour
+      const double n = double(count);  // >= 1: the cell is its own neighbour
+      smoothed[i] = Smoothed{glm::vec3(sum / n), float(variance / (n * n))};
     }
   });
   return smoothed;
@@ -210,25 +214,44 @@ bool RadianceCache::interpolate(const CachePoint& point, CachedIrradiance* out) 
   const std::array<const Value*, 8> corners = lookup_.corners(first, bucket, wanted);
   const Value* self = corners[size_t(own.x + 2 * own.y + 4 * own.z)];  // its weight is >= 1/8
   if (!self) return false;
+  blend_corners(corners, weights, *self, out);
+  out->block = block_of(first + own, bucket);
+  return true;
+}
+
+void RadianceCache::blend_corners(const std::array<const Value*, 8>& corners, const std::array<double, 8>& weights,
+                                  const Value& self, CachedIrradiance* out) const {
+  // Variances: smoothed neighbours share most of their cells, so their errors are taken as one
+  // (the weights' mean); unsmoothed, each corner's error is its own (sum of w^2 variance).
+  const bool correlated = settings_.smooth_indirect;
   glm::dvec3 indirect(0.0), direct(0.0), punctual(0.0);
-  double w_all = 0.0, w_direct = 0.0;
+  double w_all = 0.0, w_direct = 0.0, indirect_variance = 0.0, direct_variance = 0.0;
   for (int corner = 0; corner < 8; ++corner) {
     const Value* cell = corners[size_t(corner)];
     if (!cell) continue;
     const double w = weights[size_t(corner)];
     indirect += w * glm::dvec3(cell->indirect);
+    indirect_variance += (correlated ? w : w * w) * double(cell->indirect_variance);
     w_all += w;
-    if (self->has_direct && cell->has_direct) {  // direct light is only used where the point's own cell holds it
+    if (self.has_direct && cell->has_direct) {  // direct light is only used where the point's own cell holds it
       direct += w * glm::dvec3(cell->direct);
       punctual += w * glm::dvec3(cell->punctual);
+      direct_variance += w * w * double(cell->direct_variance);
       w_direct += w;
     }
   }
-  out->indirect = w_all > 0.0 ? glm::vec3(indirect / w_all) : self->indirect;
-  out->has_direct = self->has_direct;
-  out->direct = w_direct > 0.0 ? glm::vec3(direct / w_direct) : self->direct;
-  out->punctual = w_direct > 0.0 ? glm::vec3(punctual / w_direct) : self->punctual;
-  return true;
+  out->has_direct = self.has_direct;
+  out->indirect = w_all > 0.0 ? glm::vec3(indirect / w_all) : self.indirect;
+  out->indirect_variance =
+      w_all > 0.0 ? float(indirect_variance / (correlated ? w_all : w_all * w_all)) : self.indirect_variance;
+  out->direct = w_direct > 0.0 ? glm::vec3(direct / w_direct) : self.direct;
+  out->punctual = w_direct > 0.0 ? glm::vec3(punctual / w_direct) : self.punctual;
+  out->direct_variance = w_direct > 0.0 ? float(direct_variance / (w_direct * w_direct)) : self.direct_variance;
+}
+
+uint64_t RadianceCache::block_of(const glm::ivec3& cell, int bucket) {
+  const glm::ivec3 block(glm::floor(glm::dvec3(cell) / 3.0));
+  return pack(block, bucket);
 }
 
 }  // namespace phyir::render

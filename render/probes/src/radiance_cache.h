@@ -27,11 +27,17 @@ struct CachePoint {
 };
 
 // What a lookup returns. `direct` (the emissive triangles') and `punctual` (the punctual
-// lights') are meaningful only when has_direct; their sum is the direct irradiance.
+// lights') are meaningful only when has_direct; their sum is the direct irradiance. The
+// variances are those of the luminances of `indirect` and `direct` from the cells' fill noise
+// (punctual light is exact); `block` names the cells whose noise the value shares (3 x 3 x 3,
+// the smoothing's width; 0: none), docs/probes.md, "Per-texel standard error".
 struct CachedIrradiance {
   glm::vec3 indirect{0.0f};
   glm::vec3 direct{0.0f};
   glm::vec3 punctual{0.0f};
+  float indirect_variance = 0.0f;
+  float direct_variance = 0.0f;
+  uint64_t block = 0;
   bool has_direct = false;
 };
 
@@ -95,14 +101,28 @@ class RadianceCache {
     CachePoint points[kPointsPerCell];
   };
   // What a lookup reads of a cell, packed apart from the fill's points (cache lines).
-  using Value = CachedIrradiance;
+  struct Value {
+    glm::vec3 indirect, direct, punctual;
+    float indirect_variance, direct_variance;
+    bool has_direct;
+  };
+  // A cell's indirect light and the variance of its luminance.
+  struct Smoothed {
+    glm::vec3 indirect;
+    float variance;
+  };
   // A cell's 3 x 3 x 3 neighbourhood in its bucket: indices into cells_, -1 if absent, x-major.
   using Neighbours = std::array<int32_t, 27>;
   static int neighbour_slot(const glm::ivec3& offset) { return (offset.x + 1) * 9 + (offset.y + 1) * 3 + (offset.z + 1); }
 
   void fill(Cell* cell, PathCounters* counters) const;
   // Each cell's indirect light smoothed from the cells' own means.
-  std::vector<glm::vec3> smooth_indirect() const;
+  std::vector<Smoothed> smooth_indirect() const;
+  // The interpolation's weighted means of the corners present, into *out (block apart).
+  void blend_corners(const std::array<const Value*, 8>& corners, const std::array<double, 8>& weights,
+                     const Value& self, CachedIrradiance* out) const;
+  // The 3 x 3 x 3 block of cells holding `cell`, as a key (> 0).
+  static uint64_t block_of(const glm::ivec3& cell, int bucket);
   int find(uint64_t key) const;  // index into cells_, -1 if absent
   // Lattice coordinates (with the grid shift) of a position, in cells.
   glm::dvec3 lattice(const glm::vec3& position) const;

@@ -8,6 +8,7 @@
 #include "phyir/render/direct_lighting.h"
 #include "phyir/render/emitter_sampler.h"
 #include "phyir/render/frame.h"
+#include "phyir/render/probe_grid.h"
 #include "phyir/render/ray_offset.h"
 #include "phyir/render/streams.h"
 #include "phyir/render/sampling.h"
@@ -35,6 +36,41 @@ CachedIrradiance finish_indirect(const glm::vec3& E, CachedIrradiance* out, Path
   return *out;
 }
 
+// The variance of a cell's mean luminance by batch means: each point's samples are stratified
+// apart, so its mean is an independent estimate of variance c / n_k; their weighted spread,
+// sum n_k (mean_k - mean)^2 / (points - 1), estimates c, and the cell's mean has c / N. Unlike
+// the samples' own spread it keeps the stratification's gain; what the irradiance varies over
+// the cell's few centimetres adds to it. One point: its strata's pair differences
+// (stratified_mean_variance), which count the light's variation across a stratum.
+class CellVariance {
+ public:
+  void add(float luminance) { values_.push_back(luminance); }
+  void end_point(const std::vector<glm::vec2>& strata) {
+    double sum = 0.0;
+    for (float y : values_) sum += y;
+    if (!values_.empty()) points_.push_back({double(values_.size()), sum / double(values_.size())});
+    if (points_.size() == 1) single_ = stratified_mean_variance(strata, values_, 1);
+    values_.clear();
+  }
+  float variance() const {
+    if (points_.size() < 2) return float(std::max(single_, 0.0));
+    double n = 0.0, weighted = 0.0;
+    for (const Point& p : points_) n += p.samples, weighted += p.samples * p.mean;
+    const double mean = weighted / n;
+    double spread = 0.0;
+    for (const Point& p : points_) spread += p.samples * (p.mean - mean) * (p.mean - mean);
+    return float(spread / double(points_.size() - 1) / n);
+  }
+
+ private:
+  struct Point {
+    double samples, mean;
+  };
+  std::vector<float> values_;  // the current point's
+  std::vector<Point> points_;
+  double single_ = 0.0;  // the first point's stratified variance
+};
+
 }  // namespace
 
 void RadianceCache::fill(Cell* cell, PathCounters* counters) const {
@@ -49,6 +85,7 @@ void RadianceCache::fill(Cell* cell, PathCounters* counters) const {
   // samples_per_cell estimates shared out over the points, each point's stratified.
   const int total = std::max(settings_.samples_per_cell, 1);
   glm::dvec3 indirect(0.0), direct(0.0);
+  CellVariance indirect_variance, direct_variance;
   std::vector<glm::vec2> directions, light_points;
   int sample = 0;
   for (int k = 0; k < cell->count; ++k) {
@@ -67,7 +104,11 @@ void RadianceCache::fill(Cell* cell, PathCounters* counters) const {
                                           sample_direct ? light_points[size_t(s)] : glm::vec2(0.0f), key, counters);
       indirect += glm::dvec3(e.indirect);
       direct += glm::dvec3(e.direct);
+      indirect_variance.add(luminance(e.indirect));
+      direct_variance.add(luminance(e.direct));
     }
+    indirect_variance.end_point(directions);
+    direct_variance.end_point(sample_direct ? light_points : directions);
   }
   if (sample_direct && !emitters.delta_lights().empty()) {
     glm::vec3 punctual(0.0f);
@@ -78,6 +119,8 @@ void RadianceCache::fill(Cell* cell, PathCounters* counters) const {
   const double count = double(std::max(sample, 1));
   cell->indirect = glm::vec3(indirect / count);
   cell->direct = glm::vec3(direct / count);
+  cell->indirect_variance = indirect_variance.variance();
+  cell->direct_variance = direct_variance.variance();
 }
 
 CachedIrradiance RadianceCache::estimate(const CachePoint& point, const glm::vec2& u, bool direct, float u_select,

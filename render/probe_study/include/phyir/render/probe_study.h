@@ -52,6 +52,7 @@ struct ProbeStudyRow {
   ProbeCalibration calibration;  // its standard error against its actual error (probe_calibration.h)
   ProbeStats stats;
   Image strip;               // the subset's probes side by side (probe_strip)
+  Image strip_stderr;        // their texels' standard errors, laid out as `strip`
 };
 
 // Two settings that differ in their seed alone: their runs tell noise from bias.
