@@ -1,7 +1,8 @@
 // The foot correction (foot_correction.h): which texels face away from a probe's front (never
 // one with a direction in front), the probe's measurement of the irradiance at its foot
 // (uniform light integrates to pi), where a correction applies (the foot's surface, in full
-// within a cell, fading to none at three; never below zero), and what it is for: with a
+// within a cell, fading to none at three; never below zero; its measurement's variance in
+// place of the cache's), and what it is for: with a
 // deliberately noisy cache, the texels probes see of their own floor come far closer to a
 // converged cache's with it than without.
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <vector>
 
 #include "phyir/render/effects.h"
 #include "phyir/render/equirect.h"
@@ -91,6 +93,51 @@ struct FloorCache {
     cache->build({&collector}, &counters);
   }
 };
+
+TEST(FootCorrection, TheMeasurementsVarianceTakesTheCachesPlaceInTheCorrectionsShare) {
+  const FloorCache floor;
+  ProbeSite site;
+  site.surface = glm::vec3(0.3f, 0.0f, 0.2f);
+  site.normal = glm::vec3(0, 1, 0);
+  site.origin = site.surface + 0.01f * site.normal;
+  site.status = ProbeStatus::kValid;
+  CachedIrradiance at_foot;
+  ASSERT_TRUE(floor.cache->interpolate(CachePoint{site.surface, site.normal, site.normal}, &at_foot));
+  EXPECT_GT(at_foot.direct_variance, 0.0f) << "16 light samples a cell (no indirect light: a floor alone)";
+  EXPECT_GT(at_foot.block, 0u);
+  // Two texels of solid angles 0.5 and 0.25 with variances 0.04 and 0.08 (cosine-weighted).
+  const glm::vec3 total = at_foot.indirect + at_foot.direct;
+  FootIrradiance m(site.normal);
+  m.add_texel(1.2f * total, 1.2f * at_foot.direct, 0.5f, 0.04f);
+  m.add_texel(glm::vec3(0.0f), glm::vec3(0.0f), 0.25f, 0.08f);
+  const float v = 0.25f * 0.04f + 0.0625f * 0.08f;
+  EXPECT_FLOAT_EQ(m.variance(), v);
+  const FootCorrection foot = FootCorrection::measure(*floor.cache, site, m);
+  ASSERT_TRUE(foot.active());
+  // At the foot the correction holds in full: the lookup's variance is the measurement's.
+  CachedIrradiance E = at_foot;
+  E.indirect_variance = 5.0f;
+  E.direct_variance = 7.0f;
+  E.block = 12;
+  foot.apply(site.surface, site.normal, &E);
+  EXPECT_NEAR(E.indirect_variance, v, 1e-6f);
+  EXPECT_EQ(E.direct_variance, 0.0f);
+  EXPECT_EQ(E.block, FootCorrection::kFootBlock);
+  // Two cells out its share is a half: a quarter of each variance, and the block still the foot's.
+  E = at_foot;
+  E.indirect_variance = 4.0f;
+  E.direct_variance = 2.0f;
+  E.block = 12;
+  foot.apply(site.surface + glm::vec3(2.0f * floor.cache->settings().cell_size, 0, 0), site.normal, &E);
+  EXPECT_NEAR(E.indirect_variance, 1.0f + 0.25f * v, 1e-5f);
+  EXPECT_NEAR(E.direct_variance, 0.5f, 1e-6f);
+  EXPECT_EQ(E.block, FootCorrection::kFootBlock);
+  // Beyond its reach nothing changes.
+  E = at_foot;
+  foot.apply(site.surface + glm::vec3(3.5f * floor.cache->settings().cell_size, 0, 0), site.normal, &E);
+  EXPECT_EQ(E.indirect_variance, at_foot.indirect_variance);
+  EXPECT_EQ(E.block, at_foot.block);
+}
 
 TEST(FootCorrection, ScalesLookupsOnTheFootsSurfaceInFullWithinACellAndFadesOutAtThree) {
   const FloorCache floor;

@@ -30,17 +30,16 @@ constexpr int kMaxExactPunctualLights = 8;
 // rays for 1% more error).
 constexpr float kWeakShadowFraction = 0.05f;
 
-// The standard error of the luminance of f_d E (E with its direct part where `with_direct`)
-// from the lookup's fill noise: E's luminance variance scaled by f_d's effect on E's colour.
-void note_cache_error(const glm::vec3& fd, const CachedIrradiance& E, bool with_direct,
-                      TexelEstimator::SampleNotes* notes) {
+}  // namespace
+
+void TexelEstimator::CacheTrace::note(const glm::vec3& lobe, const CachedIrradiance& E, bool with_direct) const {
+  if (!notes || E.block == 0 || notes->cache_reads >= SampleNotes::kMaxCacheReads) return;
+  // E's luminance variance scaled by what the path carries of E's colour.
   const glm::vec3 used = with_direct ? E.indirect + E.direct : E.indirect;
   const float variance = E.indirect_variance + (with_direct ? E.direct_variance : 0.0f);
-  notes->cache_sigma = safe_div(luminance(fd * used), luminance(used)) * std::sqrt(std::max(variance, 0.0f));
-  notes->cache_block = E.block;
+  const float scale = safe_div(luminance(throughput * lobe * used), luminance(used));
+  notes->cache[size_t(notes->cache_reads++)] = {E.block, scale * std::sqrt(std::max(variance, 0.0f))};
 }
-
-}  // namespace
 
 CachePoint cache_point(const SurfaceInteraction& si, const glm::vec3& shading_normal) {
   return CachePoint{si.position, shading_normal, si.geometric_normal};
@@ -89,11 +88,10 @@ glm::vec3 TexelEstimator::sample(const Ray& ray, uint64_t key, Part part, const 
     return L + tracer_.continue_from(si, ray, key, settings_.path.max_bounces, c);
   FirstHit first;
   first.foot = &foot;
-  first.notes = notes;
   float shares[PunctualPhotons::kMaxLights];
   if (photons_ && photons_->shares(ray.origin, si.position, si.geometric_normal, texel_solid_angle, shares))
     first.photon_shares = shares;
-  return L + reflected(si, -ray.direction, 0, key, c, &first);
+  return L + reflected(si, -ray.direction, 0, key, c, CacheTrace{notes}, &first);
 }
 
 glm::vec3 TexelEstimator::miss(const glm::vec3& direction) const {
@@ -101,7 +99,7 @@ glm::vec3 TexelEstimator::miss(const glm::vec3& direction) const {
 }
 
 glm::vec3 TexelEstimator::reflected(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key,
-                                    PathCounters* c, const FirstHit* first) const {
+                                    PathCounters* c, const CacheTrace& trace, const FirstHit* first) const {
   ShadingPoint x = shading_point(si, wo_world);
   if (!(x.wo.z >= kMinCosine)) return glm::vec3(0.0f);
   x.brdf = clamped(si.brdf);
@@ -111,8 +109,8 @@ glm::vec3 TexelEstimator::reflected(const SurfaceInteraction& si, const glm::vec
   const float* photon_shares = first ? first->photon_shares : nullptr;
   if (first && first->foot) first->foot->apply(si.position, x.frame.n, &E);
   const bool split = E.has_direct && !is_mirror(p.roughness);
-  if (first && first->notes) note_cache_error(fd, E, split, first->notes);
-  if (split) return reflected_split(x, fd, E, depth, key, c, photon_shares);
+  trace.note(fd, E, split);
+  if (split) return reflected_split(x, fd, E, depth, key, c, photon_shares, trace);
   glm::vec3 L(0.0f);
   if (max_component(fd) > 0.0f) L += fd * E.indirect;
 
@@ -148,7 +146,8 @@ glm::vec3 TexelEstimator::reflected(const SurfaceInteraction& si, const glm::vec
   const float share = safe_div(luminance(weight_specular), luminance(bs.weight));
   const float keep = std::clamp(kSpecularKeepScale * share, kMinSpecularKeep, 1.0f);
   if (keep < 1.0f && !(stream(key, Purpose::kTexelSpecularRoulette, uint64_t(depth)).next_float() < keep)) return L;
-  return L + weight_specular * (reflected_at(ray, y, next, depth, key, c, glossy(p)) - uniform) / keep;
+  const CacheTrace after = trace.after(weight_specular / keep);
+  return L + weight_specular * (reflected_at(ray, y, next, depth, key, c, glossy(p), after) - uniform) / keep;
 }
 
 CachedIrradiance TexelEstimator::lookup(const SurfaceInteraction& si, const ShadingPoint& x, int depth, uint64_t key,
@@ -157,25 +156,25 @@ CachedIrradiance TexelEstimator::lookup(const SurfaceInteraction& si, const Shad
 }
 
 glm::vec3 TexelEstimator::reflected_at(const Ray& ray, const SurfaceInteraction& y, int next, int depth, uint64_t key,
-                                       PathCounters* c, bool from_glossy) const {
+                                       PathCounters* c, bool from_glossy, const CacheTrace& trace) const {
   // The bounces a path traced from y may take.
   const int budget = std::max(settings_.path.max_bounces - std::min(next, kMaxSpecularDepth), 0);
   if (y.transmission > 0.0f)  // glass: the path tracer from here
     return tracer_.continue_from(y, ray, stream_key(key, Purpose::kTexelGlass, uint64_t(depth)), budget, c);
   if (from_glossy && y.brdf.roughness < settings_.glossy_roughness && next < kMaxSpecularDepth)
-    return reflected(y, -ray.direction, next, key, c);
+    return reflected(y, -ray.direction, next, key, c, trace);
   // The chain's end: the cache's uniformly lit lobe, or on a glossy y with probability
   // chain_end_paths (progressive passes) the path tracer's light, for the sharp images the
   // uniform lobe misses; a rough y's lobe is nearly uniform, not worth a path.
   if (settings_.chain_end_paths > 0.0f && glossy(y.brdf) &&
       stream(key, Purpose::kTexelChainEnd, uint64_t(depth)).next_float() < settings_.chain_end_paths)
     return tracer_.continue_from(y, ray, stream_key(key, Purpose::kTexelChainEndPath, uint64_t(depth)), budget, c);
-  return terminal(y, -ray.direction, next, key, c);
+  return terminal(y, -ray.direction, next, key, c, trace);
 }
 
 glm::vec3 TexelEstimator::reflected_split(const ShadingPoint& x, const glm::vec3& fd, const CachedIrradiance& E,
-                                          int depth, uint64_t key, PathCounters* c,
-                                          const float* photon_shares) const {
+                                          int depth, uint64_t key, PathCounters* c, const float* photon_shares,
+                                          const CacheTrace& trace) const {
   const BrdfParams& p = x.brdf;
   glm::vec3 L = fd * (E.indirect + E.direct + punctual_at(x, E, c, photon_shares));
   const glm::vec3 albedo = specular_albedo(p, x.wo.z);
@@ -211,12 +210,13 @@ glm::vec3 TexelEstimator::reflected_split(const ShadingPoint& x, const glm::vec3
   ++c->rays;
   if (!scene_.trace(ray, &y)) return L + weight * (miss(wi_world) - uniform);
   if (y.emits) L += weight * y.emission * (emitters ? emitter_hit_weight(scene_, x.position, pdf, y) : 1.0f);
-  if (next < settings_.path.max_bounces) L += weight * (reflected_at(ray, y, next, depth, key, c, glossy(p)) - uniform);
+  if (next < settings_.path.max_bounces)
+    L += weight * (reflected_at(ray, y, next, depth, key, c, glossy(p), trace.after(weight)) - uniform);
   return L;
 }
 
 glm::vec3 TexelEstimator::terminal(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key,
-                                   PathCounters* c) const {
+                                   PathCounters* c, const CacheTrace& trace) const {
   ShadingPoint x = shading_point(si, wo_world);
   if (!(x.wo.z >= kMinCosine)) return glm::vec3(0.0f);
   x.brdf = clamped(si.brdf);
@@ -224,6 +224,7 @@ glm::vec3 TexelEstimator::terminal(const SurfaceInteraction& si, const glm::vec3
   glm::vec3 L(0.0f);
   const glm::vec3 lobe = mean_brdf(p, x.wo.z);
   const CachedIrradiance E = lookup(si, x, depth, key, c);
+  trace.note(lobe, E, E.has_direct);
   // The lobe lit uniformly, punctual lights taken at y itself: the cache blurs their hard
   // shadows, which a polished surface reflects sharply.
   if (E.has_direct) return lobe * (E.indirect + E.direct + punctual_at(x, E, c, nullptr));

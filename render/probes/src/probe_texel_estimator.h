@@ -1,8 +1,10 @@
 #pragma once
 // One direction of a probe texel: a path tracer's camera ray in path mode; in cache mode the
 // steps of docs/probes-estimator.md, "The texel estimator". Internal to the probe renderer.
+#include <array>
 #include <cstdint>
 #include <limits>
+#include <utility>
 
 #include <glm/glm.hpp>
 
@@ -41,8 +43,11 @@ class TexelEstimator {
     uint8_t seen = 0;  // Seen: kSeenHard on a light (the environment included: kSeenSky too), glass or a glossy hit
     float distance = std::numeric_limits<float>::infinity();  // to its first hit
     glm::vec3 emitted{0.0f};   // the part a light seen first emits (not the environment's)
-    float cache_sigma = 0.0f;  // the standard error of its luminance the first hit's lookup adds (fill noise)
-    uint64_t cache_block = 0;  // the cells sharing that error (CachedIrradiance::block); 0: none
+    // Its cache lookups' fill noise: each one's standard error of the sample's luminance (the
+    // lookup's, times what the path carries of it) and the cells sharing it (CachedIrradiance::block).
+    static constexpr int kMaxCacheReads = kMaxSpecularDepth + 1;
+    int cache_reads = 0;
+    std::array<std::pair<uint64_t, float>, kMaxCacheReads> cache;  // (block, sigma)
   };
 
   // Radiance arriving at ray.origin from -ray.direction (cache mode: `part` of it), `*notes`
@@ -58,15 +63,23 @@ class TexelEstimator {
   struct FirstHit {
     const FootCorrection* foot = nullptr;
     const float* photon_shares = nullptr;
-    SampleNotes* notes = nullptr;  // gets the lookup's cache error
+  };
+  // Where a sample's cache lookups note their error, and the path's throughput to the current
+  // vertex (what the sample's value carries of the light there).
+  struct CacheTrace {
+    SampleNotes* notes = nullptr;
+    glm::vec3 throughput{1.0f};
+    CacheTrace after(const glm::vec3& weight) const { return CacheTrace{notes, throughput * weight}; }
+    // A lookup E whose `lobe` x E (E's direct part where `with_direct`) the vertex reflects.
+    void note(const glm::vec3& lobe, const CachedIrradiance& E, bool with_direct) const;
   };
   glm::vec3 miss(const glm::vec3& direction) const;
 
   // Radiance the opaque surface at si reflects towards wo_world (docs/probes-estimator.md, "The
   // texel estimator", steps 2-5); `depth`: its scattering event from the probe's first hit
-  // (< max_bounces); `first` only at that hit.
+  // (< max_bounces); `first` only at that hit; lookups noted in `trace`.
   glm::vec3 reflected(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key, PathCounters* c,
-                      const FirstHit* first = nullptr) const;
+                      const CacheTrace& trace, const FirstHit* first = nullptr) const;
 
   bool glossy(const BrdfParams& p) const { return p.roughness < settings_.glossy_roughness; }
 
@@ -74,17 +87,17 @@ class TexelEstimator {
   // excluded: glass path traced, glossy y from a glossy surface followed, else the cache's (a
   // glossy y seen from a rough one too: path regularisation, docs/probes-estimator.md, step 5).
   glm::vec3 reflected_at(const Ray& ray, const SurfaceInteraction& y, int next, int depth, uint64_t key,
-                         PathCounters* c, bool from_glossy) const;
+                         PathCounters* c, bool from_glossy, const CacheTrace& trace) const;
 
   // reflected() where the cache holds direct light too (steps 2 and 3): diffuse f_d E, no ray;
   // specular by next-event estimation and a rouletted GGX ray, power heuristic at keep x pdf.
   glm::vec3 reflected_split(const ShadingPoint& x, const glm::vec3& fd, const CachedIrradiance& E, int depth,
-                            uint64_t key, PathCounters* c, const float* photon_shares) const;
+                            uint64_t key, PathCounters* c, const float* photon_shares, const CacheTrace& trace) const;
 
   // A specular chain's end in the cache: (f_d + specular albedo / pi) E, the lobe as if lit
   // uniformly; where the cache holds no direct light, E's indirect part plus light sampling.
   glm::vec3 terminal(const SurfaceInteraction& si, const glm::vec3& wo_world, int depth, uint64_t key,
-                     PathCounters* c) const;
+                     PathCounters* c, const CacheTrace& trace) const;
 
   // Light samples at a probe ray's own hit near a light: kNearLightSamples, or where x emits
   // (its reflection at most its albedo of the light) ceil(that x albedo), at least one.

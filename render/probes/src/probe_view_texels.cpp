@@ -244,7 +244,7 @@ glm::vec3 ProbeView::estimate(Texel& x, int first, int count, Part part, uint8_t
     }
     *seen |= notes.seen;
     x.distance = std::min(x.distance, notes.distance);
-    if (notes.cache_block != 0) w->cache_errors.emplace_back(notes.cache_block, notes.cache_sigma);
+    for (int r = 0; r < notes.cache_reads; ++r) w->cache_errors.push_back(notes.cache[size_t(r)]);
     sum += glm::dvec3(L);
     if (x.measure) {
       const double cosine = x.measure->cosine(ray.direction);
