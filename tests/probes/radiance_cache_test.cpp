@@ -53,6 +53,18 @@ CachePoint floor_point(float x, float z) {
   return CachePoint{glm::vec3(x, 0.0f, z), glm::vec3(0, 1, 0), glm::vec3(0, 1, 0)};
 }
 
+// Builds `cache` over the floor square [-half, half]^2, discovered from a 1 cm grid of points,
+// and the `extra` points.
+void build_over_floor(RadianceCache* cache, float half, const std::vector<CachePoint>& extra = {}) {
+  RadianceCache::Collector collector;
+  uint64_t priority = 0;
+  for (float x = -half; x <= half; x += 0.01f)
+    for (float z = -half; z <= half; z += 0.01f) collector.offer(*cache, floor_point(x, z), mix64(++priority));
+  for (const CachePoint& p : extra) collector.offer(*cache, p, mix64(++priority));
+  PathCounters counters;
+  cache->build({&collector}, &counters);
+}
+
 struct BuiltCache {
   scenes::Scene scene = floor_under_light();
   RenderScene render_scene{scene};
@@ -68,13 +80,7 @@ std::unique_ptr<BuiltCache> build_cache(float half, int max_bounces, int samples
   settings.seed = 3;
   built->cache = std::make_unique<RadianceCache>(built->render_scene, analyse_effects(built->scene, false),
                                                  PathSettings{max_bounces, 3}, settings);
-  RadianceCache::Collector collector;
-  uint64_t priority = 0;
-  for (float x = -half; x <= half; x += 0.01f)
-    for (float z = -half; z <= half; z += 0.01f) collector.offer(*built->cache, floor_point(x, z), mix64(++priority));
-  for (const CachePoint& p : extra) collector.offer(*built->cache, p, mix64(++priority));
-  PathCounters counters;
-  built->cache->build({&collector}, &counters);
+  build_over_floor(built->cache.get(), half, extra);
   return built;
 }
 
@@ -83,12 +89,8 @@ std::unique_ptr<BuiltCache> build_cache(float half, int max_bounces, int samples
 std::vector<double> floor_lookups(const RenderScene& render_scene, const scenes::Scene& scene, bool environment,
                                   int max_bounces, const RadianceCacheSettings& settings, float half) {
   RadianceCache cache(render_scene, analyse_effects(scene, environment), PathSettings{max_bounces, 3}, settings);
-  RadianceCache::Collector collector;
-  uint64_t k = 0;
-  for (float x = -half; x <= half; x += 0.01f)
-    for (float z = -half; z <= half; z += 0.01f) collector.offer(cache, floor_point(x, z), mix64(++k));
+  build_over_floor(&cache, half);
   PathCounters counters;
-  cache.build({&collector}, &counters);
   std::vector<double> out;
   Rng rng(5, 0);
   for (int n = 0; n < 400; ++n) {
@@ -173,12 +175,8 @@ TEST(RadianceCachePunctual, APointLightIsExactAtTheCellsAndLeftOutOfTheSampledDi
   settings.samples_per_cell = 1024;
   settings.seed = 5;
   RadianceCache cache(render_scene, analyse_effects(scene, false), PathSettings{1, 3}, settings);
-  RadianceCache::Collector collector;
-  uint64_t priority = 0;
-  for (float x = -0.6f; x <= 0.6f; x += 0.01f)
-    for (float z = -0.6f; z <= 0.6f; z += 0.01f) collector.offer(cache, floor_point(x, z), mix64(++priority));
+  build_over_floor(&cache, 0.6f);
   PathCounters counters;
-  cache.build({&collector}, &counters);
   Rng rng(23, 0);
   double worst_punctual = 0.0, worst_direct = 0.0, sum_direct = 0.0, sum_exact_direct = 0.0;
   for (int k = 0; k < 300; ++k) {
@@ -263,12 +261,7 @@ std::vector<std::vector<CachedIrradiance>> lookups_over_seeds(const scenes::Scen
     settings.smooth_indirect = smooth;
     settings.seed = uint64_t(seed + 1);
     RadianceCache cache(render_scene, analyse_effects(scene, false), PathSettings{2, 3}, settings);
-    RadianceCache::Collector collector;
-    uint64_t k = 0;
-    for (float x = -0.4f; x <= 0.4f; x += 0.01f)
-      for (float z = -0.4f; z <= 0.4f; z += 0.01f) collector.offer(cache, floor_point(x, z), mix64(++k));
-    PathCounters counters;
-    cache.build({&collector}, &counters);
+    build_over_floor(&cache, 0.4f);
     Rng rng(5, 0);
     for (int n = 0; n < kPoints; ++n) {
       const glm::vec2 u = rng.next_2d();
