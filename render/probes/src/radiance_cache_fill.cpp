@@ -48,8 +48,10 @@ class CellVariance {
   void end_point(const std::vector<glm::vec2>& strata) {
     double sum = 0.0;
     for (float y : values_) sum += y;
-    if (!values_.empty()) points_.push_back({double(values_.size()), sum / double(values_.size())});
-    if (points_.size() == 1) single_ = stratified_mean_variance(strata, values_, 1);
+    if (!values_.empty()) {
+      points_.push_back({double(values_.size()), sum / double(values_.size())});
+      if (points_.size() == 1) single_ = stratified_mean_variance(strata, values_, 1);
+    }
     values_.clear();
   }
   float variance() const {
