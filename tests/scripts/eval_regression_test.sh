@@ -1,21 +1,27 @@
 #!/usr/bin/env bash
-# `phyir eval` end to end on generated mini-scenes, against checked-in expectations:
-# 6 mini rooms, a `tiny` dataset (2 views per scene, split 0.5/0/0.5 by scene), GMNet then LNet
-# trained for a few steps with a fixed seed and one thread (bit-reproducible), `phyir eval
-# --model`, and metrics.json compared with tests/data/eval/expected_metrics.json within the
-# tolerances stored there (tests/eval/compare_metrics.py prints every metric), with every
-# processor-dependent kernel pinned to its SSE4.1 level (pinned_kernels.sh), so that the
-# expectations hold on any x86-64 processor. Also: the
-# --pred path on the same predictions gives the same numbers; the report, figures and
-# metrics.json are there; a missing prediction file fails with its name; the metrics beat
-# the constant-mean baseline where the expectations say they must (the others are listed).
+# `phyir eval` end to end on a stored dataset of generated mini-scenes, against checked-in
+# expectations: tests/data/eval/tiny_dataset.tar.xz holds 6 mini rooms and a `tiny` dataset of
+# them (2 views per scene, split 0.5/0/0.5 by scene); GMNet then LNet trained for a few steps
+# with a fixed seed and one thread (bit-reproducible), `phyir eval --model`, and metrics.json
+# compared with tests/data/eval/expected_metrics.json within the tolerances stored there
+# (tests/eval/compare_metrics.py prints every metric), with every processor-dependent kernel
+# pinned to its SSE4.1 level (pinned_kernels.sh). The dataset is stored, not rendered here:
+# Embree's ray-triangle tests use the processor's approximate reciprocal (rcpps), whose last
+# bits differ between Intel and AMD, and a few training steps amplify those bits (docs/eval.md,
+# "Regression test"). Also: the --pred path on the same predictions gives the same numbers; the
+# report, figures and metrics.json are there; a missing prediction file fails with its name;
+# the metrics beat the constant-mean baseline where the expectations say they must (the others
+# are listed).
 #   $1 = phyir binary, $2 = scratch folder (emptied).
-#   PHYIR_EVAL_REFRESH=1: rewrite the expectations instead (scripts/refresh_eval_expectations.sh).
+#   PHYIR_EVAL_REFRESH=1: rewrite the expectations instead; PHYIR_EVAL_REFRESH=dataset: render
+#   the stored dataset again first (scripts/refresh_eval_expectations.sh [--dataset]).
 set -euo pipefail
 phyir=$(realpath "$1")
 work=$2
 root=${PHYIR_SOURCE_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
 expected=$root/tests/data/eval/expected_metrics.json
+stored=$root/tests/data/eval/tiny_dataset.tar.xz
+refresh=${PHYIR_EVAL_REFRESH:-0}
 rm -rf "$work"
 mkdir -p "$work"
 cd "$work"
@@ -29,9 +35,16 @@ if "$phyir" train --help 2>&1 | grep -q "not built"; then
   echo "SKIP: phyir built without the model (-DPHYIR_BUILD_MODEL=OFF)"; exit 0
 fi
 
-"$phyir" --log-level warn scenes generate --out rooms --count 6 --seed 7 --preset mini
-"$phyir" --log-level warn dataset generate --scenes rooms --out data --preset tiny --views-per-scene 2 \
-  --split 0.5,0,0.5 --seed 1 --threads 2 --quiet
+if [ "$refresh" = dataset ]; then
+  "$phyir" --log-level warn scenes generate --out rooms --count 6 --seed 7 --preset mini
+  "$phyir" --log-level warn dataset generate --scenes rooms --out data --preset tiny --views-per-scene 2 \
+    --split 0.5,0,0.5 --seed 1 --threads 2 --quiet
+  tar --sort=name --mtime=@0 --owner=0 --group=0 --numeric-owner --exclude=.lock -cJf "$stored.tmp" rooms data
+  mv "$stored.tmp" "$stored"
+else
+  [ -s "$stored" ] || die "$stored: missing (scripts/refresh_eval_expectations.sh --dataset writes it)"
+  tar -xJf "$stored"
+fi
 net=(--seed 1 --threads 1 --quiet --input-height 32 --input-width 64 --render-height 16 --render-width 32
      --probe-height 4 --probe-width 8 --diffuse-samples 16 --specular-samples 8 --width-divisor 4)
 "$phyir" --log-level warn train --data data --out gm --stage gmnet --epochs 30 --lr 1e-3 --batch 4 --w-normal 1 "${net[@]}"
@@ -44,7 +57,7 @@ ls report/figures/*.png > /dev/null || die "no side-by-side PNG"
 grep -q "Relighting (layout of Table 5)" report/report.md || die "report.md has no Table 5"
 grep -q "| Method | Base color (MSE)" eval.log || die "the command did not print the main table"
 
-if [ "${PHYIR_EVAL_REFRESH:-0}" = 1 ]; then
+if [ "$refresh" != 0 ]; then
   /usr/bin/python3 "$root/tests/eval/compare_metrics.py" report/metrics.json "$expected" --write
   cat report/report.md
   exit 0
