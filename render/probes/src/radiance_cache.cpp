@@ -153,21 +153,73 @@ void RadianceCache::build(const std::vector<const Collector*>& collectors, PathC
   fill_samples_ = uint64_t(cells_.size()) * uint64_t(std::max(settings_.samples_per_cell, 1));
 }
 
+namespace {
+
+glm::dvec3 neighbour_offset(int slot) { return glm::dvec3(slot / 9 - 1, (slot / 3) % 3 - 1, slot % 3 - 1); }
+
+// The least-squares fit a + g . o over the present neighbours' offsets o (in cells): the rows
+// of `slopes` give each axis's g as weights on the neighbours' values. Directions the offsets
+// do not span (a flat surface's normal) keep no slope (the ridge).
+void slope_weights(const std::array<int32_t, 27>& neighbours, std::array<std::array<double, 27>, 3>* slopes) {
+  glm::dmat4 normal(0.0);
+  for (int slot = 0; slot < 27; ++slot) {
+    if (neighbours[size_t(slot)] < 0) continue;
+    const glm::dvec4 x(1.0, neighbour_offset(slot));
+    normal += glm::outerProduct(x, x);
+  }
+  for (int a = 1; a < 4; ++a) normal[a][a] += 1e-3;
+  const glm::dmat4 inverse = glm::inverse(normal);  // symmetric: column k is row k
+  for (int slot = 0; slot < 27; ++slot) {
+    const glm::dvec4 x(1.0, neighbour_offset(slot));
+    for (int a = 0; a < 3; ++a)
+      (*slopes)[size_t(a)][size_t(slot)] = neighbours[size_t(slot)] < 0 ? 0.0 : glm::dot(x, inverse[a + 1]);
+  }
+}
+
+}  // namespace
+
+std::array<double, 27> RadianceCache::smoothing_weights(size_t i) const {
+  const Neighbours& neighbours = neighbours_[i];
+  std::array<double, 27> weights{};
+  int count = 0;
+  glm::dvec3 offset_mean(0.0);
+  for (int slot = 0; slot < 27; ++slot)
+    if (neighbours[size_t(slot)] >= 0) ++count, offset_mean += neighbour_offset(slot);
+  offset_mean /= double(count);  // >= 1: the cell is its own neighbour
+  for (int slot = 0; slot < 27; ++slot) weights[size_t(slot)] = neighbours[size_t(slot)] < 0 ? 0.0 : 1.0 / count;
+  std::array<std::array<double, 27>, 3> slopes;
+  slope_weights(neighbours, &slopes);
+  for (int a = 0; a < 3; ++a) {
+    // The fit's intercept is the mean less g . (the offsets' mean); each slope is kept by the
+    // share 1 - var(g) / g^2 by which it stands out of the fill's noise.
+    double g = 0.0, variance = 0.0;
+    for (int slot = 0; slot < 27; ++slot) {
+      if (neighbours[size_t(slot)] < 0) continue;
+      const Cell& cell = cells_[size_t(neighbours[size_t(slot)])];
+      const double m = slopes[size_t(a)][size_t(slot)];
+      g += m * double(luminance(cell.indirect));
+      variance += m * m * double(cell.indirect_variance);
+    }
+    const double kept = g * g > 0.0 ? std::max(0.0, 1.0 - variance / (g * g)) : 0.0;
+    for (int slot = 0; slot < 27; ++slot) weights[size_t(slot)] -= kept * offset_mean[a] * slopes[size_t(a)][size_t(slot)];
+  }
+  return weights;
+}
+
 std::vector<RadianceCache::Smoothed> RadianceCache::smooth_indirect() const {
   std::vector<Smoothed> smoothed(cells_.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, cells_.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i < r.end(); ++i) {
+      const std::array<double, 27> weights = smoothing_weights(i);
       glm::dvec3 sum(0.0);
       double variance = 0.0;  // the cells' fills are independent
-      int count = 0;
-      for (int index : neighbours_[i]) {
+      for (int slot = 0; slot < 27; ++slot) {
+        const int index = neighbours_[i][size_t(slot)];
         if (index < 0) continue;
-        sum += glm::dvec3(cells_[size_t(index)].indirect);
-        variance += cells_[size_t(index)].indirect_variance;
-        ++count;
+        sum += weights[size_t(slot)] * glm::dvec3(cells_[size_t(index)].indirect);
+        variance += weights[size_t(slot)] * weights[size_t(slot)] * double(cells_[size_t(index)].indirect_variance);
       }
-      const double n = double(count);  // >= 1: the cell is its own neighbour
-      smoothed[i] = Smoothed{glm::vec3(sum / n), float(variance / (n * n))};
+      smoothed[i] = Smoothed{glm::vec3(glm::max(sum, glm::dvec3(0.0))), float(variance)};
     }
   });
   return smoothed;

@@ -116,8 +116,11 @@ class RadianceCache {
   static int neighbour_slot(const glm::ivec3& offset) { return (offset.x + 1) * 9 + (offset.y + 1) * 3 + (offset.z + 1); }
 
   void fill(Cell* cell, PathCounters* counters) const;
-  // Each cell's indirect light smoothed from the cells' own means.
+  // Each cell's indirect light smoothed from its neighbours' means: their mean corrected by
+  // a local linear fit's slopes, each kept by how far it stands out of the fill's noise.
   std::vector<Smoothed> smooth_indirect() const;
+  // Cell i's smoothing as weights on its neighbours' means (they sum to 1).
+  std::array<double, 27> smoothing_weights(size_t i) const;
   // The interpolation's weighted means of the corners present, into *out (block apart).
   void blend_corners(const std::array<const Value*, 8>& corners, const std::array<double, 8>& weights,
                      const Value& self, CachedIrradiance* out) const;
