@@ -187,6 +187,7 @@ std::array<double, 27> RadianceCache::smoothing_weights(size_t i) const {
     if (neighbours[size_t(slot)] >= 0) ++count, offset_mean += neighbour_offset(slot);
   offset_mean /= double(count);  // >= 1: the cell is its own neighbour
   for (int slot = 0; slot < 27; ++slot) weights[size_t(slot)] = neighbours[size_t(slot)] < 0 ? 0.0 : 1.0 / count;
+  if (offset_mean == glm::dvec3(0.0)) return weights;  // neighbours all round: no slope moves the mean
   std::array<std::array<double, 27>, 3> slopes;
   slope_weights(neighbours, &slopes);
   for (int a = 0; a < 3; ++a) {
